@@ -292,23 +292,41 @@ class TCESolver:
         )
         return s.solve()
 
-    def phase1(self, b_eq: NDArray[np.float64]) -> tuple[float, float, str]:
+    def _phase1_rows(self) -> NDArray[np.float64]:
+        """Per-row divisor of the phase-1 problem: each block's own weight (force rows) and
+        weight times size (moment rows), so that a small overload of a light block shows."""
+        a = self.model.assembly
+        free = list(a.free_indices)
+        w = a.weights[free]
+        size = np.array([a.blocks[i].shape.size for i in free])
+        r = self.model.rows_per_block
+        per_block = np.repeat(w, r)
+        return np.where(self.model.row_is_moment, per_block * np.repeat(size, r), per_block)
+
+    def phase1(self, lam: float, alpha: float) -> tuple[float, float, str]:
         """Smallest equilibrium residual reachable by admissible forces.
 
-        Solves ``min r  s.t.  -r <= A F + b <= r (scaled rows), F admissible`` (always
-        feasible and bounded). Returns ``(r, solve_time, clarabel status)``; ``r = 0`` (to
-        ``feas_tol``) means the load is carried.
+        Solves ``min r  s.t.  -r <= (A_eq F + b_dead + lam b_lat)_i / w_i <= r, F admissible``
+        with ``w_i`` the weight (times size, for moment rows) of the row's block: always
+        feasible and bounded. Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol``
+        means the load is carried.
         """
-        m, n = self._A_eq_hat.shape
-        one = np.ones((m, 1))
+        div = self._phase1_rows()
+        b_eq = -self._rhs(lam, alpha) / div
+        m, n = self.model.A_eq.shape
+        zeros = np.zeros(self._cones.n_nonneg + 3 * self._cones.n_soc)
+        b = np.concatenate([np.zeros(self._cones.n_zero), b_eq, -b_eq, zeros])
         if self._feas is None:
+            A_hat = sp.diags(self.scaling.force / div) @ self.model.A_eq
+            one = np.ones((m, 1))
+            col = lambda rows: sp.csr_matrix((rows, 1))  # noqa: E731
             A = sp.vstack(
                 [
-                    sp.hstack([-self._cones.zero, sp.csr_matrix((self._cones.n_zero, 1))]),
-                    sp.hstack([self._A_eq_hat, -one]),
-                    sp.hstack([-self._A_eq_hat, -one]),
-                    sp.hstack([-self._cones.nonneg, sp.csr_matrix((self._cones.n_nonneg, 1))]),
-                    sp.hstack([-self._cones.soc, sp.csr_matrix((3 * self._cones.n_soc, 1))]),
+                    sp.hstack([-self._cones.zero, col(self._cones.n_zero)]),
+                    sp.hstack([A_hat, -one]),
+                    sp.hstack([-A_hat, -one]),
+                    sp.hstack([-self._cones.nonneg, col(self._cones.n_nonneg)]),
+                    sp.hstack([-self._cones.soc, col(3 * self._cones.n_soc)]),
                 ]
             ).tocsc()
             cones: list = []
@@ -316,24 +334,16 @@ class TCESolver:
                 cones.append(clarabel.ZeroConeT(self._cones.n_zero))
             cones.append(clarabel.NonnegativeConeT(2 * m + self._cones.n_nonneg))
             cones += [clarabel.SecondOrderConeT(3)] * self._cones.n_soc
-            self._feas_nz = self._cones.n_zero
             q = np.zeros(n + 1)
             q[-1] = 1.0
-            b = self._phase1_b(b_eq)
             self._feas = clarabel.DefaultSolver(
                 sp.csc_matrix((n + 1, n + 1)), q, A, b, cones, self.options.clarabel_settings()
             )
         else:
-            self._feas.update(b=self._phase1_b(b_eq))
+            self._feas.update(b=b)
         sol = self._feas.solve()
         r = float(sol.x[-1]) if str(sol.status) in ("Solved", "AlmostSolved") else float("nan")
         return r, float(sol.solve_time), str(sol.status)
-
-    def _phase1_b(self, b_eq: NDArray[np.float64]) -> NDArray[np.float64]:
-        m = self._A_eq_hat.shape[0]
-        return np.concatenate(
-            [np.zeros(self._cones.n_zero), b_eq, -b_eq, np.zeros(self._cones.n_nonneg + 3 * self._cones.n_soc)]
-        )
 
     def recession(self, U: NDArray[np.float64]) -> tuple[float, float]:
         """Steepest descent of the rigid TCE along self-stresses.
@@ -397,7 +407,7 @@ class TCESolver:
             status = "infeasible"
         if status == "numerical" and raw != "PrimalInfeasible":
             # Clarabel's verdict is not clean (or claims unboundedness): decide feasibility first.
-            r, t, fstat = self.phase1(b_eq)
+            r, t, fstat = self.phase1(lam, alpha)
             stime += t
             notes.append(f"phase-1 residual {r:.3g} ({fstat})")
             if not np.isfinite(r):

@@ -1,0 +1,185 @@
+"""Load-path driver: raise lambda until the TCE has no admissible answer, then bisect.
+
+For one scenario (support motions, possibly none), a lateral direction ``alpha`` and the
+analysis' material, :func:`load_path` solves the TCE at ``lam = 0, step, 2 step, ...``
+until the first step whose status is not ``optimal`` (``numerical`` steps are kept,
+reported and stepped over: they are never taken as the limit). When that step is
+``infeasible``, it bisects between the last ``optimal`` and the first ``infeasible``
+multiplier until ``hi - lo <= max(atol, rtol * hi)``; ``lambda_max`` is the last
+``optimal`` multiplier (a safe lower bound). Every run also reports the direct
+lambda_max (:mod:`tce.limit`) and the gap, so the bisection is checked each time.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .analysis import Analysis
+from .limit import LimitResult
+from .solve import TCEResult
+
+__all__ = ["LoadPathResult", "load_path"]
+
+
+@dataclass(frozen=True, eq=False)
+class LoadPathResult:
+    """A load path and its limit.
+
+    Attributes
+    ----------
+    alpha : float
+        Direction of the lateral loads (degrees).
+    settlements : dict
+        Support motions of the scenario ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad).
+    steps : list of TCEResult
+        Every solve, in the order made: the increments, then the bisection.
+    outcome : str
+        ``limit`` (bisected to an infeasible load), ``unbounded`` (a step is unbounded:
+        the support motion is incompatible with the material), ``infeasible`` (no
+        admissible state at lambda = 0), ``no_limit`` (still admissible at ``lam_cap``),
+        ``numerical`` (the bracket could not be decided).
+    lambda_max : float
+        Last admissible multiplier of the bisection (NaN unless ``outcome == "limit"``).
+    lambda_upper : float
+        Smallest multiplier found inadmissible (NaN if none).
+    limit : LimitResult
+        The direct limit analysis in the same direction.
+    n_solves : int
+    solve_time : float
+        Clarabel's time summed over the steps (s).
+    wall_time : float
+        Time of the whole call (s).
+    """
+
+    alpha: float
+    settlements: dict
+    steps: list[TCEResult] = field(repr=False)
+    outcome: str
+    lambda_max: float
+    lambda_upper: float
+    limit: LimitResult = field(repr=False)
+    n_solves: int = 0
+    solve_time: float = 0.0
+    wall_time: float = 0.0
+
+    @property
+    def lambda_direct(self) -> float:
+        """lambda_max of the direct conic program."""
+        return self.limit.lambda_max
+
+    @property
+    def gap(self) -> float:
+        """``lambda_max - lambda_direct`` (NaN when either is undefined)."""
+        return self.lambda_max - self.lambda_direct
+
+    @property
+    def path(self) -> list[TCEResult]:
+        """The steps sorted by lambda."""
+        return sorted(self.steps, key=lambda r: r.lam)
+
+    @property
+    def at_limit(self) -> TCEResult | None:
+        """The optimal step at ``lambda_max``."""
+        ok = [r for r in self.steps if r.ok and r.lam == self.lambda_max]
+        return ok[0] if ok else None
+
+
+def load_path(
+    analysis: Analysis,
+    alpha: float = 0.0,
+    settlements: Mapping[str, ArrayLike] | None = None,
+    step: float = 0.02,
+    atol: float = 1e-6,
+    rtol: float = 0.0,
+    lam_cap: float = 100.0,
+) -> LoadPathResult:
+    """Increment lambda by ``step`` from 0, then bisect the first inadmissible increment.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    alpha : float
+        Lateral direction (degrees, from +x towards +y).
+    settlements : dict, optional
+        Support motions (m, rad) about each support centroid.
+    step : float
+        Load increment (> 0).
+    atol, rtol : float
+        Bisection stops when ``hi - lo <= max(atol, rtol * hi)``; at least one > 0.
+    lam_cap : float
+        Largest multiplier tried before the path gives up (``outcome = "no_limit"``).
+
+    Returns
+    -------
+    LoadPathResult
+    """
+    if not (math.isfinite(step) and step > 0):
+        raise ValueError(f"step must be a finite number > 0, got {step!r}")
+    if not (atol >= 0 and rtol >= 0 and (atol > 0 or rtol > 0)):
+        raise ValueError(f"tolerances must be >= 0 and not both 0, got atol={atol!r}, rtol={rtol!r}")
+    t0 = time.perf_counter()
+    sett = {k: list(np.asarray(v, dtype=float)) for k, v in (settlements or {}).items()}
+    steps: list[TCEResult] = []
+
+    def run(lam: float) -> TCEResult:
+        r = analysis.solve(lam, alpha, sett)
+        steps.append(r)
+        return r
+
+    lo: float | None = None
+    hi: float | None = None
+    outcome = "no_limit"
+    k = 0
+    while k * step <= lam_cap:
+        lam = k * step
+        r = run(lam)
+        if r.status == "optimal":
+            lo = lam
+        elif r.status == "infeasible":
+            hi = lam
+            outcome = "limit" if lo is not None else "infeasible"
+            break
+        elif r.status == "unbounded":
+            outcome = "unbounded"
+            break
+        k += 1
+    if outcome == "limit":
+        assert lo is not None and hi is not None
+        lo_bracket = lo  # admissible end of the bracket; `lo` stays the last optimal step
+        while hi - lo_bracket > max(atol, rtol * abs(hi)):
+            mid = 0.5 * (lo_bracket + hi)
+            r = run(mid)
+            direct = analysis.limit(alpha).lambda_max
+            if r.status == "optimal":
+                lo = lo_bracket = mid
+            elif r.status == "infeasible":
+                hi = mid
+            elif r.status == "numerical" and math.isfinite(direct):
+                # an undecided step stays `numerical` and is never the answer; the direct
+                # limit tells on which side of it the limit lies
+                if mid > direct:
+                    hi = mid
+                else:
+                    lo_bracket = mid
+            else:
+                outcome = "numerical"
+                break
+    lam_max = lo if outcome == "limit" and lo is not None else float("nan")
+    return LoadPathResult(
+        alpha=float(alpha),
+        settlements=sett,
+        steps=steps,
+        outcome=outcome,
+        lambda_max=float(lam_max),
+        lambda_upper=float(hi) if hi is not None else float("nan"),
+        limit=analysis.limit(alpha),
+        n_solves=len(steps),
+        solve_time=float(sum(s.solve_time for s in steps)),
+        wall_time=time.perf_counter() - t0,
+    )
