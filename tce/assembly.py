@@ -229,6 +229,53 @@ class Assembly:
         )
         return replace(self, blocks=blocks, interfaces=interfaces)
 
+    # ------------------------------------------------------------------ serialisation
+    def to_dict(self) -> dict:
+        """Plain-data form (tce's block format): blocks with ``name``, ``vertices`` (m),
+        ``faces``, ``support``, ``unit_weight`` (kN/m^3); interfaces with block names
+        ``a``, ``b``, ``points`` (m) and ``normal``; and ``meta``."""
+        return {
+            "blocks": [
+                {
+                    "name": b.name,
+                    "vertices": b.shape.vertices.tolist(),
+                    "faces": [list(f) for f in b.shape.faces],
+                    "support": bool(b.support),
+                    "unit_weight": float(b.unit_weight),
+                }
+                for b in self.blocks
+            ],
+            "interfaces": [
+                {
+                    "a": self.names[i.a],
+                    "b": self.names[i.b],
+                    "points": i.points.tolist(),
+                    "normal": i.normal.tolist(),
+                }
+                for i in self.interfaces
+            ],
+            "meta": dict(self.meta),
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Assembly:
+        """Inverse of :meth:`to_dict` (interfaces may be absent: detect them separately)."""
+        blocks = tuple(
+            Block(
+                str(b["name"]),
+                Polyhedron(np.asarray(b["vertices"], dtype=float), [tuple(f) for f in b["faces"]]),
+                float(b["unit_weight"]),
+                bool(b.get("support", False)),
+            )
+            for b in data["blocks"]
+        )
+        index = {b.name: k for k, b in enumerate(blocks)}
+        interfaces = tuple(
+            Interface(index[i["a"]], index[i["b"]], np.asarray(i["points"], float), i.get("normal"))
+            for i in data.get("interfaces", [])
+        )
+        return cls(blocks, interfaces, dict(data.get("meta", {})))
+
     # ------------------------------------------------------------------ checks
     def validate(self) -> Assembly:
         """Check the assembly and return it.
