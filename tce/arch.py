@@ -17,7 +17,14 @@ from numpy.typing import ArrayLike
 from .assembly import Assembly, Block, Interface
 from .geometry import prism
 
-__all__ = ["arch_from_joints", "semicircular_arch", "check_positive"]
+__all__ = [
+    "arch_from_joints",
+    "check_positive",
+    "pointed_arch",
+    "segmental_arch",
+    "semicircular_arch",
+    "semicircular_arch_on_piers",
+]
 
 
 def check_positive(**params: float) -> None:
@@ -165,3 +172,199 @@ def semicircular_arch(
         support_height if support_height is not None else thickness,
         meta,
     )
+
+
+def _whole_number(value: int, name: str, minimum: int = 1) -> int:
+    if isinstance(value, bool) or int(value) != value or value < minimum:
+        raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
+    return int(value)
+
+
+def _mirror_joints(left: np.ndarray, n: int) -> np.ndarray:
+    """All ``n + 1`` joint ends of a symmetric arch from those of its left half.
+
+    ``left`` holds the ends of joints ``0 .. n // 2`` (a crown joint, for even ``n``, is the
+    last row and lies on ``x = 0``); the right half is their mirror image about x = 0.
+    """
+    right = left[: (n + 1) // 2][::-1] * np.array([-1.0, 1.0])
+    out = np.vstack([left, right])
+    assert len(out) == n + 1
+    return out
+
+
+def pointed_arch(
+    span: float = 2.0,
+    rise: float | None = None,
+    thickness: float = 0.2,
+    depth: float = 0.25,
+    voussoirs: int = 14,
+    centre_offset: float | None = None,
+    unit_weight: float = 20.0,
+    pier_height: float | None = None,
+) -> Assembly:
+    """Pointed (two-centred) arch on two support blocks (piers).
+
+    Each half is a circular arc whose centre lies on the springing line (z = 0) on the
+    *other* side of the midspan, at ``x = +-e`` (``e`` the centre offset); ``e = 0`` is the
+    semicircular arch and ``e = span / 2`` the equilateral arch. The intrados radius is
+    ``R = span / 2 + e`` and the rise ``f = sqrt(span**2 / 4 + span * e)``.
+
+    Parameters
+    ----------
+    span : float
+        Clear span between the intrados springings (m); they lie at ``x = -+span/2, z = 0``.
+    rise : float, optional
+        Intrados rise at the crown (m), ``>= span / 2``. Give either ``rise`` or
+        ``centre_offset``; with neither, ``centre_offset = span / 2`` (equilateral arch).
+    thickness : float
+        Radial thickness (m); the extrados arcs share the intrados centres.
+    depth : float
+        Depth along y (m).
+    voussoirs : int
+        Number of voussoirs (>= 2). Joints are radial to their arc, at equal angles on each
+        half. An even number gives a vertical crown joint (where the two arcs meet); an odd
+        number gives a keystone across the crown, with chord faces.
+    centre_offset : float, optional
+        ``e >= 0`` (m), the distance of each centre from the midspan.
+    unit_weight : float
+        Unit weight (kN/m^3).
+    pier_height : float, optional
+        Height of the support blocks below the springing joints (m); defaults to the
+        thickness. A tall value models an arch on piers.
+
+    Returns
+    -------
+    Assembly
+        See :func:`arch_from_joints`; ``meta["generator"] == "pointed_arch"``.
+    """
+    check_positive(span=span, thickness=thickness, depth=depth, unit_weight=unit_weight)
+    n = _whole_number(voussoirs, "voussoirs", 2)
+    s = float(span)
+    if rise is not None and centre_offset is not None:
+        raise ValueError("give either rise or centre_offset, not both")
+    if rise is not None:
+        check_positive(rise=rise)
+        if rise < s / 2.0:
+            raise ValueError(f"rise must be >= span / 2 = {s / 2.0} for a pointed arch, got {rise!r}")
+        e = (float(rise) ** 2 - s**2 / 4.0) / s
+    else:
+        e = s / 2.0 if centre_offset is None else float(centre_offset)
+        if not (math.isfinite(e) and e >= 0.0):
+            raise ValueError(f"centre_offset must be a finite number >= 0, got {centre_offset!r}")
+    R = s / 2.0 + e
+    f = math.sqrt(R**2 - e**2)
+    t = float(thickness)
+    # left half: arc centred at (+e, 0), angles from pi (left springing) to the crown
+    a0, a1 = math.pi, math.atan2(f, -e)
+    m = n // 2
+    frac = np.arange(m + 1) / (n / 2.0)
+    ang = a0 + (a1 - a0) * frac
+    ji = np.column_stack([e + R * np.cos(ang), R * np.sin(ang)])
+    je = np.column_stack([e + (R + t) * np.cos(ang), (R + t) * np.sin(ang)])
+    ji[0] = [-s / 2.0, 0.0]
+    je[0] = [-s / 2.0 - t, 0.0]
+    if n % 2 == 0:  # vertical crown joint where the two arcs meet
+        ji[-1] = [0.0, f]
+        je[-1] = [0.0, math.sqrt((R + t) ** 2 - e**2)]
+    h = t if pier_height is None else pier_height
+    meta = dict(
+        generator="pointed_arch",
+        span=s,
+        rise=f,
+        centre_offset=e,
+        radius=R,
+        thickness=t,
+        depth=float(depth),
+        voussoirs=n,
+        unit_weight=float(unit_weight),
+        pier_height=float(h),
+    )
+    return arch_from_joints(_mirror_joints(ji, n), _mirror_joints(je, n), depth, unit_weight, h, meta)
+
+
+def segmental_arch(
+    span: float = 2.0,
+    rise: float = 0.5,
+    thickness: float = 0.2,
+    depth: float = 0.25,
+    voussoirs: int = 12,
+    unit_weight: float = 20.0,
+    pier_height: float | None = None,
+) -> Assembly:
+    """Segmental (circular, less than a semicircle) arch on two skewback supports.
+
+    The intrados is the circular arc through the springings ``(-+span/2, 0)`` and the
+    crown ``(0, rise)``: radius ``R = (span**2 / 4 + rise**2) / (2 rise)``, centre
+    ``(0, rise - R)`` (below the springing line unless ``rise = span / 2``). Joints are
+    radial, at equal angles; the springing joints are inclined, and each support block is
+    the prism under its springing joint (a skewback), with a horizontal base.
+
+    Parameters
+    ----------
+    span : float
+        Clear span between the intrados springings (m).
+    rise : float
+        Intrados rise (m), ``0 < rise <= span / 2``.
+    thickness : float
+        Radial thickness (m).
+    depth : float
+        Depth along y (m).
+    voussoirs : int
+        Number of voussoirs (>= 1).
+    unit_weight : float
+        Unit weight (kN/m^3).
+    pier_height : float, optional
+        Height of the support blocks below the lower end of their springing joint (m);
+        defaults to the thickness. A tall value models an arch on piers.
+
+    Returns
+    -------
+    Assembly
+        See :func:`arch_from_joints`; ``meta["generator"] == "segmental_arch"``.
+    """
+    check_positive(span=span, rise=rise, thickness=thickness, depth=depth, unit_weight=unit_weight)
+    n = _whole_number(voussoirs, "voussoirs", 1)
+    s, f, t = float(span), float(rise), float(thickness)
+    if f > s / 2.0 * (1.0 + 1e-12):
+        raise ValueError(f"rise must be <= span / 2 = {s / 2.0} for a segmental arch, got {rise!r}")
+    R = (s**2 / 4.0 + f**2) / (2.0 * f)
+    zc = f - R
+    half = math.atan2(s / 2.0, -zc)  # half opening angle, measured from the vertical
+    ang = np.linspace(math.pi / 2.0 + half, math.pi / 2.0 - half, n + 1)
+    c, sn = np.cos(ang), np.sin(ang)
+    ji = np.column_stack([R * c, zc + R * sn])
+    je = np.column_stack([(R + t) * c, zc + (R + t) * sn])
+    ji[0], ji[-1] = [-s / 2.0, 0.0], [s / 2.0, 0.0]
+    h = t if pier_height is None else pier_height
+    meta = dict(
+        generator="segmental_arch",
+        span=s,
+        rise=f,
+        radius=R,
+        thickness=t,
+        depth=float(depth),
+        voussoirs=n,
+        unit_weight=float(unit_weight),
+        pier_height=float(h),
+    )
+    return arch_from_joints(ji, je, depth, unit_weight, h, meta)
+
+
+def semicircular_arch_on_piers(
+    inner_radius: float = 1.0,
+    thickness: float = 0.2,
+    depth: float = 0.25,
+    voussoirs: int = 14,
+    pier_height: float = 1.0,
+    unit_weight: float = 20.0,
+) -> Assembly:
+    """The semicircular arch of :func:`semicircular_arch` on two piers ``pier_height`` tall (m).
+
+    The piers are the support blocks (their motion is prescribed, their equilibrium is not
+    checked); ``meta["generator"] == "semicircular_arch_on_piers"``.
+    """
+    check_positive(pier_height=pier_height)
+    asm = semicircular_arch(inner_radius, thickness, depth, voussoirs, unit_weight, pier_height)
+    meta = dict(asm.meta, generator="semicircular_arch_on_piers", pier_height=float(pier_height))
+    meta.pop("support_height", None)
+    return Assembly(asm.blocks, asm.interfaces, meta)
