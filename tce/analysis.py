@@ -12,14 +12,13 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Literal
 
-import numpy as np
 from numpy.typing import ArrayLike
 
 from .assembly import Assembly
 from .limit import LimitResult, LimitSolver
 from .material import Material
 from .model import Model, build_model, find_plane, scene_in_plane
-from .solve import SolverOptions, TCEResult, TCESolver
+from .solve import SolverOptions, TCEResult, TCESolver, check_settlements
 
 __all__ = ["Analysis"]
 
@@ -64,7 +63,7 @@ class Analysis:
         """The model a scene runs on (see module docstring)."""
         if self.choice == "spatial" or self.plane is None:
             return "spatial"
-        sett = {k: np.asarray(v, dtype=float) for k, v in (settlements or {}).items()}
+        sett = check_settlements(self.assembly.support_names, settlements)
         inplane = scene_in_plane(self.plane, alpha, sett)
         if self.choice == "planar" and not inplane:
             raise ValueError("model='planar' but the scene's loads or support motions leave the plane")

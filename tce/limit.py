@@ -83,13 +83,13 @@ def _block_velocities(model: Model, v: NDArray[np.float64]) -> NDArray[np.float6
     return out
 
 
-def mechanism_from_velocities(model: Model, vel: NDArray[np.float64], tol: float = 1e-6) -> Mechanism:
+def mechanism_from_velocities(model: Model, vel: NDArray[np.float64], tol: float = 1e-4) -> Mechanism:
     """Classify the interfaces of ``model`` under block velocities ``vel`` ((n_blocks, 6)).
 
-    The velocities are rescaled so that the largest vertex speed is 1; an interface hinges
-    when the relative rotation exceeds ``tol`` times the largest one (per unit of assembly
-    size), slides when the relative tangential velocity exceeds ``tol`` without rotation,
-    and opens when only the normal part does.
+    The velocities are rescaled so that the largest vertex speed is 1. An interface whose
+    largest relative speed is below ``tol`` is closed; otherwise it hinges when the relative
+    rotation times the interface's width exceeds 1 % of that speed, slides when the
+    tangential part does, and opens when only the normal part is left.
     """
     a = model.assembly
     pts = np.vstack([b.shape.vertices for b in a.blocks])
@@ -107,15 +107,17 @@ def mechanism_from_velocities(model: Model, vel: NDArray[np.float64], tol: float
         )
         dn = rel @ itf.normal
         dt = rel - dn[:, None] * itf.normal
-        if np.linalg.norm(dw) * a.size > tol:
+        width = np.ptp(p, axis=0).max()
+        moving = np.abs(rel).max()
+        if moving <= tol:
+            modes.append("closed")
+        elif np.linalg.norm(dw) * width > 1e-2 * moving:
             modes.append("hinge")
             hp[slot] = p[np.argmin(np.abs(dn))]
-        elif np.abs(dt).max() > tol:
+        elif np.abs(dt).max() > 1e-2 * moving:
             modes.append("sliding")
-        elif np.abs(dn).max() > tol:
-            modes.append("opening")
         else:
-            modes.append("closed")
+            modes.append("opening")
     return Mechanism(vel, tuple(modes), hp)
 
 

@@ -27,8 +27,11 @@ Statuses (DESIGN.md):
 ``numerical``
     Anything else: no number of such an answer is reported.
 
-When Clarabel's own verdict is not clean, the phase-1 and recession problems decide, and
-a retry with more robust settings is made; the result says which (``retry``).
+When Clarabel's own verdict is not clean, the phase-1 and recession problems decide (a
+phase-1 residual close to ``feas_tol`` is decided again with tight tolerances), and a
+feasible, bounded problem is retried: first with a fresh solver equilibrated for this
+problem (``rescaled``; the warm solver keeps the scaling of its first problem), then with
+robust settings. The result always says what decided (``retry``).
 """
 
 from __future__ import annotations
@@ -48,7 +51,7 @@ from .conic import Scaling, cone_rows, cone_violation
 from .material import Material
 from .model import Model, scene_in_plane
 
-__all__ = ["STATUSES", "SolverOptions", "TCEResult", "TCESolver", "settlement_vector"]
+__all__ = ["STATUSES", "SolverOptions", "TCEResult", "TCESolver", "check_settlements", "settlement_vector"]
 
 log = logging.getLogger(__name__)
 
@@ -78,14 +81,17 @@ class SolverOptions:
     feas_tol: float = 1e-9
     max_iter: int = 200
 
-    def clarabel_settings(self, robust: bool = False) -> clarabel.DefaultSettings:
-        """Clarabel settings; ``robust`` raises iterations and equilibration for a retry."""
+    def clarabel_settings(self, robust: bool = False, tight: bool = False) -> clarabel.DefaultSettings:
+        """Clarabel settings; ``robust`` raises iterations and equilibration for a retry;
+        ``tight`` sets the gap and feasibility tolerances a thousand times below ``feas_tol``
+        (for a phase-1 residual too close to ``feas_tol`` to be trusted)."""
         s = clarabel.DefaultSettings()
         s.verbose = False
         s.presolve_enable = False  # keeps the data layout fixed, so updates are allowed
         s.chordal_decomposition_enable = False
-        s.tol_gap_abs = s.tol_gap_rel = self.tol
-        s.tol_feas = self.tol
+        tol = min(self.tol, 1e-3 * self.feas_tol) if tight else self.tol
+        s.tol_gap_abs = s.tol_gap_rel = tol
+        s.tol_feas = tol
         s.tol_infeas_abs = s.tol_infeas_rel = min(1e-8, 10 * self.tol)
         s.tol_ktratio = 1e-7
         s.max_iter = self.max_iter
@@ -98,16 +104,15 @@ class SolverOptions:
         return s
 
 
-def settlement_vector(model: Model, settlements: Mapping[str, ArrayLike] | None) -> NDArray[np.float64]:
-    """Stack support motions ``{name: (ux, uy, uz, rx, ry, rz)}`` in support order (zeros elsewhere).
+def check_settlements(names: tuple[str, ...], settlements: Mapping[str, ArrayLike] | None) -> dict[str, NDArray[np.float64]]:
+    """Support motions ``{name: (ux, uy, uz, rx, ry, rz)}`` as float arrays, checked.
 
     Raises
     ------
     ValueError
         Unknown support name, a vector that is not 6 finite numbers.
     """
-    names = model.assembly.support_names
-    U = np.zeros((len(names), 6))
+    out = {}
     for name, u in (settlements or {}).items():
         if name not in names:
             raise ValueError(f"unknown support {name!r}; supports are {list(names)}")
@@ -118,6 +123,15 @@ def settlement_vector(model: Model, settlements: Mapping[str, ArrayLike] | None)
             )
         if not np.all(np.isfinite(v)):
             raise ValueError(f"support {name!r}: displacement has NaN or infinite entries")
+        out[name] = v
+    return out
+
+
+def settlement_vector(model: Model, settlements: Mapping[str, ArrayLike] | None) -> NDArray[np.float64]:
+    """Stack support motions in support order (zeros for supports not named), checked."""
+    names = model.assembly.support_names
+    U = np.zeros((len(names), 6))
+    for name, v in check_settlements(names, settlements).items():
         U[names.index(name)] = v
     return U.ravel()
 
@@ -227,6 +241,9 @@ class TCESolver:
     options : SolverOptions, optional
     """
 
+    #: Phase-1 residuals in ``(feas_tol, PHASE1_BAND * feas_tol]`` are decided with tight tolerances.
+    PHASE1_BAND: float = 100.0
+
     def __init__(self, model: Model, material: Material, options: SolverOptions | None = None) -> None:
         self.model = model
         self.material = material
@@ -286,9 +303,10 @@ class TCESolver:
             self._solver.update(q=q, b=b)
         return self._solver.solve()
 
-    def _robust(self, q: NDArray[np.float64], b: NDArray[np.float64]) -> clarabel.DefaultSolution:
+    def _fresh(self, q: NDArray[np.float64], b: NDArray[np.float64], robust: bool) -> clarabel.DefaultSolution:
+        """Solve the main problem with a new solver (equilibrated for this ``q`` and ``b``)."""
         s = clarabel.DefaultSolver(
-            self._P, q, self._A, b, self._cone_list, self.options.clarabel_settings(robust=True)
+            self._P, q, self._A, b, self._cone_list, self.options.clarabel_settings(robust=robust)
         )
         return s.solve()
 
@@ -309,7 +327,9 @@ class TCESolver:
         Solves ``min r  s.t.  -r <= (A_eq F + b_dead + lam b_lat)_i / w_i <= r, F admissible``
         with ``w_i`` the weight (times size, for moment rows) of the row's block: always
         feasible and bounded. Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol``
-        means the load is carried.
+        means the load is carried. A residual that is undecided (NaN) or lies within
+        ``PHASE1_BAND`` times ``feas_tol`` is decided again with tight tolerances
+        (:meth:`SolverOptions.clarabel_settings`); the status then ends with ``tight: ...``.
         """
         div = self._phase1_rows()
         b_eq = -self._rhs(lam, alpha) / div
@@ -336,14 +356,23 @@ class TCESolver:
             cones += [clarabel.SecondOrderConeT(3)] * self._cones.n_soc
             q = np.zeros(n + 1)
             q[-1] = 1.0
-            self._feas = clarabel.DefaultSolver(
-                sp.csc_matrix((n + 1, n + 1)), q, A, b, cones, self.options.clarabel_settings()
-            )
+            self._feas_data = (sp.csc_matrix((n + 1, n + 1)), q, A, cones)
+            self._feas = clarabel.DefaultSolver(*self._feas_data[:3], b, cones, self.options.clarabel_settings())
         else:
             self._feas.update(b=b)
         sol = self._feas.solve()
         r = float(sol.x[-1]) if str(sol.status) in ("Solved", "AlmostSolved") else float("nan")
-        return r, float(sol.solve_time), str(sol.status)
+        t, status = float(sol.solve_time), str(sol.status)
+        if not r <= self.options.feas_tol and not r > self.PHASE1_BAND * self.options.feas_tol:
+            # undecided, or too close to feas_tol for the default tolerances: decide again
+            # with tight ones (a fresh solver, so also a fresh equilibration)
+            P, q, A, cones = self._feas_data
+            sol = clarabel.DefaultSolver(P, q, A, b, cones, self.options.clarabel_settings(tight=True)).solve()
+            t += float(sol.solve_time)
+            if str(sol.status) in ("Solved", "AlmostSolved"):
+                r = float(np.nanmin([r, float(sol.x[-1])]))  # each is reached by some admissible state
+            status = f"{status}, tight: {sol.status}"
+        return r, t, status
 
     def recession(self, U: NDArray[np.float64]) -> tuple[float, float]:
         """Steepest descent of the rigid TCE along self-stresses.
@@ -413,7 +442,7 @@ class TCESolver:
             if not np.isfinite(r):
                 retry = "phase-1 failed"
             elif r > self.options.feas_tol:
-                status, retry = "infeasible", "phase-1"
+                status, retry = "infeasible", "phase-1 (tight)" if "tight" in fstat else "phase-1"
             elif raw == "DualInfeasible" and self._D is None:
                 status, retry = "unbounded", ""
             elif self._D is None and np.any(U):
@@ -422,12 +451,17 @@ class TCESolver:
                 notes.append(f"recession {val:.3g}")
                 if val < -1e-7:
                     status, retry = "unbounded", "recession"
-            if status == "numerical" and retry != "phase-1 failed":
-                sol2 = self._robust(q, b)
+            # feasible and bounded (or undecided): retry, first with a fresh solver whose
+            # equilibration is computed for this q and b (the warm one keeps the scaling of
+            # its first problem), then with robust settings
+            for name, robust in (("rescaled", False), ("robust settings", True)):
+                if status != "numerical":
+                    break
+                sol2 = self._fresh(q, b, robust)
                 stime += float(sol2.solve_time)
-                notes.append(f"robust retry: {sol2.status}")
+                notes.append(f"{name} retry: {sol2.status}")
                 if str(sol2.status) in ("Solved", "AlmostSolved") and self._passes(np.asarray(sol2.x), lam, alpha):
-                    status, retry, x = "optimal", "robust settings", np.asarray(sol2.x)
+                    status, retry, x = "optimal", name, np.asarray(sol2.x)
         if status != "optimal":
             x = None
         return self._result(status, lam, alpha, U, x, stime, time.perf_counter() - t0, int(sol.iterations), retry, "; ".join(notes))

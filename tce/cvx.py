@@ -1,0 +1,120 @@
+"""The TCE problem written in cvxpy: a second, independent path to the same answer.
+
+It states, from the model's operators and in physical units scaled by the total weight
+``W`` (forces ``F = W f``)::
+
+    minimise    1/2 F' D F - U' B_sup F
+    subject to  A_eq F + b_dead + lx * b_lat_x + ly * b_lat_y = 0
+                fn >= 0, ||ft|| <= mu fn  (spatial: second-order cones; planar: |ft| <= mu fn)
+
+with ``(lx, ly) = lam (cos alpha, sin alpha)``. The load and the support motions are cvxpy
+Parameters, so one :class:`CvxTCE` can be re-solved (DPP), or rebuilt for every solve.
+Any solver cvxpy offers for the problem class can be used (CLARABEL, ECOS, SCS; HIGHS for
+rigid planar LPs).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import cvxpy as cp
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .material import Material
+from .model import Model
+from .solve import settlement_vector
+
+__all__ = ["CvxResult", "CvxTCE"]
+
+_STATUS = {
+    cp.OPTIMAL: "optimal",
+    cp.INFEASIBLE: "infeasible",
+    cp.UNBOUNDED: "unbounded",
+}
+
+
+@dataclass(frozen=True, eq=False)
+class CvxResult:
+    """Answer of a cvxpy solve: status (DESIGN.md words), forces (nc, dim) in kN (NaN unless
+    optimal), support wrenches (ns, 6), TCE value (kN m), solver name and times (s)."""
+
+    status: str
+    forces: NDArray[np.float64]
+    support_wrenches: NDArray[np.float64]
+    tce: float
+    solver: str
+    solve_time: float
+    wall_time: float
+
+
+class CvxTCE:
+    """Parametrised cvxpy TCE problem of one model and material.
+
+    Parameters
+    ----------
+    model : Model
+    material : Material
+    """
+
+    def __init__(self, model: Model, material: Material) -> None:
+        self.model = model
+        self.material = material
+        W = model.assembly.total_weight
+        self._W = W
+        n = model.n_vars
+        nc, dim = model.n_contacts, model.dim
+        self.f = cp.Variable(n)
+        self.lxy = cp.Parameter(2)
+        self.U = cp.Parameter(model.B_sup.shape[0])
+        F = W * self.f
+        fr = cp.reshape(self.f, (nc, dim), order="C")
+        cons = [model.A_eq @ F + model.b_dead + model.b_lat @ self.lxy == 0, fr[:, 0] >= 0]
+        mu = material.friction
+        if mu is not None:
+            if mu == 0.0:
+                cons.append(fr[:, 1:] == 0)
+            elif dim == 3:
+                cons.append(cp.SOC(mu * fr[:, 0], fr[:, 1:], axis=1))
+            else:
+                cons.append(cp.abs(fr[:, 1]) <= mu * fr[:, 0])
+        work = self.U @ (model.B_sup @ F)
+        if material.rigid:
+            obj = -work
+        else:
+            D = model.compliance(material.normal_stiffness, material.shear_stiffness)
+            obj = 0.5 * cp.sum(cp.multiply(W**2 * D, cp.square(self.f))) - work
+        self.problem = cp.Problem(cp.Minimize(obj), cons)
+
+    def solve(
+        self,
+        lam: float = 0.0,
+        alpha: float = 0.0,
+        settlements: Mapping[str, ArrayLike] | None = None,
+        solver: str = "CLARABEL",
+        **solver_options,
+    ) -> CvxResult:
+        """Solve for one scene with cvxpy solver ``solver``; statuses as in DESIGN.md."""
+        t0 = time.perf_counter()
+        a = np.deg2rad(alpha)
+        self.lxy.value = lam * np.array([np.cos(a), np.sin(a)])
+        self.U.value = settlement_vector(self.model, settlements)
+        try:
+            self.problem.solve(solver=solver, **solver_options)
+            raw = self.problem.status
+        except cp.SolverError as err:
+            raw = f"solver error: {err}"
+        status = _STATUS.get(raw, "numerical")
+        nan = np.full((self.model.n_contacts, self.model.dim), np.nan)
+        if status == "optimal":
+            F = self.f.value * self._W
+            forces = F.reshape(self.model.n_contacts, self.model.dim)
+            wrenches = (self.model.B_sup @ F).reshape(-1, 6)
+            value = float(self.problem.value)
+        else:
+            forces, wrenches, value = nan, np.full((len(self.model.assembly.support_names), 6), np.nan), float("nan")
+        stats = self.problem.solver_stats
+        stime = float(stats.solve_time) if stats is not None and stats.solve_time is not None else float("nan")
+        return CvxResult(status, forces, wrenches, value, solver, stime, time.perf_counter() - t0)

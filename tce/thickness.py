@@ -1,0 +1,127 @@
+"""Minimum thickness: the geometric safety factor of an arch (or any family of structures).
+
+:func:`minimum_thickness` bisects a geometric parameter ``t`` between a value where the
+structure stands under self-weight and one where it does not; "stands" means the TCE at
+``lam = 0`` with no support motion is ``optimal`` (an admissible force state exists).
+:func:`arch_minimum_thickness` applies it to the semicircular arch with a fixed centreline
+radius ``R`` and number of voussoirs, and reports ``t / R`` (Milankovitch's continuous
+value for a semicircular arch under self-weight is ``t/R = 0.1075``).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from .analysis import Analysis
+from .arch import check_positive, semicircular_arch
+from .assembly import Assembly
+from .material import Material
+
+__all__ = ["ThicknessResult", "arch_minimum_thickness", "minimum_thickness"]
+
+
+@dataclass(frozen=True)
+class ThicknessResult:
+    """Outcome of a minimum-thickness bisection.
+
+    Attributes
+    ----------
+    thickness : float
+        Smallest thickness found to stand (m): the upper end of the final bracket.
+    lower : float
+        Largest thickness found not to stand (m).
+    ratio : float
+        ``thickness / reference`` (for arches, the centreline radius).
+    n_solves : int
+    wall_time : float
+        Seconds.
+    undecided : int
+        Solves whose status was ``numerical`` (treated as "does not stand").
+    """
+
+    thickness: float
+    lower: float
+    ratio: float
+    n_solves: int
+    wall_time: float
+    undecided: int = 0
+
+
+def minimum_thickness(
+    build: Callable[[float], Assembly],
+    lo: float,
+    hi: float,
+    material: Material | None = None,
+    tol: float = 1e-6,
+    reference: float = 1.0,
+) -> ThicknessResult:
+    """Bisect the thinnest ``t`` in ``[lo, hi]`` for which ``build(t)`` stands under self-weight.
+
+    Parameters
+    ----------
+    build : callable
+        ``t -> Assembly`` (t in m).
+    lo, hi : float
+        A thickness that does not stand and one that does (m); checked.
+    material : Material, optional
+        Default: Heyman (unlimited friction), rigid.
+    tol : float
+        Relative width of the final bracket, ``(hi - lo) / hi``.
+    reference : float
+        Length that ``ratio`` divides by (m).
+
+    Raises
+    ------
+    ValueError
+        When ``hi`` does not stand or ``lo`` does.
+    """
+    check_positive(lo=lo, hi=hi, tol=tol, reference=reference)
+    if not lo < hi:
+        raise ValueError(f"need lo < hi, got lo={lo}, hi={hi}")
+    material = material or Material()
+    t0 = time.perf_counter()
+    n = undecided = 0
+
+    def stands(t: float) -> bool:
+        nonlocal n, undecided
+        n += 1
+        status = Analysis(build(t), material).solve(0.0).status
+        undecided += status == "numerical"
+        return status == "optimal"
+
+    if not stands(hi):
+        raise ValueError(f"the structure does not stand at the upper thickness {hi} m: raise it")
+    if stands(lo):
+        raise ValueError(f"the structure already stands at the lower thickness {lo} m: lower it")
+    while (hi - lo) > tol * hi:
+        mid = 0.5 * (lo + hi)
+        if stands(mid):
+            hi = mid
+        else:
+            lo = mid
+    return ThicknessResult(hi, lo, hi / reference, n, time.perf_counter() - t0, undecided)
+
+
+def arch_minimum_thickness(
+    centre_radius: float = 1.0,
+    voussoirs: int = 14,
+    depth: float = 0.25,
+    material: Material | None = None,
+    tol: float = 1e-6,
+) -> ThicknessResult:
+    """Minimum thickness of a semicircular arch with fixed centreline radius (m).
+
+    The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``.
+    """
+    check_positive(centre_radius=centre_radius, depth=depth)
+
+    def build(t: float) -> Assembly:
+        return semicircular_arch(centre_radius - t / 2, t, depth, voussoirs)
+
+    if not (isinstance(voussoirs, int) and voussoirs >= 1):
+        raise ValueError(f"voussoirs must be a whole number >= 1, got {voussoirs!r}")
+    return minimum_thickness(
+        build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius
+    )
