@@ -219,7 +219,11 @@ class LimitSolver:
         nan = float("nan")
         empty = np.full((model.n_contacts, model.dim), np.nan)
         if raw == "PrimalInfeasible":
-            return LimitResult("infeasible", alpha, nan, nan, nan, nan, empty, None, model.kind,
+            # Farkas certificate: block velocities under which the self-weight does positive
+            # work while every contact opens or slides admissibly: the collapse under self-weight
+            v = np.asarray(sol.z)[:m] / self._row_div
+            mech = mechanism_from_velocities(model, _block_velocities(model, v)) if np.any(v) else None
+            return LimitResult("infeasible", alpha, nan, nan, nan, nan, empty, mech, model.kind,
                                sol.solve_time, time.perf_counter() - t0, sol.iterations, f"clarabel: {raw}")
         if raw == "DualInfeasible":
             return LimitResult("unbounded", alpha, float("inf"), nan, nan, nan, empty, None, model.kind,
