@@ -1,0 +1,316 @@
+"""Results datasets (``docs/results.md``): one per scenario while running, one per study at the end.
+
+Each finished scenario becomes a one-scenario :class:`xarray.Dataset`
+(:func:`scenario_dataset`) written atomically to ``<study dir>/scenarios/`` (temporary
+file, then :func:`os.replace`), so an interrupted run loses no finished scenario. The
+study's ``results.nc`` is the concatenation of those files along ``scenario``, in the
+study's order, with the load paths padded to a common number of steps
+(:func:`merge_scenarios`). A scenario file records the scenario's full definition
+(:attr:`tce.study.Scenario.key`); a rerun reuses it only when that definition is unchanged
+(:func:`load_finished`).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import json
+import logging
+import os
+import re
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from . import __version__
+from .analysis import Analysis
+from .loadpath import LoadPathResult
+from .solve import SOLVER_NAME, TCEResult
+from .study import Scenario, Study, build_structure
+
+__all__ = [
+    "merge_scenarios",
+    "load_finished",
+    "scenario_dataset",
+    "scenario_path",
+    "study_attrs",
+    "write_atomic",
+]
+
+log = logging.getLogger(__name__)
+
+COMPONENTS = ("Fx", "Fy", "Fz", "Mx", "My", "Mz")
+XYZ = ("x", "y", "z")
+DOF = ("vx", "vy", "vz", "wx", "wy", "wz")
+#: variables that measure cost, not the answer (they differ from run to run)
+TIMING = ("solve_time", "wall_time")
+_FILL_TEXT = ""
+
+#: name -> (units, long_name)
+META: dict[str, tuple[str, str]] = {
+    "lambda_max": ("1", "load multiplier at the limit (last admissible step of the bisection)"),
+    "lambda_upper": ("1", "smallest load multiplier found inadmissible"),
+    "lambda_direct": ("1", "load multiplier at the limit from the direct limit analysis"),
+    "lambda_gap": ("1", "lambda_max minus lambda_direct"),
+    "lambda_kinematic": ("1", "load multiplier from the virtual work of the loads on the mechanism"),
+    "certificate_gap": ("1", "relative gap between kinematic and direct load multipliers"),
+    "outcome": ("-", "how the load path ended (limit, unbounded, infeasible, no_limit, numerical)"),
+    "model": ("-", "model solved (planar or spatial)"),
+    "n_solves": ("-", "number of TCE solves of the load path"),
+    "solve_time": ("s", "solver time summed over the load path"),
+    "wall_time": ("s", "wall-clock time of the load path"),
+    "lam": ("1", "load multiplier of the step"),
+    "status": ("-", "status of the step's TCE solve (optimal, infeasible, unbounded, numerical)"),
+    "reaction": ("kN, kN m", "wrench each support exerts on the structure, global frame, about the support centroid"),
+    "tce": ("kN m", "total complementary energy"),
+    "eq_residual": ("1", "relative equilibrium residual"),
+    "cone_residual": ("1", "relative contact-law violation"),
+    "resultant": ("kN", "interface resultant force on block B, global frame"),
+    "pressure_point": ("m", "interface pressure point"),
+    "torque": ("kN m", "torque about the interface normal at the pressure point, on block B"),
+    "mechanism": ("m, rad", "collapse mechanism velocities at the limit (unit amplitude, supports zero)"),
+    "interface_mode": ("-", "interface behaviour in the mechanism (hinge, sliding, opening, closed)"),
+    "hinge_point": ("m", "trace point of the hinge line (NaN if no hinge)"),
+    "interface_a": ("-", "block A of the interface (the normal points from A into B)"),
+    "interface_b": ("-", "block B of the interface"),
+    "block_centroid": ("m", "block centroid"),
+    "block_support": ("-", "1 for support blocks, 0 for free blocks"),
+    # coordinates
+    "scenario": ("-", "scenario name"),
+    "step": ("-", "load-path step, sorted by load multiplier"),
+    "support": ("-", "support block name"),
+    "component": ("-", "wrench component"),
+    "interface": ("-", "interface, as 'A|B' block names"),
+    "xyz": ("-", "global axis"),
+    "block": ("-", "block name"),
+    "dof": ("-", "rigid-body velocity component"),
+    "settlement": ("-", "settlement case ([scenarios.NAME] of the study)"),
+    "alpha": ("degree", "direction of the lateral loads, from +x towards +y"),
+    "friction": ("1", "friction coefficient (NaN: unlimited)"),
+    "magnitude": ("1", "scale factor applied to every settlement"),
+    "inner_radius": ("m", "intrados radius"),
+    "thickness": ("m", "thickness"),
+    "depth": ("m", "depth"),
+    "radius": ("m", "mid-surface radius"),
+}
+
+
+# ----------------------------------------------------------------------------- building
+def _step_fields(step: TCEResult, slots: np.ndarray, n_itf: int) -> dict[str, np.ndarray]:
+    """Per-step arrays of one TCE answer (NaN unless optimal), interfaces in assembly order."""
+    n_sup = len(step.model_ref.assembly.support_indices)
+    out = {
+        "reaction": np.full((n_sup, 6), np.nan),
+        "resultant": np.full((n_itf, 3), np.nan),
+        "pressure_point": np.full((n_itf, 3), np.nan),
+        "torque": np.full(n_itf, np.nan),
+    }
+    if step.ok:
+        out["reaction"] = step.support_wrenches
+        out["resultant"][slots] = step.resultants
+        out["pressure_point"][slots] = step.pressure_points
+        out["torque"][slots] = step.torques
+    return out
+
+
+def _path_vars(path: Sequence[TCEResult], slots: np.ndarray, n_itf: int) -> dict[str, tuple]:
+    """Load-path variables ``(scenario, step, ...)`` of one scenario."""
+    per_step = [_step_fields(s, slots, n_itf) for s in path]
+    stack = {k: np.stack([p[k] for p in per_step])[None] for k in per_step[0]}
+    scalar = {
+        "lam": [s.lam for s in path],
+        "tce": [s.tce for s in path],
+        "eq_residual": [s.eq_residual for s in path],
+        "cone_residual": [s.cone_residual for s in path],
+    }
+    dims = ("scenario", "step")
+    out: dict[str, tuple] = {k: (dims, np.asarray([v], dtype=float)) for k, v in scalar.items()}
+    out["status"] = (dims, np.asarray([[s.status for s in path]], dtype=str))
+    out["reaction"] = (dims + ("support", "component"), stack["reaction"])
+    out["resultant"] = (dims + ("interface", "xyz"), stack["resultant"])
+    out["pressure_point"] = (dims + ("interface", "xyz"), stack["pressure_point"])
+    out["torque"] = (dims + ("interface",), stack["torque"])
+    return out
+
+
+def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int) -> dict[str, tuple]:
+    """Scalars and mechanism of the scenario's limit."""
+    lim = lp.limit
+    mech = lim.mechanism
+    modes = np.full(n_itf, _FILL_TEXT, dtype=object)
+    hinge = np.full((n_itf, 3), np.nan)
+    vel = np.full((n_blocks, 6), np.nan)
+    if mech is not None:
+        modes[slots] = mech.modes
+        hinge[slots] = mech.hinge_points
+        vel = mech.velocities
+    scalars = {
+        "lambda_max": lp.lambda_max,
+        "lambda_upper": lp.lambda_upper,
+        "lambda_direct": lp.lambda_direct,
+        "lambda_gap": lp.gap,
+        "lambda_kinematic": lim.lambda_kinematic,
+        "certificate_gap": lim.certificate_gap,
+        "n_solves": lp.n_solves,
+        "solve_time": lp.solve_time,
+        "wall_time": lp.wall_time,
+    }
+    out: dict[str, tuple] = {k: (("scenario",), np.asarray([v])) for k, v in scalars.items()}
+    out["outcome"] = (("scenario",), np.asarray([lp.outcome], dtype=str))
+    out["model"] = (("scenario",), np.asarray([lp.steps[0].model], dtype=str))
+    out["mechanism"] = (("scenario", "block", "dof"), vel[None])
+    out["interface_mode"] = (("scenario", "interface"), modes.astype(str)[None])
+    out["hinge_point"] = (("scenario", "interface", "xyz"), hinge[None])
+    return out
+
+
+def _static_vars(analysis: Analysis) -> dict[str, tuple]:
+    """Variables of the assembly (no scenario dimension)."""
+    a = analysis.assembly
+    return {
+        "interface_a": (("interface",), np.asarray([a.names[i.a] for i in a.interfaces], dtype=str)),
+        "interface_b": (("interface",), np.asarray([a.names[i.b] for i in a.interfaces], dtype=str)),
+        "block_centroid": (("block", "xyz"), a.centroids),
+        "block_support": (("block",), np.asarray([int(b.support) for b in a.blocks])),
+    }
+
+
+def _coords(sc: Scenario, analysis: Analysis, n_steps: int) -> dict[str, tuple]:
+    a = analysis.assembly
+    coords: dict[str, tuple] = {
+        "scenario": (("scenario",), np.asarray([sc.name], dtype=str)),
+        "step": (("step",), np.arange(n_steps)),
+        "support": (("support",), np.asarray(a.support_names, dtype=str)),
+        "component": (("component",), np.asarray(COMPONENTS, dtype=str)),
+        "interface": (("interface",), np.asarray([f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces], dtype=str)),
+        "xyz": (("xyz",), np.asarray(XYZ, dtype=str)),
+        "block": (("block",), np.asarray(a.names, dtype=str)),
+        "dof": (("dof",), np.asarray(DOF, dtype=str)),
+        "settlement": (("scenario",), np.asarray([sc.settlement], dtype=str)),
+    }
+    for k, v in sc.params.items():
+        coords[k] = (("scenario",), np.asarray([v], dtype=float))
+    return coords
+
+
+def _label(ds: xr.Dataset) -> xr.Dataset:
+    """Give every variable and coordinate its ``units`` and ``long_name``."""
+    for name in list(ds.variables):
+        units, long_name = META.get(str(name), ("-", str(name)))
+        ds[name].attrs.update(units=units, long_name=long_name)
+    return ds
+
+
+def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr.Dataset:
+    """The one-scenario dataset of a load path (``docs/results.md``).
+
+    Parameters
+    ----------
+    sc : Scenario
+        The scenario that was run; its :attr:`~tce.study.Scenario.key` is kept in the
+        attrs (``scenario_key``) so that a rerun can tell whether it is still valid.
+    lp : LoadPathResult
+    analysis : Analysis
+        The analysis that ran it (for the assembly and the model's interfaces).
+    """
+    path = lp.path
+    n_itf = len(analysis.assembly.interfaces)
+    step_slots = np.asarray(path[0].model_ref.interfaces, dtype=int)
+    limit_slots = np.asarray(analysis.model(lp.limit.model).interfaces, dtype=int)
+    data = _path_vars(path, step_slots, n_itf)
+    data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
+    data.update(_static_vars(analysis))
+    ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)))
+    ds.attrs["scenario_key"] = sc.key
+    return _label(ds)
+
+
+# ----------------------------------------------------------------------------- files
+def scenario_path(directory: Path, sc: Scenario) -> Path:
+    """File of one finished scenario: a readable slug of its name plus a short hash."""
+    slug = re.sub(r"[^A-Za-z0-9_.=-]+", "_", sc.name).strip("_")[:80]
+    digest = hashlib.sha256(sc.name.encode()).hexdigest()[:8]
+    return directory / f"{slug}-{digest}.nc"
+
+
+def write_atomic(ds: xr.Dataset, path: Path) -> Path:
+    """Write ``ds`` to ``path`` as netCDF via a temporary file and :func:`os.replace`."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        ds.to_netcdf(tmp)
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return path
+
+
+def load_finished(directory: Path, scenarios: Iterable[Scenario]) -> dict[str, xr.Dataset]:
+    """Scenario datasets already written under ``directory`` whose definition is unchanged.
+
+    A file that cannot be read or was written for another definition is ignored (and
+    will be overwritten when its scenario is solved again).
+    """
+    found: dict[str, xr.Dataset] = {}
+    for sc in scenarios:
+        path = scenario_path(directory, sc)
+        if not path.exists():
+            continue
+        try:
+            ds = xr.load_dataset(path)
+        except (OSError, ValueError) as exc:
+            log.warning("ignoring unreadable scenario file %s (%s)", path, exc)
+            continue
+        if ds.attrs.get("scenario_key") == sc.key:
+            found[sc.name] = ds
+        else:
+            log.info("scenario %r changed since %s was written: solving it again", sc.name, path)
+    return found
+
+
+def _pad(ds: xr.Dataset, n_steps: int) -> xr.Dataset:
+    """Extend the ``step`` dimension to ``n_steps`` (NaN for numbers, "" for text)."""
+    fill = {k: (_FILL_TEXT if v.dtype.kind in "USO" else np.nan) for k, v in ds.data_vars.items() if "step" in v.dims}
+    return ds.reindex(step=np.arange(n_steps), fill_value=fill)
+
+
+def study_attrs(study: Study, models: Iterable[str]) -> dict[str, str]:
+    """Global attrs: study text, versions, solver, models, assembly and material."""
+    first = study.scenarios()[0]
+    return {
+        "study": study.text,
+        "study_name": study.name,
+        "tce_version": __version__,
+        "solver": SOLVER_NAME,
+        "model": ", ".join(sorted(set(models))),
+        "assembly": json.dumps(build_structure(first.structure).to_dict()),
+        "material": json.dumps(study.spec.material.model_dump()),
+        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "Conventions": "CF-1.8",
+    }
+
+
+def merge_scenarios(study: Study, parts: dict[str, xr.Dataset]) -> xr.Dataset:
+    """The study dataset: ``parts`` (one dataset per scenario name) in the study's order.
+
+    Variables without a ``scenario`` dimension (the geometry) are taken from the first
+    scenario; with a geometry sweep they describe the first structure of the sweep.
+    """
+    order = [sc.name for sc in study.scenarios()]
+    missing = [n for n in order if n not in parts]
+    if missing:
+        raise ValueError(f"cannot merge: scenarios not solved: {missing}")
+    n_steps = max(parts[n].sizes["step"] for n in order)
+    ds = xr.concat(
+        [_pad(parts[n], n_steps) for n in order],
+        dim="scenario",
+        data_vars="minimal",
+        coords="minimal",
+        compat="override",
+        join="outer",
+        combine_attrs="drop",
+    )
+    ds.attrs = study_attrs(study, ds["model"].values.tolist())
+    return _label(ds)
