@@ -1,0 +1,467 @@
+"""Reading and writing block assemblies.
+
+Three input formats, chosen by :func:`load_assembly` from the extension and the content:
+
+tce JSON (``.json`` with a top-level ``"blocks"`` list); see ``docs/assembly-format.md``::
+
+    {
+      "format": "tce-assembly",            # optional tag
+      "version": 1,                        # optional
+      "units": {"length": "m", "force": "kN"},   # optional; length m|cm|mm, force kN|N
+      "unit_weight": 20.0,                 # optional default, force/length^3 (kN/m^3)
+      "blocks": [
+        {"name": "b1",                     # unique; defaults to "b<index>"
+         "vertices": [[x, y, z], ...],
+         "faces": [[i, j, k, ...], ...],   # 0-based, counter-clockwise seen from outside
+         "support": false,                 # optional
+         "unit_weight": 22.0},             # optional, overrides the default
+        ...
+      ],
+      "interfaces": [                      # optional; detected from the geometry if absent
+        {"a": "b1", "b": "b2", "points": [[x, y, z], ...], "normal": [nx, ny, nz]}
+      ],
+      "meta": {...}                        # optional, free-form
+    }
+
+Wavefront OBJ (``.obj``)
+    One object (``o name``, or ``g name``) per block; ``v`` lines and ``f`` lines (1-based
+    or negative indices, ``i/t/n`` forms accepted; faces counter-clockwise seen from
+    outside). OBJ has no supports: name them with ``supports=``.
+
+COMPAS assembly JSON (``.json`` with ``dtype``/``data`` and a graph, as written by
+compas_assembly and compas_cra)
+    ``data.graph.data.node`` maps node keys to ``{"block": {"data": {"vertex": {id: {x, y,
+    z}}, "face": {id: [vertex ids]}}}, "is_support": bool}`` (the ``data`` wrappers and the
+    ``is_support`` flag are optional; vertices may also be ``[x, y, z]`` lists). Blocks
+    are named after their node keys (``"0"``, ``"1"``, ...) in key order; stored interfaces
+    are ignored and found again from the geometry.
+
+Units are SI (m, kN) after loading. Every loaded block is checked (closed, consistently
+oriented, planar faces, positive volume), blocks must not overlap
+(:func:`tce.contacts.check_overlaps`), interfaces are detected
+(:func:`tce.contacts.detect_interfaces`) and the assembly is validated (a support, no
+loose block). Errors name the file and the block.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+
+from .assembly import Assembly, AssemblyError, Block, Interface
+from .contacts import check_overlaps, detect_interfaces
+from .geometry import GeometryError, Polyhedron, newell_normal
+
+__all__ = ["load_assembly", "read_compas_json", "read_obj", "read_tce_json", "save_assembly_json"]
+
+log = logging.getLogger(__name__)
+
+DEFAULT_UNIT_WEIGHT = 20.0
+#: Planarity tolerance of faces, relative to the block size: the one Assembly.validate uses.
+PLANAR_TOL = 1e-6
+_LENGTH = {"m": 1.0, "cm": 0.01, "mm": 0.001}
+_FORCE = {"kN": 1.0, "N": 0.001}
+
+
+@dataclass
+class RawBlock:
+    """A block as read from a file, before checks (lengths in the file's units)."""
+
+    name: str
+    vertices: np.ndarray
+    faces: list[list[int]]
+    support: bool = False
+    unit_weight: float | None = None
+
+
+@dataclass
+class RawAssembly:
+    """What a reader returns: blocks, optional interfaces, defaults and units."""
+
+    blocks: list[RawBlock]
+    interfaces: list[dict] | None = None
+    unit_weight: float | None = None
+    length: float = 1.0  # file length unit in m
+    force: float = 1.0  # file force unit in kN
+    meta: dict = field(default_factory=dict)
+
+
+# ---------------------------------------------------------------------- readers
+def _err(path: Path | str, msg: str) -> AssemblyError:
+    return AssemblyError(f"{path}: {msg}")
+
+
+def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
+    """Parse a tce JSON assembly (see module docstring)."""
+    path = Path(path)
+    d = json.loads(path.read_text()) if data is None else data
+    if not isinstance(d, Mapping) or not isinstance(d.get("blocks"), list):
+        raise _err(path, 'not a tce assembly: expected an object with a "blocks" list')
+    units = d.get("units") or {}
+    lu, fu = units.get("length", "m"), units.get("force", "kN")
+    if lu not in _LENGTH or fu not in _FORCE:
+        raise _err(path, f"unknown units {units!r}; length one of {list(_LENGTH)}, force one of {list(_FORCE)}")
+    blocks = []
+    for k, b in enumerate(d["blocks"]):
+        name = str(b.get("name", f"b{k + 1}"))
+        try:
+            v = np.asarray(b["vertices"], dtype=float)
+            faces = [[int(i) for i in f] for f in b["faces"]]
+        except (KeyError, TypeError, ValueError) as exc:
+            raise _err(path, f"block {name!r}: needs 'vertices' [[x, y, z], ...] and 'faces' [[i, j, k, ...], ...] ({exc})") from None
+        if v.ndim != 2 or v.shape[1] != 3:
+            raise _err(path, f"block {name!r}: vertices must be a list of [x, y, z]")
+        uw = b.get("unit_weight")
+        blocks.append(RawBlock(name, v, faces, bool(b.get("support", False)), None if uw is None else float(uw)))
+    return RawAssembly(
+        blocks,
+        d.get("interfaces"),
+        None if d.get("unit_weight") is None else float(d["unit_weight"]),
+        _LENGTH[lu],
+        _FORCE[fu],
+        dict(d.get("meta") or {}),
+    )
+
+
+def read_obj(path: str | Path) -> RawAssembly:
+    """Parse a Wavefront OBJ file: one object (``o`` or ``g``) per block."""
+    path = Path(path)
+    verts: list[list[float]] = []
+    groups: list[tuple[str, list[list[int]]]] = []
+    for lineno, line in enumerate(path.read_text().splitlines(), 1):
+        tok = line.split("#", 1)[0].split()
+        if not tok:
+            continue
+        try:
+            if tok[0] == "v":
+                verts.append([float(x) for x in tok[1:4]])
+            elif tok[0] in ("o", "g"):
+                name = " ".join(tok[1:]) or f"block{len(groups) + 1}"
+                if groups and not groups[-1][1] and tok[0] == "g":
+                    groups[-1] = (name, [])  # 'o name' followed by 'g name': keep one block
+                else:
+                    groups.append((name, []))
+            elif tok[0] == "f":
+                if not groups:
+                    groups.append(("block1", []))
+                idx = []
+                for t in tok[1:]:
+                    i = int(t.split("/")[0])
+                    idx.append(i - 1 if i > 0 else len(verts) + i)
+                groups[-1][1].append(idx)
+        except ValueError:
+            raise _err(path, f"line {lineno}: cannot parse {line.strip()!r}") from None
+    V = np.asarray(verts, dtype=float).reshape(-1, 3)
+    blocks = []
+    for name, faces in groups:
+        if not faces:
+            continue
+        used = sorted({i for f in faces for i in f})
+        if used and (used[0] < 0 or used[-1] >= len(V)):
+            raise _err(path, f"block {name!r}: a face refers to a vertex that does not exist")
+        local = {g: k for k, g in enumerate(used)}
+        blocks.append(RawBlock(name, V[used], [[local[i] for i in f] for f in faces]))
+    return RawAssembly(blocks)
+
+
+def _unwrap(obj: Any) -> Any:
+    """COMPAS objects are ``{"dtype": ..., "data": {...}}``: return the data."""
+    while isinstance(obj, Mapping) and "dtype" in obj and isinstance(obj.get("data"), Mapping):
+        obj = obj["data"]
+    return obj
+
+
+def read_compas_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
+    """Parse a COMPAS assembly JSON file (compas_assembly / compas_cra)."""
+    path = Path(path)
+    d = _unwrap(json.loads(path.read_text()) if data is None else data)
+    graph = _unwrap(d.get("graph", d)) if isinstance(d, Mapping) else None
+    nodes = graph.get("node", graph.get("nodes")) if isinstance(graph, Mapping) else None
+    if not isinstance(nodes, Mapping):
+        raise _err(path, "not a COMPAS assembly: no graph nodes found (data.graph.data.node)")
+    default_support = bool((graph.get("default_node_attributes") or {}).get("is_support", False))
+    blocks = []
+    for key in sorted(nodes, key=lambda k: (0, int(k)) if str(k).lstrip("-").isdigit() else (1, str(k))):
+        node = nodes[key] or {}
+        mesh = _unwrap(node.get("block", node))
+        if not isinstance(mesh, Mapping) or "vertex" not in mesh or "face" not in mesh:
+            raise _err(path, f"block {key!r}: node has no block mesh with 'vertex' and 'face'")
+        vkeys = list(mesh["vertex"])
+        vid = {str(k): n for n, k in enumerate(vkeys)}
+        rows = []
+        for k in vkeys:
+            v = mesh["vertex"][k]
+            rows.append([float(v[c]) for c in "xyz"] if isinstance(v, Mapping) else [float(c) for c in v[:3]])
+        faces_d = mesh["face"]
+        fkeys = sorted(faces_d, key=lambda k: int(k)) if isinstance(faces_d, Mapping) else range(len(faces_d))
+        try:
+            faces = [[vid[str(i)] for i in faces_d[k]] for k in fkeys]
+        except KeyError as exc:
+            raise _err(path, f"block {key!r}: a face refers to vertex {exc} that does not exist") from None
+        blocks.append(RawBlock(str(key), np.asarray(rows, dtype=float), faces, bool(node.get("is_support", default_support))))
+    return RawAssembly(blocks)
+
+
+# ---------------------------------------------------------------------- checks
+def _triangulate_nonplanar(v: np.ndarray, faces: list[list[int]], tol: float, size: float) -> tuple[list[list[int]], int]:
+    """Split every face whose vertices lie farther than ``tol * size`` from its mean plane into
+    a fan of triangles from its lexicographically smallest vertex (so that two blocks that
+    share such a face split it the same way). Returns the faces and the number split."""
+    out, split = [], 0
+    for f in faces:
+        p = v[f]
+        n = newell_normal(p)
+        nn = np.linalg.norm(n)
+        if len(f) > 3 and nn > 0 and np.abs((p - p.mean(axis=0)) @ (n / nn)).max() > tol * size:
+            r = min(range(len(f)), key=lambda k: tuple(np.round(p[k], 12)))
+            g = f[r:] + f[:r]
+            out.extend([g[0], g[k], g[k + 1]] for k in range(1, len(g) - 1))
+            split += 1
+        else:
+            out.append(list(f))
+    return out, split
+
+
+def _file_interfaces(path: Path, items: list[dict], index: Mapping[str, int], scale: float) -> list[Interface]:
+    out = []
+    for k, it in enumerate(items):
+        try:
+            a, b = index[str(it["a"])], index[str(it["b"])]
+            pts = np.asarray(it["points"], dtype=float) * scale
+            n = it.get("normal")
+        except KeyError as exc:
+            raise _err(path, f"interface {k}: unknown block or missing key {exc}") from None
+        if a > b:
+            raise _err(path, f"interface {k}: 'a' must be the block listed first (normal from a into b)")
+        out.append(Interface(a, b, pts, None if n is None else np.asarray(n, dtype=float)))
+    return out
+
+
+def load_assembly(
+    path: str | Path,
+    supports: Iterable[str | int] | None = None,
+    unit_weight: float | Mapping[str, float] | None = None,
+    tol: float = 1e-6,
+    min_area: float | None = None,
+    angle_tol: float | None = None,
+    nonplanar: Literal["error", "triangulate"] = "error",
+    check_overlap: bool = True,
+    detect: bool | None = None,
+) -> Assembly:
+    """Read, check and assemble a block assembly file (see module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.json`` (tce or COMPAS, told apart by content) or ``.obj`` file.
+    supports : iterable of str or int, optional
+        Names (or COMPAS node keys) of the support blocks; replaces the file's flags.
+    unit_weight : float or mapping, optional
+        Unit weight (kN/m^3): one value for every block, or ``{name: value}`` for some
+        blocks. Priority: this mapping, a block's own value in the file, this float, the
+        file's default, then 20 kN/m^3.
+    tol : float
+        Relative geometric tolerance of the contact and overlap checks, see
+        :func:`tce.contacts.detect_interfaces`. Faces must be planar within
+        ``min(tol, 1e-6)`` times the block size (what :meth:`Assembly.validate` requires).
+    min_area, angle_tol : float, optional
+        Passed to :func:`tce.contacts.detect_interfaces`.
+    nonplanar : {"error", "triangulate"}
+        What to do with a face that is not planar: report it, or split it into triangles
+        (for curved surfaces given as quad meshes). Facets of two curved surfaces meshed
+        differently are not coplanar: finding their contacts then needs a looser ``tol``
+        and ``angle_tol``, and ``check_overlap=False`` if the facetted blocks interpenetrate.
+    check_overlap : bool
+        Run :func:`tce.contacts.check_overlaps`.
+    detect : bool, optional
+        Detect the interfaces from the geometry; by default only when the file stores none
+        (a tce JSON file may store them).
+
+    Returns
+    -------
+    Assembly
+        Validated; ``meta`` records the source file, its format and the tolerances.
+
+    Raises
+    ------
+    AssemblyError or GeometryError
+        Naming the file, and the block when one is at fault.
+    FileNotFoundError
+        When the file does not exist.
+    """
+    path = Path(path)
+    if nonplanar not in ("error", "triangulate"):
+        raise ValueError(f"nonplanar must be 'error' or 'triangulate', got {nonplanar!r}")
+    if not (math.isfinite(tol) and tol > 0):
+        raise ValueError(f"tol must be a finite number > 0, got {tol!r}")
+    ext = path.suffix.lower()
+    if ext == ".obj":
+        raw, fmt = read_obj(path), "obj"
+    elif ext == ".json":
+        try:
+            data = json.loads(path.read_text())
+        except json.JSONDecodeError as exc:
+            raise _err(path, f"not valid JSON ({exc})") from None
+        if isinstance(data, Mapping) and isinstance(data.get("blocks"), list):
+            raw, fmt = read_tce_json(path, data), "tce-json"
+        else:
+            raw, fmt = read_compas_json(path, data), "compas-json"
+    else:
+        raise _err(path, f"unknown file type {ext!r}: expected .json or .obj")
+    if not raw.blocks:
+        raise _err(path, "the file holds no blocks")
+
+    names = [b.name for b in raw.blocks]
+    if len(set(names)) != len(names):
+        dup = sorted({n for n in names if names.count(n) > 1})
+        raise _err(path, f"duplicate block names {dup}")
+    uw_map = dict(unit_weight) if isinstance(unit_weight, Mapping) else {}
+    unknown = [n for n in uw_map if str(n) not in names]
+    if unknown:
+        raise _err(path, f"unit_weight given for unknown block(s) {unknown}")
+    uw_map = {str(k): float(v) for k, v in uw_map.items()}
+    uw_all = None if isinstance(unit_weight, Mapping) or unit_weight is None else float(unit_weight)
+
+    support_set = None if supports is None else {str(s) for s in supports}
+    if support_set is not None:
+        missing = sorted(support_set - set(names))
+        if missing:
+            raise _err(path, f"support block(s) {missing} not found; blocks are {names}")
+
+    # units: the file's lengths and unit weights are converted to m and kN/m^3 here
+    ls, fs = raw.length, raw.force
+    blocks, split_total = [], 0
+    for rb in raw.blocks:
+        label = f"{path.name}: block {rb.name!r}"
+        v = rb.vertices * ls
+        faces = rb.faces
+        try:
+            if nonplanar == "triangulate":
+                size = float(np.linalg.norm(np.ptp(v, axis=0))) if len(v) else 0.0
+                faces, n_split = _triangulate_nonplanar(v, faces, min(tol, PLANAR_TOL), size)
+                split_total += n_split
+            shape = Polyhedron(v, faces)
+            shape.validate(name=label, tol=min(tol, PLANAR_TOL))
+        except GeometryError as exc:
+            msg = str(exc)
+            raise GeometryError(msg if msg.startswith(label) else f"{label}: {msg}") from None
+        if rb.name in uw_map:
+            uw = uw_map[rb.name]
+        elif rb.unit_weight is not None:
+            uw = rb.unit_weight * fs / ls**3
+        elif uw_all is not None:
+            uw = uw_all
+        elif raw.unit_weight is not None:
+            uw = raw.unit_weight * fs / ls**3
+        else:
+            uw = DEFAULT_UNIT_WEIGHT
+        is_support = rb.name in support_set if support_set is not None else rb.support
+        blocks.append(Block(rb.name, shape, uw, is_support))
+    if split_total:
+        log.info("%s: split %d non-planar faces into triangles", path, split_total)
+
+    if check_overlap:
+        try:
+            check_overlaps(blocks, tol)
+        except AssemblyError as exc:
+            raise _err(path, str(exc)) from None
+    if detect is None:
+        detect = not raw.interfaces
+    if detect:
+        interfaces = detect_interfaces(blocks, tol=tol, min_area=min_area, angle_tol=angle_tol)
+    else:
+        interfaces = _file_interfaces(path, raw.interfaces or [], {b.name: k for k, b in enumerate(blocks)}, ls)
+    meta = dict(raw.meta)
+    meta.update(
+        source=str(path),
+        format=fmt,
+        tol=tol,
+        nonplanar=nonplanar,
+        interfaces="detected" if detect else "from file",
+    )
+    if split_total:
+        meta["faces_triangulated"] = split_total
+    asm = Assembly(tuple(blocks), tuple(interfaces), meta)
+    try:
+        asm.validate()
+    except AssemblyError as exc:
+        raise _err(path, str(exc)) from None
+    except GeometryError as exc:
+        raise GeometryError(f"{path}: {exc}") from None
+    return asm
+
+
+# ---------------------------------------------------------------------- writer
+def _jsonable(obj: Any) -> Any:
+    if isinstance(obj, Mapping):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, (np.integer, np.floating, np.bool_)):
+        return obj.item()
+    if obj is None or isinstance(obj, (str, int, float, bool)):
+        return obj
+    return str(obj)
+
+
+def save_assembly_json(assembly: Assembly, path: str | Path, interfaces: bool = True) -> Path:
+    """Write ``assembly`` in the tce JSON format (m, kN), readable by :func:`load_assembly`.
+
+    Parameters
+    ----------
+    assembly : Assembly
+    path : str or Path
+        Output file (``.json``); parent directories are created.
+    interfaces : bool
+        Store the interfaces too (then :func:`load_assembly` uses them instead of
+        detecting them again).
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
+    path = Path(path)
+    uws = [b.unit_weight for b in assembly.blocks]
+    default = max(set(uws), key=uws.count) if uws else DEFAULT_UNIT_WEIGHT
+    blocks = []
+    for b in assembly.blocks:
+        item: dict[str, Any] = {
+            "name": b.name,
+            "vertices": b.shape.vertices.tolist(),
+            "faces": [list(f) for f in b.shape.faces],
+            "support": bool(b.support),
+        }
+        if b.unit_weight != default:
+            item["unit_weight"] = float(b.unit_weight)
+        blocks.append(item)
+    doc: dict[str, Any] = {
+        "format": "tce-assembly",
+        "version": 1,
+        "units": {"length": "m", "force": "kN"},
+        "unit_weight": float(default),
+        "blocks": blocks,
+        "meta": _jsonable(assembly.meta),
+    }
+    if interfaces:
+        doc["interfaces"] = [
+            {
+                "a": assembly.names[i.a],
+                "b": assembly.names[i.b],
+                "points": i.points.tolist(),
+                "normal": i.normal.tolist(),
+            }
+            for i in assembly.interfaces
+        ]
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(doc, indent=1))
+    return path
