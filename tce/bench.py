@@ -1,0 +1,538 @@
+"""``tce bench``: speed against error, measured in one run on one machine.
+
+:func:`run_bench` times, as medians over repeated calls, and compares each answer with a
+reference (the Clarabel-direct solve at tight tolerance, or a closed form):
+
+``per_solve``
+    One TCE solve of the paper's arch (:func:`tce.arch.semicircular_arch`, friction 0.8,
+    rigid, an in-plane scene: ``lam`` cycling over a few values in ``[0, 0.2]`` with the
+    right support spreading 1 mm) by the Clarabel-direct path (:class:`tce.solve.TCESolver`,
+    data built once, vectors updated per solve), by a cvxpy problem built per solve and by
+    a parametrised cvxpy problem re-solved (:class:`tce.cvx.CvxTCE`), with every solver
+    cvxpy offers for the class (CLARABEL, ECOS, SCS; HIGHS for the planar LP); for the 3D
+    SOCP (spatial model) and the planar LP. A TCE solve has no lambda_max, so its
+    ``error`` is that of the **in-plane support reactions** ``(Fx, Fz, My)`` (largest
+    component, relative to the total weight) against the reference TCE solve at the same
+    ``lam``; the out-of-plane components are not unique in 3D (a self-stress of the arch
+    in torsion costs no energy) and are left out.
+``pyramid``
+    lambda_max of the spatial arch with the friction cone (friction 0.5, ``alpha = 45``,
+    where sliding governs) by the direct SOCP and by inscribed/circumscribed pyramids of
+    ``k`` sides (:mod:`tce.pyramid`): time against error and bracket width.
+``load_path``
+    Number of solves and time of the load path against the bisection tolerance, against
+    the direct lambda_max.
+``discretisation``
+    Arches of 8 to 400 voussoirs: time and error of lambda_90max against its closed form
+    ``(d/2) / z_c`` (``z_c`` the voussoirs' centroid height) and of the minimum thickness
+    against ``t/R = 0.1075``.
+``scaling``
+    Arches and domes from tens to 10,000 blocks: time and peak memory (resident set, in
+    a fresh subprocess) of one lambda_max solve, with the fitted growth exponent.
+``reduction``
+    What the planar model, dropping the cone (Heyman) and dropping the quadratic term
+    (rigid) save, each with its effect on the answer.
+
+Every row has ``time_s`` (median end-to-end seconds, from Python), ``solver_time_s``
+(the solver's own reported time), ``ratio`` (``time_s`` over the Clarabel-direct 3D
+per-solve row), ``error`` with ``error_of`` saying of what, and ``residual`` (largest
+equilibrium residual relative to the total weight, or weight times size for moments).
+"""
+
+from __future__ import annotations
+
+import argparse
+import gc
+import json
+import os
+import statistics
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from .arch import semicircular_arch
+from .assembly import Assembly
+from .conic import Scaling
+from .limit import LimitSolver
+from .material import Material
+from .model import Model, build_model
+from .pyramid import pyramid_lambda_max
+from .solve import SolverOptions, TCESolver
+
+__all__ = ["run_bench", "bench_command", "add_bench_arguments", "evaluate_targets", "growth_exponent"]
+
+FRICTION = 0.8
+LAMS = (0.0, 0.05, 0.1, 0.15, 0.2)
+SETTLEMENT = {"right": [0.001, 0.0, 0.0, 0.0, 0.0, 0.0]}
+THICKNESS_REF = 0.1075
+IN_PLANE = [0, 2, 4]  # Fx, Fz, My of a support wrench: unique; Fy, Mx, Mz carry a free self-stress in 3D
+COLUMNS = [
+    "section", "case", "method", "solver", "model", "n_blocks", "n_solves", "time_s", "solver_time_s",
+    "ratio", "error", "error_of", "residual", "peak_mem_mb", "time_min_s", "note",
+]
+
+
+# ---------------------------------------------------------------- helpers
+def _timed(fn: Callable[[int], Any], repeats: int) -> tuple[float, list[Any], list[float]]:
+    """Median wall time of ``fn(i)`` over ``repeats`` calls (after one warm-up call), the
+    answers and the individual times."""
+    fn(0)
+    gc.collect()
+    out, times = [], []
+    for i in range(repeats):
+        t0 = time.perf_counter()
+        out.append(fn(i))
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times), out, times
+
+
+def _row(section: str, case: str, method: str, **kw: Any) -> dict[str, Any]:
+    row: dict[str, Any] = {c: np.nan for c in COLUMNS}
+    row.update(section=section, case=case, method=method, solver="", model="", error_of="", note="")
+    row.update(kw)
+    return row
+
+
+def _eq_residual(model: Model, forces: np.ndarray, lam: float, alpha: float) -> float:
+    """Largest equilibrium residual of ``forces`` (kN) relative to ``W`` / ``W L``."""
+    F = np.asarray(forces, dtype=float).ravel()
+    r = model.A_eq @ F + model.b_dead + lam * model.b_lateral(alpha)
+    return float(np.abs(r / Scaling.of(model).rows(model)).max(initial=0.0))
+
+
+def _voussoir_centroid_height(assembly: Assembly) -> float:
+    """Height of the free blocks' centroid above z = 0 (m)."""
+    free = list(assembly.free_indices)
+    w = assembly.weights[free]
+    return float((w * assembly.centroids[free, 2]).sum() / w.sum())
+
+
+def growth_exponent(n: Sequence[float], t: Sequence[float]) -> float:
+    """Least-squares slope of ``log t`` against ``log n`` (NaN with fewer than 2 points)."""
+    n_, t_ = np.asarray(n, dtype=float), np.asarray(t, dtype=float)
+    ok = (n_ > 0) & (t_ > 0) & np.isfinite(t_)
+    if ok.sum() < 2:
+        return float("nan")
+    return float(np.polyfit(np.log(n_[ok]), np.log(t_[ok]), 1)[0])
+
+
+# ---------------------------------------------------------------- per solve
+def _per_solve(quick: bool) -> list[dict[str, Any]]:
+    import cvxpy as cp
+
+    from .cvx import CvxTCE
+
+    arch = semicircular_arch().validate()
+    mat = Material(friction=FRICTION)
+    rows: list[dict[str, Any]] = []
+    reps = dict(direct=60 if quick else 200, param=8 if quick else 50, rebuilt=3 if quick else 20)
+    installed = set(cp.installed_solvers())
+    for kind in ("spatial", "planar"):
+        model = build_model(arch, kind)
+        W = model.assembly.total_weight
+        ref_solver = TCESolver(model, mat, SolverOptions(tol=1e-12, residual_tol=1e-9))
+        ref = {lam: ref_solver.solve(lam, 0.0, SETTLEMENT) for lam in LAMS}
+        label = "3D SOCP" if kind == "spatial" else "planar LP"
+
+        def score(lam: float, status: str, forces: np.ndarray, wrenches: np.ndarray) -> tuple[float, float]:
+            if status != "optimal":
+                return np.inf, np.inf
+            diff = (wrenches - ref[lam].support_wrenches)[:, IN_PLANE]
+            err = float(np.abs(diff).max() / W)
+            return err, _eq_residual(model, forces, lam, 0.0)
+
+        def add(method: str, solver: str, fn: Callable[[int], Any], n: int, wrench: Callable[[Any], np.ndarray]) -> None:
+            med, res, times = _timed(fn, n)
+            scores = [score(LAMS[i % len(LAMS)], r.status, r.forces, wrench(r)) for i, r in enumerate(res)]
+            rows.append(
+                _row(
+                    "per_solve", f"arch 16 blocks, {label}", method, solver=solver, model=kind,
+                    n_blocks=len(arch.blocks), n_solves=n, time_s=med, time_min_s=min(times),
+                    solver_time_s=statistics.median(float(r.solve_time) for r in res),
+                    error=max(s[0] for s in scores), error_of="in-plane support reactions / W",
+                    residual=max(s[1] for s in scores),
+                    note="" if all(r.status == "optimal" for r in res) else "not all optimal",
+                )
+            )
+
+        direct = TCESolver(model, mat)
+        add("clarabel-direct (warm, update)", "CLARABEL", lambda i: direct.solve(LAMS[i % len(LAMS)], 0.0, SETTLEMENT),
+            reps["direct"], lambda r: r.support_wrenches)
+        solvers = ["CLARABEL", "ECOS", "SCS"] + (["HIGHS"] if kind == "planar" else [])
+        for name in [s for s in solvers if s in installed]:
+            param = CvxTCE(model, mat)
+            add("cvxpy parametrised, re-solved", name,
+                lambda i, p=param, s=name: p.solve(LAMS[i % len(LAMS)], 0.0, SETTLEMENT, solver=s),
+                reps["param"], lambda r: r.support_wrenches)
+            add("cvxpy built per solve", name,
+                lambda i, s=name: CvxTCE(model, mat).solve(LAMS[i % len(LAMS)], 0.0, SETTLEMENT, solver=s),
+                reps["rebuilt"], lambda r: r.support_wrenches)
+    return rows
+
+
+# ---------------------------------------------------------------- lambda_max rows
+def _limit_rows(quick: bool) -> list[dict[str, Any]]:
+    """Direct lambda_max (3D, planar) and the friction pyramids' bracket."""
+    arch = semicircular_arch().validate()
+    rows: list[dict[str, Any]] = []
+    reps = 5 if quick else 30
+    for kind, mu, alpha in (("spatial", FRICTION, 0.0), ("planar", FRICTION, 0.0), ("spatial", 0.5, 45.0)):
+        model = build_model(arch, kind)
+        ref = LimitSolver(model, Material(friction=mu), tol=1e-12).solve(alpha)
+        solver = LimitSolver(model, Material(friction=mu))
+        med, res, _ = _timed(lambda i: solver.solve(alpha), reps)
+        case = f"arch lambda_max, mu={mu}, alpha={alpha:g}"
+        rows.append(
+            _row("pyramid" if alpha else "limit", case, "clarabel-direct lambda_max", solver="CLARABEL", model=kind,
+                 n_blocks=len(arch.blocks), n_solves=reps, time_s=med, solver_time_s=res[-1].solve_time,
+                 error=abs(res[-1].lambda_max - ref.lambda_max), error_of="lambda_max",
+                 residual=_eq_residual(model, res[-1].forces, res[-1].lambda_max, alpha),
+                 note=f"lambda_max={ref.lambda_max:.6f}")
+        )
+        if not alpha:
+            continue
+        for k in (4, 8, 16) if quick else (4, 8, 16, 32, 64):
+            bounds = {}
+            for side in ("inscribed", "circumscribed"):
+                med, res, _ = _timed(lambda i: pyramid_lambda_max(model, mu, alpha, k, side), reps)  # noqa: B023
+                bounds[side] = res[-1].lambda_max
+                rows.append(
+                    _row("pyramid", case, f"pyramid {side} k={k} (LP)", solver="CLARABEL", model=kind,
+                         n_blocks=len(arch.blocks), n_solves=reps, time_s=med, solver_time_s=res[-1].solve_time,
+                         error=abs(res[-1].lambda_max - ref.lambda_max), error_of="lambda_max",
+                         residual=_eq_residual(model, res[-1].forces, res[-1].lambda_max, alpha))
+                )
+            rows[-1]["note"] = rows[-2]["note"] = f"bracket width {bounds['circumscribed'] - bounds['inscribed']:.3g}"
+    return rows
+
+
+# ---------------------------------------------------------------- load path
+def _load_path(quick: bool) -> list[dict[str, Any]]:
+    from .analysis import Analysis
+    from .loadpath import load_path
+
+    arch = semicircular_arch().validate()
+    rows: list[dict[str, Any]] = []
+    ref = LimitSolver(build_model(arch, "planar"), Material(friction=FRICTION), tol=1e-12).solve(0.0).lambda_max
+    for atol in (1e-2, 1e-4, 1e-6, 1e-8) if quick else (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8):
+        times, res = [], None
+        for _ in range(1 if quick else 3):
+            an = Analysis(arch, Material(friction=FRICTION))
+            t0 = time.perf_counter()
+            res = load_path(an, 0.0, None, step=0.02, atol=atol)
+            times.append(time.perf_counter() - t0)
+        assert res is not None
+        rows.append(
+            _row("load_path", "arch in plane, step 0.02", f"bisection atol={atol:g}", solver="CLARABEL",
+                 model=res.steps[-1].model, n_blocks=len(arch.blocks), n_solves=res.n_solves,
+                 time_s=statistics.median(times), solver_time_s=res.solve_time,
+                 error=abs(res.lambda_max - ref), error_of="lambda_max",
+                 residual=max(s.eq_residual for s in res.steps if s.ok),
+                 note="includes the direct check (one lambda_max solve)")
+        )
+    return rows
+
+
+# ---------------------------------------------------------------- discretisation
+def _discretisation(quick: bool) -> list[dict[str, Any]]:
+    try:
+        from .thickness import arch_minimum_thickness
+    except ImportError:  # pragma: no cover - written by another issue
+        arch_minimum_thickness = None
+    rows: list[dict[str, Any]] = []
+    for n in (8, 16, 32) if quick else (8, 16, 32, 64, 128, 256, 400):
+        arch = semicircular_arch(voussoirs=n).validate()
+        model = build_model(arch, "spatial")
+        closed = (arch.meta["depth"] / 2) / _voussoir_centroid_height(arch)
+        solver = LimitSolver(model, Material(friction=FRICTION))
+        med, res, _ = _timed(lambda i: solver.solve(90.0), 3 if quick else 5)
+        rows.append(
+            _row("discretisation", f"arch {n} voussoirs", "lambda_90max (direct, 3D)", solver="CLARABEL",
+                 model="spatial", n_blocks=len(arch.blocks), n_solves=1, time_s=med,
+                 solver_time_s=res[-1].solve_time, error=abs(res[-1].lambda_max - closed),
+                 error_of="lambda_90max vs (d/2)/z_c",
+                 residual=_eq_residual(model, res[-1].forces, res[-1].lambda_max, 90.0))
+        )
+        if arch_minimum_thickness is not None and (n <= 128 or not quick):
+            th = arch_minimum_thickness(1.0, n, tol=1e-5)
+            rows.append(
+                _row("discretisation", f"arch {n} voussoirs", "minimum thickness (bisection 1e-5)",
+                     solver="CLARABEL", model="planar", n_blocks=n + 2, n_solves=th.n_solves, time_s=th.wall_time,
+                     error=abs(th.ratio - THICKNESS_REF), error_of="t/R vs 0.1075", note=f"t/R={th.ratio:.5f}")
+            )
+    return rows
+
+
+# ---------------------------------------------------------------- scaling
+def scaling_case(structure: str, size: int, friction: float = FRICTION) -> dict[str, Any]:
+    """Build one structure of ``size`` and time one lambda_max solve (run in a subprocess).
+
+    ``structure`` is ``"arch"`` (``size`` voussoirs) or ``"dome"`` (``size`` sectors and
+    courses). Returns times (s), sizes and the peak resident memory of the process (MB).
+    """
+    import resource
+
+    from .dome import hemispherical_dome
+
+    t0 = time.perf_counter()
+    a = semicircular_arch(voussoirs=size) if structure == "arch" else hemispherical_dome(sectors=size, courses=size)
+    a = a.validate()
+    t1 = time.perf_counter()
+    model = build_model(a, "spatial")
+    t2 = time.perf_counter()
+    res = LimitSolver(model, Material(friction=friction)).solve(90.0 if structure == "arch" else 0.0)
+    t3 = time.perf_counter()
+    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # kB on Linux
+    return dict(n_blocks=len(a.blocks), n_vars=model.n_vars, status=res.status, lambda_max=res.lambda_max,
+                t_assembly=t1 - t0, t_model=t2 - t1, t_solve=t3 - t2, t_clarabel=res.solve_time,
+                iterations=res.iterations, peak_mem_mb=rss)
+
+
+def _subprocess_case(structure: str, size: int, timeout: float) -> dict[str, Any] | None:
+    root = str(Path(__file__).resolve().parent.parent)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
+    code = f"import json, tce.bench as b; print(json.dumps(b.scaling_case({structure!r}, {size})))"
+    try:
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                             timeout=timeout, check=True)
+    except (subprocess.TimeoutExpired, subprocess.CalledProcessError):
+        return None
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def _scaling(quick: bool) -> list[dict[str, Any]]:
+    rows: list[dict[str, Any]] = []
+    sizes = {
+        "arch": (30, 100, 300) if quick else (30, 100, 300, 1000, 3000, 9998),
+        "dome": (6, 10, 16) if quick else (6, 10, 20, 40, 70, 100),
+    }
+    for structure, ns in sizes.items():
+        got = []
+        for n in ns:
+            r = _subprocess_case(structure, n, timeout=120 if quick else 900)
+            if r is None:
+                rows.append(_row("scaling", f"{structure} size {n}", "lambda_max (direct, 3D)", note="failed or timed out"))
+                continue
+            got.append(r)
+            rows.append(
+                _row("scaling", f"{structure} {r['n_blocks']} blocks", "lambda_max (direct, 3D)", solver="CLARABEL",
+                     model="spatial", n_blocks=r["n_blocks"], n_solves=1, time_s=r["t_solve"],
+                     solver_time_s=r["t_clarabel"], peak_mem_mb=r["peak_mem_mb"],
+                     note=f"{r['status']}, {r['n_vars']} unknowns, {r['iterations']} it; assembly {r['t_assembly']:.2f} s, "
+                          f"model {r['t_model']:.2f} s")
+            )
+        big = got[len(got) // 2 - 1:] if len(got) >= 4 else got
+        expo = growth_exponent([r["n_blocks"] for r in big], [r["t_solve"] for r in big])
+        for row in rows:
+            if row["case"].startswith(structure):
+                row["note"] += f"; time ~ n^{expo:.2f}"
+    return rows
+
+
+# ---------------------------------------------------------------- model reduction
+def _reduction(quick: bool) -> list[dict[str, Any]]:
+    arch = semicircular_arch().validate()
+    reps = 50 if quick else 200
+    rows: list[dict[str, Any]] = []
+    spatial, planar = build_model(arch, "spatial"), build_model(arch, "planar")
+    W = arch.total_weight
+    lam = 0.1
+
+    def tce_row(case: str, method: str, model: Model, mat: Material, ref_h: float | None) -> float:
+        s = TCESolver(model, mat)
+        med, res, times = _timed(lambda i: s.solve(lam, 0.0, SETTLEMENT), reps)
+        h = float(res[-1].support_wrenches[-1, 0])
+        rows.append(
+            _row("reduction", case, method, solver="CLARABEL", model=model.kind, n_blocks=len(arch.blocks),
+                 n_solves=reps, time_s=med, time_min_s=min(times),
+                 solver_time_s=statistics.median(r.solve_time for r in res),
+                 error=np.nan if ref_h is None else abs(h - ref_h) / W, error_of="right thrust change / W",
+                 residual=res[-1].eq_residual, note=f"right support Fx = {h:.5f} kN")
+        )
+        return h
+
+    h = tce_row("in-plane scene, mu=0.8", "3D SOCP", spatial, Material(friction=FRICTION), None)
+    tce_row("in-plane scene, mu=0.8", "planar LP", planar, Material(friction=FRICTION), h)
+    tce_row("in-plane scene, mu=0.8", "3D Heyman (no cone, LP)", spatial, Material(), h)
+    stiff = Material(friction=FRICTION, normal_stiffness=1e6, shear_stiffness=4e5)
+    tce_row("in-plane scene, mu=0.8", "3D compliant (QP + cones)", spatial, stiff, h)
+    h2 = tce_row("in-plane scene, mu=0.8, planar", "planar compliant (QP)", planar, stiff, None)
+    tce_row("in-plane scene, mu=0.8, planar", "planar rigid (LP)", planar, Material(friction=FRICTION), h2)
+    for alpha in (0.0, 90.0):
+        ref = None
+        for method, mat in (("lambda_max cone mu=0.8", Material(friction=FRICTION)), ("lambda_max Heyman", Material())):
+            s = LimitSolver(spatial, mat)
+            med, res, _ = _timed(lambda i: s.solve(alpha), 5 if quick else 30)  # noqa: B023
+            lm = res[-1].lambda_max
+            rows.append(
+                _row("reduction", f"lambda_max alpha={alpha:g}", method, solver="CLARABEL", model="spatial",
+                     n_blocks=len(arch.blocks), n_solves=len(res), time_s=med, solver_time_s=res[-1].solve_time,
+                     error=np.nan if ref is None else abs(lm - ref), error_of="lambda_max change",
+                     note=f"lambda_max={lm:.6f}")
+            )
+            ref = lm if ref is None else ref
+    return rows
+
+
+# ---------------------------------------------------------------- targets, outputs
+def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
+    """The issue's targets as ``(target, measured figure, met)`` from a bench table."""
+    out: list[tuple[str, str, bool]] = []
+    ps = df[df.section == "per_solve"]
+
+    def pick(model: str, method: str, solver: str = "CLARABEL") -> pd.Series | None:
+        m = ps[(ps.model == model) & (ps.method.str.startswith(method)) & (ps.solver == solver)]
+        return None if m.empty else m.iloc[0]
+
+    d3, d2 = pick("spatial", "clarabel-direct"), pick("planar", "clarabel-direct")
+    if d3 is not None:
+        out.append(("3D SOCP arch solve <= 1.0 ms end to end", f"{d3.time_s * 1e3:.3f} ms", d3.time_s <= 1.0e-3))
+        r = d3.time_s / d3.solver_time_s
+        out.append(("end to end within 1.3x of Clarabel's own solve time",
+                    f"{r:.2f}x ({d3.time_s * 1e3:.3f} / {d3.solver_time_s * 1e3:.3f} ms)", r <= 1.3))
+    if d2 is not None:
+        out.append(("planar LP arch solve <= 0.3 ms", f"{d2.time_s * 1e3:.3f} ms", d2.time_s <= 0.3e-3))
+    for model, d in (("spatial", d3), ("planar", d2)):
+        rb, pr = pick(model, "cvxpy built"), pick(model, "cvxpy param")
+        if d is None or rb is None or pr is None:
+            continue
+        out.append((f"{model}: direct >= 10x faster than cvxpy built per solve (CLARABEL)",
+                    f"{rb.time_s / d.time_s:.0f}x", rb.time_s / d.time_s >= 10))
+        out.append((f"{model}: direct faster than parametrised cvxpy (CLARABEL)",
+                    f"{pr.time_s / d.time_s:.1f}x", pr.time_s > d.time_s))
+    big = df[(df.section == "scaling") & (df.n_blocks >= 9000)]
+    for _, r in big.iterrows():
+        out.append((f"{r.case}: one lambda_max solve < 60 s and < 4 GiB",
+                    f"{r.time_s:.1f} s, {r.peak_mem_mb / 1024:.2f} GiB",
+                    bool(r.time_s < 60 and r.peak_mem_mb < 4096)))
+    return out
+
+
+def _fmt(v: Any) -> str:
+    if isinstance(v, float | np.floating):
+        if not np.isfinite(v):
+            return "" if np.isnan(v) else str(v)
+        return f"{v:.3g}"
+    return str(v)
+
+
+def to_markdown(df: pd.DataFrame, machine: str = "") -> str:
+    """The bench table as Markdown (times in ms), followed by the targets."""
+    cols = ["section", "case", "method", "solver", "model", "n_solves", "time_ms", "solver_ms", "ratio",
+            "error", "error_of", "residual", "peak_mem_mb", "note"]
+    t = df.assign(time_ms=df.time_s * 1e3, solver_ms=df.solver_time_s * 1e3)
+    lines = [f"Machine: {machine}", ""] if machine else []
+    lines += ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    for _, r in t.iterrows():
+        lines.append("| " + " | ".join(_fmt(r[c]) for c in cols) + " |")
+    lines += ["", "| target | measured | met |", "|---|---|---|"]
+    lines += [f"| {a} | {b} | {'yes' if ok else 'no'} |" for a, b, ok in evaluate_targets(df)]
+    return "\n".join(lines) + "\n"
+
+
+def _plot(df: pd.DataFrame, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    d = df[np.isfinite(df.error) & np.isfinite(df.time_s)]
+    for (section, method), g in d.groupby(["section", "solver"]):
+        ax.scatter(g.time_s * 1e3, np.maximum(g.error, 1e-16), label=f"{section} / {method}", s=22)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("median time per call (ms)")
+    ax.set_ylabel("error (see error_of; floored at 1e-16)")
+    ax.set_title("tce bench: speed against error")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
+def _machine() -> str:
+    import platform
+
+    import clarabel
+    import cvxpy
+
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as fh:
+            cpu = next(line.split(":", 1)[1].strip() for line in fh if line.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    return (f"{cpu}, {os.cpu_count()} cores; Python {platform.python_version()}, numpy {np.__version__}, "
+            f"clarabel {clarabel.__version__}, cvxpy {cvxpy.__version__}")
+
+
+SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
+    "per_solve": _per_solve,
+    "limit": _limit_rows,
+    "load_path": _load_path,
+    "discretisation": _discretisation,
+    "scaling": _scaling,
+    "reduction": _reduction,
+}
+
+
+def run_bench(out_dir: Path = Path("results/bench"), quick: bool = False,
+              sections: Sequence[str] | None = None) -> pd.DataFrame:
+    """Run the bench and write ``bench.csv``, ``bench.md`` and ``speed_error.png`` in ``out_dir``.
+
+    Parameters
+    ----------
+    out_dir : Path
+        Output folder (created).
+    quick : bool
+        A reduced run (fewer repeats and sizes) that takes well under a minute.
+    sections : sequence of str, optional
+        Subset of :data:`SECTIONS` (default: all).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per measurement, columns :data:`COLUMNS`.
+    """
+    names = list(sections or SECTIONS)
+    unknown = set(names) - set(SECTIONS)
+    if unknown:
+        raise ValueError(f"unknown bench sections {sorted(unknown)}; choose from {list(SECTIONS)}")
+    rows: list[dict[str, Any]] = []
+    for name in names:
+        rows += SECTIONS[name](quick)
+    df = pd.DataFrame(rows, columns=COLUMNS)
+    base = df[(df.section == "per_solve") & (df.model == "spatial") & df.method.str.startswith("clarabel-direct")]
+    if not base.empty:
+        df["ratio"] = df.time_s / float(base.time_s.iloc[0])
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    df.to_csv(out_dir / "bench.csv", index=False)
+    (out_dir / "bench.md").write_text(to_markdown(df, _machine()))
+    _plot(df, out_dir / "speed_error.png")
+    return df
+
+
+def add_bench_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Options of ``tce bench``: ``--out``, ``--quick``, ``--section`` (repeatable)."""
+    parser.add_argument("--out", type=Path, default=Path("results/bench"), help="output folder")
+    parser.add_argument("--quick", action="store_true", help="reduced run (< 60 s)")
+    parser.add_argument("--section", action="append", choices=list(SECTIONS), help="run only these sections")
+    return parser
+
+
+def bench_command(args: argparse.Namespace) -> int:
+    """Entry point of ``tce bench``: run, print the Markdown table and where files went."""
+    out = Path(getattr(args, "out", None) or "results/bench")
+    df = run_bench(out, quick=bool(getattr(args, "quick", False)), sections=getattr(args, "section", None))
+    print((out / "bench.md").read_text())
+    print(f"wrote {out / 'bench.csv'}, {out / 'bench.md'}, {out / 'speed_error.png'} ({len(df)} rows)")
+    return 0
