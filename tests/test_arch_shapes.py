@@ -90,7 +90,7 @@ def test_segmental_arch_geometry_and_meta():
     # inclined springing joints: the skewback supports carry them
     left = asm.interfaces[0]
     assert np.allclose(left.normal, [math.cos(half), 0, math.sin(half)])  # up the arch, into v01
-    assert asm.blocks[0].shape.vertices[:, 2].max() == pytest.approx(t * math.sin(half))  # skewback top
+    assert asm.blocks[0].shape.vertices[:, 2].max() == pytest.approx(t * math.cos(half))  # skewback top
 
 
 def test_piers():
