@@ -98,6 +98,11 @@ META: dict[str, tuple[str, str]] = {
 
 
 # ----------------------------------------------------------------------------- building
+def _text(values: object) -> np.ndarray:
+    """Strings as an object array (variable-length in netCDF; never truncated by concat)."""
+    return np.asarray(values, dtype=object)
+
+
 def _step_fields(step: TCEResult, slots: np.ndarray, n_itf: int) -> dict[str, np.ndarray]:
     """Per-step arrays of one TCE answer (NaN unless optimal), interfaces in assembly order."""
     n_sup = len(step.model_ref.assembly.support_indices)
@@ -127,7 +132,7 @@ def _path_vars(path: Sequence[TCEResult], slots: np.ndarray, n_itf: int) -> dict
     }
     dims = ("scenario", "step")
     out: dict[str, tuple] = {k: (dims, np.asarray([v], dtype=float)) for k, v in scalar.items()}
-    out["status"] = (dims, np.asarray([[s.status for s in path]], dtype=str))
+    out["status"] = (dims, _text([[s.status for s in path]]))
     out["reaction"] = (dims + ("support", "component"), stack["reaction"])
     out["resultant"] = (dims + ("interface", "xyz"), stack["resultant"])
     out["pressure_point"] = (dims + ("interface", "xyz"), stack["pressure_point"])
@@ -158,10 +163,10 @@ def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int
         "wall_time": lp.wall_time,
     }
     out: dict[str, tuple] = {k: (("scenario",), np.asarray([v])) for k, v in scalars.items()}
-    out["outcome"] = (("scenario",), np.asarray([lp.outcome], dtype=str))
-    out["model"] = (("scenario",), np.asarray([lp.steps[0].model], dtype=str))
+    out["outcome"] = (("scenario",), _text([lp.outcome]))
+    out["model"] = (("scenario",), _text([lp.steps[0].model]))
     out["mechanism"] = (("scenario", "block", "dof"), vel[None])
-    out["interface_mode"] = (("scenario", "interface"), modes.astype(str)[None])
+    out["interface_mode"] = (("scenario", "interface"), modes[None])
     out["hinge_point"] = (("scenario", "interface", "xyz"), hinge[None])
     return out
 
@@ -170,8 +175,8 @@ def _static_vars(analysis: Analysis) -> dict[str, tuple]:
     """Variables of the assembly (no scenario dimension)."""
     a = analysis.assembly
     return {
-        "interface_a": (("interface",), np.asarray([a.names[i.a] for i in a.interfaces], dtype=str)),
-        "interface_b": (("interface",), np.asarray([a.names[i.b] for i in a.interfaces], dtype=str)),
+        "interface_a": (("interface",), _text([a.names[i.a] for i in a.interfaces])),
+        "interface_b": (("interface",), _text([a.names[i.b] for i in a.interfaces])),
         "block_centroid": (("block", "xyz"), a.centroids),
         "block_support": (("block",), np.asarray([int(b.support) for b in a.blocks])),
     }
@@ -180,15 +185,15 @@ def _static_vars(analysis: Analysis) -> dict[str, tuple]:
 def _coords(sc: Scenario, analysis: Analysis, n_steps: int) -> dict[str, tuple]:
     a = analysis.assembly
     coords: dict[str, tuple] = {
-        "scenario": (("scenario",), np.asarray([sc.name], dtype=str)),
+        "scenario": (("scenario",), _text([sc.name])),
         "step": (("step",), np.arange(n_steps)),
-        "support": (("support",), np.asarray(a.support_names, dtype=str)),
-        "component": (("component",), np.asarray(COMPONENTS, dtype=str)),
-        "interface": (("interface",), np.asarray([f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces], dtype=str)),
-        "xyz": (("xyz",), np.asarray(XYZ, dtype=str)),
-        "block": (("block",), np.asarray(a.names, dtype=str)),
-        "dof": (("dof",), np.asarray(DOF, dtype=str)),
-        "settlement": (("scenario",), np.asarray([sc.settlement], dtype=str)),
+        "support": (("support",), _text(a.support_names)),
+        "component": (("component",), _text(COMPONENTS)),
+        "interface": (("interface",), _text([f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces])),
+        "xyz": (("xyz",), _text(XYZ)),
+        "block": (("block",), _text(a.names)),
+        "dof": (("dof",), _text(DOF)),
+        "settlement": (("scenario",), _text([sc.settlement])),
     }
     for k, v in sc.params.items():
         coords[k] = (("scenario",), np.asarray([v], dtype=float))
@@ -288,7 +293,6 @@ def study_attrs(study: Study, models: Iterable[str]) -> dict[str, str]:
         "assembly": json.dumps(build_structure(first.structure).to_dict()),
         "material": json.dumps(study.spec.material.model_dump()),
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
-        "Conventions": "CF-1.8",
     }
 
 

@@ -1,0 +1,199 @@
+"""The ``tce`` command line: run studies, summarise and plot their results.
+
+``tce run STUDY.toml``   validate a study, solve its scenarios in parallel, write
+                         ``<out>/<study>/results.nc`` and its figures (resumes a run).
+``tce show RESULTS.nc``  one line per scenario: limit, outcome, model, cost.
+``tce plot RESULTS.nc``  the figures of a results file.
+
+Exit codes: 0 success, 1 failure while running, 2 bad input (a message on stderr, no
+traceback, nothing written), 130 interrupted (finished scenarios are kept).
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from . import __version__
+
+__all__ = ["main"]
+
+log = logging.getLogger("tce")
+
+
+class UsageError(Exception):
+    """Bad input from the user: reported in one message, exit code 2."""
+
+
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}")
+    return value
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="tce",
+        description="Total Complementary Energy analysis of masonry as rigid blocks in unilateral "
+        "frictional contact: run study files, summarise and plot their results.",
+        epilog="Study file format: docs/studies.md. Results format: docs/results.md.",
+    )
+    p.add_argument("--version", action="version", version=f"tce {__version__}")
+    p.add_argument("-v", "--verbose", action="store_true", help="log debugging details")
+    p.add_argument("-q", "--quiet", action="store_true", help="log warnings and errors only")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND", required=True)
+
+    run = sub.add_parser(
+        "run",
+        help="run a study file",
+        description="Validate STUDY.toml, solve every scenario not solved yet (a rerun resumes), "
+        "write OUT/<study name>/results.nc and its figures.",
+    )
+    run.add_argument("study", type=Path, metavar="STUDY.toml", help="study file (TOML)")
+    run.add_argument("--out", type=Path, default=Path("results"), metavar="DIR", help="results root (default: results)")
+    run.add_argument("--jobs", type=_jobs, default=None, metavar="N", help="parallel workers (default: all cores)")
+    run.add_argument(
+        "--backend", choices=("loky", "dask"), default="loky",
+        help="loky: processes on this machine (default); dask: a Dask distributed cluster",
+    )
+    run.add_argument(
+        "--scheduler", metavar="ADDR", default=None,
+        help="Dask scheduler address, e.g. tcp://10.0.0.1:8786 (with --backend dask; "
+        "default: a local cluster of --jobs workers)",
+    )
+    run.add_argument("--fresh", action="store_true", help="ignore scenarios solved by an earlier run")
+    run.add_argument("--no-plots", action="store_true", help="write the results only")
+
+    show = sub.add_parser("show", help="summarise a results file", description="One line per scenario of RESULTS.nc.")
+    show.add_argument("results", type=Path, metavar="RESULTS.nc")
+
+    plot = sub.add_parser("plot", help="plot a results file", description="Write the figures of RESULTS.nc.")
+    plot.add_argument("results", type=Path, metavar="RESULTS.nc")
+    plot.add_argument("--out", type=Path, default=None, metavar="DIR", help="folder of the figures (default: beside RESULTS.nc)")
+    return p
+
+
+def _setup_logging(verbose: bool, quiet: bool) -> None:
+    level = logging.DEBUG if verbose else logging.WARNING if quiet else logging.INFO
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("tce: %(message)s"))
+    log.handlers[:] = [handler]
+    log.setLevel(level)
+    log.propagate = False
+
+
+def _open_results(path: Path):
+    import xarray as xr
+
+    if not path.is_file():
+        raise UsageError(f"{path}: no such results file; fix: give the results.nc written by 'tce run'")
+    try:
+        return xr.load_dataset(path)
+    except (OSError, ValueError) as exc:
+        raise UsageError(f"{path}: not a readable results file ({exc})") from None
+
+
+class _Bar:
+    """tqdm progress of scenarios and load steps (silent when stderr is not a terminal)."""
+
+    def __init__(self) -> None:
+        self.bar = None
+
+    def __call__(self, done: int, total: int, steps: int) -> None:
+        from tqdm import tqdm
+
+        if self.bar is None:
+            self.bar = tqdm(total=total, unit="scenario", disable=not sys.stderr.isatty(), file=sys.stderr)
+        self.bar.set_postfix_str(f"{steps} steps")
+        self.bar.update(done - self.bar.n)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _run(args: argparse.Namespace) -> int:
+    import shutil
+
+    from .runner import RunError, run_study
+    from .study import StudyError, load_study
+
+    if args.scheduler and args.backend != "dask":
+        raise UsageError("--scheduler needs --backend dask")
+    try:
+        study = load_study(args.study)
+    except StudyError as exc:
+        raise UsageError(str(exc)) from None
+    if args.fresh:
+        shutil.rmtree(args.out / study.name / "scenarios", ignore_errors=True)
+    bar = _Bar()
+    try:
+        report = run_study(
+            study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,
+            progress=bar, plots=not args.no_plots,
+        )
+    except RunError as exc:
+        raise UsageError(str(exc)) from None
+    except KeyboardInterrupt:
+        bar.close()
+        print(
+            f"tce: interrupted; finished scenarios are kept in {args.out / study.name / 'scenarios'}: "
+            "run the same command again to resume",
+            file=sys.stderr,
+        )
+        return 130
+    bar.close()
+    what = f"{len(report.solved)} solved" + (f", {len(report.reused)} reused" if report.reused else "")
+    print(f"{report.results}: {len(report.solved) + len(report.reused)} scenarios ({what}), {len(report.figures)} figures")
+    return 0
+
+
+def _show(args: argparse.Namespace) -> int:
+    ds = _open_results(args.results)
+    cols = ["lambda_max", "lambda_direct", "lambda_gap", "outcome", "model", "n_solves", "solve_time", "wall_time"]
+    missing = [c for c in cols if c not in ds]
+    if missing or "scenario" not in ds.dims:
+        raise UsageError(f"{args.results}: not a tce results file (missing {missing or ['scenario']})")
+    table = ds[cols].to_dataframe()[cols].rename(columns={"lambda_direct": "direct", "lambda_gap": "gap"})
+    print(f"study {ds.attrs.get('study_name', '?')} (tce {ds.attrs.get('tce_version', '?')}, {ds.attrs.get('solver', '?')})")
+    print(table.to_string(float_format=lambda v: f"{v:.6g}"))
+    return 0
+
+
+def _plot(args: argparse.Namespace) -> int:
+    from .runner import write_plots
+
+    ds = _open_results(args.results)
+    outdir = args.out or args.results.parent
+    figures = write_plots(ds, outdir)
+    print(f"{len(figures)} figures in {outdir}")
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``tce`` command; returns the exit code.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments without the program name (default: ``sys.argv[1:]``).
+    """
+    args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
+    _setup_logging(args.verbose, args.quiet)
+    commands = {"run": _run, "show": _show, "plot": _plot}
+    try:
+        return commands[args.command](args)
+    except UsageError as exc:
+        print(f"tce: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
