@@ -370,7 +370,7 @@ def detect_interfaces(
                     "contact between %r and %r has a hole; only its outer loop is kept",
                     blocks[i].name, blocks[j].name,
                 )
-            pts = _lift(piece, frames[k], origin[k], eps[k])
+            pts = _lift(piece, frames[k], origin[k], 1e-9 * eps[k] / tol)
             if len(pts) >= 3:
                 found.append(Interface(i, j, pts, T.normal[fa[k]]))
     found.sort(key=lambda itf: (itf.a, itf.b))
