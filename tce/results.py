@@ -275,8 +275,17 @@ def load_finished(directory: Path, scenarios: Iterable[Scenario]) -> dict[str, x
     return found
 
 
+def _text_as_object(ds: xr.Dataset) -> xr.Dataset:
+    """Every text variable and coordinate as an object array, so concatenation never truncates."""
+    text = {k: v for k, v in ds.variables.items() if v.dtype.kind in "USOT"}
+    return ds.assign_coords({k: (v.dims, _text(v.values)) for k, v in text.items() if k in ds.coords}).assign(
+        {k: (v.dims, _text(v.values), v.attrs) for k, v in text.items() if k not in ds.coords}
+    )
+
+
 def _pad(ds: xr.Dataset, n_steps: int) -> xr.Dataset:
     """Extend the ``step`` dimension to ``n_steps`` (NaN for numbers, "" for text)."""
+    ds = _text_as_object(ds)
     fill = {k: (_FILL_TEXT if v.dtype.kind in "USO" else np.nan) for k, v in ds.data_vars.items() if "step" in v.dims}
     return ds.reindex(step=np.arange(n_steps), fill_value=fill)
 
