@@ -39,6 +39,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure, SubFigure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon
+from matplotlib.ticker import FixedLocator, MaxNLocator
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 from numpy.typing import NDArray
 from scipy.spatial import ConvexHull
@@ -70,7 +71,9 @@ VERTEX_COLOUR = "#0072B2"
 HINGE_COLOUR = "#0072B2"
 ARROW_FRACTION = 0.22  # longest resultant arrow, as a fraction of the assembly size
 TORQUE_FRACTION = 0.05  # largest torque arc radius, as a fraction of the assembly size
-MECHANISM_FRACTION = 0.10  # largest drawn mechanism displacement, as a fraction of the size
+MECHANISM_FRACTION = 0.06  # largest drawn mechanism displacement, as a fraction of the size
+HINGE_MARKER = dict(linestyle="none", marker="o", markersize=7, markerfacecolor="white",
+                    markeredgecolor=HINGE_COLOUR, markeredgewidth=1.8, zorder=6)
 TORQUE_TOL = 1e-3  # torques below TORQUE_TOL * max|R| * size are negligible
 
 
@@ -127,6 +130,12 @@ def default_step(ds: xr.Dataset, scenario: str) -> int | None:
     return int(ok[at[-1]] if len(at) else ok[-1])
 
 
+def _first_and_limit(ds: xr.Dataset, scenario: str) -> list[int] | None:
+    """The first optimal step (the support motion alone) and :func:`default_step` (None if neither)."""
+    ok = _optimal_steps(ds, scenario)
+    return sorted({int(ok[0]), default_step(ds, scenario)}) if ok.size else None
+
+
 def _is_planar(ds: xr.Dataset, scenario: str) -> bool:
     """True when the scenario ran on the planar model (or, without ``model``, its loads are in plane)."""
     if "model" in ds:
@@ -145,6 +154,15 @@ def _mechanism(ds: xr.Dataset, scenario: str, asm: Assembly) -> NDArray[np.float
     if not np.all(np.isfinite(v)) or not np.any(v):
         return None
     return v
+
+
+def _hinge_points(ds: xr.Dataset, scenario: str) -> NDArray[np.float64]:
+    """Hinge trace points ``(n, 3)`` of the interfaces that hinge at the limit (may be empty)."""
+    if "interface_mode" not in ds or "hinge_point" not in ds:
+        return np.empty((0, 3))
+    mode = _value(ds, "interface_mode", scenario).astype(str)
+    hp = np.asarray(ds["hinge_point"].sel(scenario=scenario).transpose("interface", "xyz").values, float)
+    return hp[(mode == "hinge") & np.all(np.isfinite(hp), axis=1)]
 
 
 def _interface_normals(ds: xr.Dataset, asm: Assembly) -> NDArray[np.float64]:
@@ -193,9 +211,10 @@ def _canvas(fig: Canvas | None, figsize: tuple[float, float]) -> Canvas:
     return fig if fig is not None else Figure(figsize=figsize, layout="constrained")
 
 
-def _camera(asm: Assembly, view: View) -> tuple[float, float]:
+def _camera(asm: Assembly, view: View, motion: NDArray[np.float64] | None = None) -> tuple[float, float]:
     """(elevation, azimuth) in degrees: looking along +y for elevations, down for plans;
-    axonometric views sit lower for long arches than for domes."""
+    axonometric views sit lower for long arches than for domes, and turn towards the
+    span when the blocks move mostly across it (``motion``: displacements, (n, 3))."""
     if view == "elevation":
         return 0.0, -90.0
     if view == "plan":
@@ -204,6 +223,8 @@ def _camera(asm: Assembly, view: View) -> tuple[float, float]:
         raise ValueError(f"view must be 'axo', 'elevation' or 'plan', got {view!r}")
     ext = np.ptp(np.vstack([b.shape.vertices for b in asm.blocks]), axis=0)
     elongated = ext[0] > 2.5 * max(ext[1], 1e-12)
+    if motion is not None and elongated and np.abs(motion[:, 1]).sum() > np.abs(motion[:, 0]).sum():
+        return 16.0, -32.0
     return (18.0, -62.0) if elongated else (28.0, -55.0)
 
 
@@ -215,17 +236,25 @@ def _equal_3d(ax: Axes, pts: NDArray[np.float64], size: float, view: View) -> No
     ax.set_xlim(lo[0], hi[0])
     ax.set_ylim(lo[1], hi[1])
     ax.set_zlim(lo[2], hi[2])
-    ax.set_box_aspect(tuple(hi - lo), zoom=1.15 if view == "axo" else 1.3)
+    ax.set_box_aspect(tuple(hi - lo), zoom=1.3)
     ax.set_proj_type("ortho")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.set_zlabel("z (m)")
-    hidden = {"elevation": "y", "plan": "z"}.get(view)
-    if hidden:  # the axis pointing at the viewer collapses to a point: drop its ticks
-        getattr(ax, f"set_{hidden}ticks")([])
-        getattr(ax, f"set_{hidden}label")("")
-    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+    hidden = {"elevation": 1, "plan": 2}.get(view)  # the axis pointing at the viewer
+    if hidden is not None:  # seen square on, labels sit on their tick labels unless pushed off
+        ax.xaxis.labelpad = 14
+    mid, ranges = 0.5 * (lo + hi), hi - lo
+    for k, axis in enumerate((ax.xaxis, ax.yaxis, ax.zaxis)):
         axis.set_pane_color((1.0, 1.0, 1.0, 0.0))
+        if k == hidden:  # collapses to a point: no ticks, no label
+            axis.set_major_locator(FixedLocator([]))
+            axis.set_label_text("")
+        elif ranges[k] < 0.3 * ranges.max():  # a short axis: one tick, or its labels run together
+            axis.set_major_locator(FixedLocator([float(np.round(mid[k], 1))]))
+        else:
+            axis.set_major_locator(MaxNLocator(nbins=max(2, round(6 * ranges[k] / ranges.max())),
+                                               steps=[1, 2, 2.5, 5, 10]))
 
 
 def _block_vertices(asm: Assembly) -> list[NDArray[np.float64]]:
@@ -347,7 +376,8 @@ def thrust_curves(ds: xr.Dataset, fig: Canvas | None = None) -> Canvas:
             for ax, y in ((ax_h, np.hypot(f[:, 0], f[:, 1])), (ax_v, f[:, 2])):
                 ax.plot(
                     lam, y, **_style(i), marker=MARKERS[j % len(MARKERS)], markersize=4.5,
-                    markerfacecolor="white" if j % 2 else _style(i)["color"], markevery=0.08,
+                    markerfacecolor="white" if j % 2 else _style(i)["color"],
+                    markevery=(0.04 * (j % 2) + 0.013 * i, 0.08),  # coincident curves keep both markers
                     linewidth=1.4, gid=f"reaction:{s}:{sup}",
                 )
     lmax = sorted({round(v, 9) for v in np.asarray(ds["lambda_max"].values, float) if math.isfinite(v)})
@@ -355,12 +385,12 @@ def thrust_curves(ds: xr.Dataset, fig: Canvas | None = None) -> Canvas:
         for k, v in enumerate(lmax):
             ax.axvline(v, color="#555555", linestyle=":", linewidth=1.2, gid="lambda_max")
             ax.annotate(
-                f"λmax = {v:.3f}", (v, 1.0), xycoords=("data", "axes fraction"), xytext=(-3, -4 - 11 * k),
-                textcoords="offset points", ha="right", va="top", fontsize=8, color="#333333",
+                f"λmax = {v:.3f}", (v, 0.5), xycoords=("data", "axes fraction"), xytext=(3, 0),
+                textcoords="offset points", ha="left", va="center", rotation=90, fontsize=8, color="#333333",
             )
         ax.set_xlabel("load multiplier λ (–)")
         ax.grid(True, linewidth=0.3, alpha=0.6)
-        ax.set_xlim(left=0.0)
+        ax.set_xlim(0.0, 1.1 * max([*lmax, ax.get_xlim()[1] / 1.1]))
     ax_h.set_ylabel("horizontal reaction |H| (kN)")
     ax_v.set_ylabel("vertical reaction V (kN)")
     ax_h.set_title("thrust H of each support")
@@ -372,7 +402,7 @@ def thrust_curves(ds: xr.Dataset, fig: Canvas | None = None) -> Canvas:
         for j, s in enumerate(supports)
     ]
     fig.legend(handles=scen_handles + sup_handles, loc="outside lower center",
-               ncols=min(len(scen) + len(supports), 5), fontsize=8, frameon=False)
+               ncols=min(len(scen) + len(supports), 6), fontsize=8, frameon=False)
     return fig
 
 
@@ -408,7 +438,7 @@ def assembly_view(
     """
     asm = _assembly(ds)
     fig = _canvas(fig, (8.0, 6.0))
-    ax = fig.add_subplot(projection="3d")
+    ax = fig.add_subplot(projection="3d", computed_zorder=False)  # forces drawn over the blocks
     _draw_blocks_3d(ax, asm, _block_vertices(asm))
     pts = [np.vstack(_block_vertices(asm))]
     step = default_step(ds, scenario) if step is None else step
@@ -424,9 +454,9 @@ def assembly_view(
         if ok.any():
             vec = res[ok] * scale
             ax.quiver(*pp[ok].T, *vec.T, pivot="middle", color=FORCE_COLOUR, linewidth=1.6,
-                      arrow_length_ratio=0.25, gid="resultants")
+                      arrow_length_ratio=0.25, zorder=4, gid="resultants")
             ax.plot(*pp[ok].T, linestyle="none", marker="o", markersize=2.5, color=FORCE_COLOUR,
-                    gid="pressure_points")
+                    zorder=5, gid="pressure_points")
             pts += [pp[ok] + 0.5 * vec, pp[ok] - 0.5 * vec]
             handles.append(Line2D([], [], color=FORCE_COLOUR, linewidth=1.6, marker=">", markersize=5,
                                   label=f"interface resultant at pressure point\n(arrow: 1 kN = {_fmt(scale)} m)"))
@@ -435,7 +465,7 @@ def assembly_view(
             tmax = float(np.abs(tq[sig]).max())
             tscale = _nice(TORQUE_FRACTION * asm.size / tmax)
             arcs = Line3DCollection(_torque_arcs(pp[sig], _interface_normals(ds, asm)[sig], tq[sig], tscale),
-                                    colors=TORQUE_COLOUR, linewidths=1.2)
+                                    colors=TORQUE_COLOUR, linewidths=1.2, zorder=4)
             arcs.set_gid("torques")
             ax.add_collection3d(arcs)
             handles.append(Line2D([], [], color=TORQUE_COLOUR, linewidth=1.2,
@@ -447,49 +477,62 @@ def assembly_view(
             vp = np.asarray(ds["vertex_point"].transpose("vertex", "xyz").values, dtype=float)
             live = np.all(np.isfinite(vf), axis=1) & (np.linalg.norm(np.nan_to_num(vf), axis=1) > 0)
             ax.quiver(*vp[live].T, *(vf[live] * scale).T, color=VERTEX_COLOUR, linewidth=0.7,
-                      arrow_length_ratio=0.3, gid="vertex_forces")
+                      arrow_length_ratio=0.3, zorder=3, gid="vertex_forces")
             pts.append(vp[live] + vf[live] * scale)
             handles.append(Line2D([], [], color=VERTEX_COLOUR, linewidth=0.7,
                                   label=f"vertex force (1 kN = {_fmt(scale)} m)"))
         ax.set_title(f"{scenario}: {_step_label(ds, scenario, step)}", fontsize=10)
     _equal_3d(ax, np.vstack(pts), asm.size, view)
     ax.view_init(*_camera(asm, view))
-    ax.legend(handles=handles, loc="upper left", fontsize=7, frameon=False)
+    fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=7, frameon=False)
     return fig
 
 
-def thrust_line(ds: xr.Dataset, scenario: str, step: int | None = None, fig: Canvas | None = None) -> Canvas:
+def thrust_line(
+    ds: xr.Dataset, scenario: str, step: int | Sequence[int] | None = None, fig: Canvas | None = None
+) -> Canvas:
     """Elevation (x-z) of the blocks and the line of thrust through the pressure points.
 
     Parameters
     ----------
     ds : xarray.Dataset
     scenario : str
-    step : int, optional
-        Index along ``step``; default :func:`default_step`.
+    step : int or sequence of int, optional
+        Index (or indices, drawn together like the paper's Fig. 7) along ``step``;
+        default :func:`default_step`.
     fig : Figure or SubFigure, optional
 
     Returns
     -------
     Figure or SubFigure
-        One 2D axes with equal aspect; the thrust line is the line ``"thrust_line"``
-        (x, z of the pressure points in interface order, broken where an interface
-        carries nothing); block outlines are patches ``"block:<name>"``.
+        One 2D axes with equal aspect. Each line of thrust is the line
+        ``"thrust_line:<step>"`` (x, z of the pressure points in interface order, broken
+        where an interface carries nothing); at ``lambda_max`` the hinges of the mechanism
+        are the line ``"hinges"``; block outlines are patches ``"block:<name>"``.
     """
     asm = _assembly(ds)
-    fig = _canvas(fig, (8.0, 4.8))
+    fig = _canvas(fig, (8.0, 5.0))
     ax = fig.add_subplot()
     verts = _block_vertices(asm)
     _draw_blocks_2d(ax, asm, verts)
-    step = default_step(ds, scenario) if step is None else step
-    if step is None:
+    steps = [default_step(ds, scenario)] if step is None else list(np.atleast_1d(step))
+    steps = [int(k) for k in steps if k is not None]
+    lmax = _lambda_max(ds, scenario)
+    lam = _value(ds, "lam", scenario).astype(float)
+    if not steps:
         ax.set_title(f"{scenario}: no admissible state ({_text(ds, 'outcome', scenario, 'no optimal step')})")
-    else:
-        pp, _, _ = _state(ds, scenario, step)
-        ax.plot(pp[:, 0], pp[:, 2], color=FORCE_COLOUR, linewidth=1.8, marker="o", markersize=3.5,
-                gid="thrust_line", label="line of thrust (pressure points)")
-        ax.legend(loc="upper right", fontsize=8, frameon=False)
-        ax.set_title(f"{scenario}: line of thrust, {_step_label(ds, scenario, step)}", fontsize=10)
+    for i, k in enumerate(steps):
+        pp, _, _ = _state(ds, scenario, k)
+        ax.plot(pp[:, 0], pp[:, 2], color=FORCE_COLOUR if i == len(steps) - 1 else "#555555",
+                linestyle=LINESTYLES[len(steps) - 1 - i], linewidth=1.8, marker="o", markersize=3.5,
+                gid=f"thrust_line:{k}", label=_step_label(ds, scenario, k))
+    hinges = _hinge_points(ds, scenario)
+    if len(hinges) and math.isfinite(lmax) and any(np.isclose(lam[k], lmax) for k in steps):
+        ax.plot(hinges[:, 0], hinges[:, 2], **HINGE_MARKER, gid="hinges", label="hinge")
+    if steps:
+        fig.legend(loc="outside lower center", ncols=min(len(steps) + 1, 3), fontsize=7, frameon=False,
+                   title="line of thrust (pressure points)", title_fontsize=7)
+        ax.set_title(f"{scenario}: line of thrust", fontsize=10)
     _equal_2d(ax, np.vstack(verts)[:, [0, 2]], asm.size)
     return fig
 
@@ -522,10 +565,11 @@ def mechanism_view(
     fig = _canvas(fig, (8.0, 5.6))
     view = view or ("elevation" if _is_planar(ds, scenario) else "axo")
     flat = view == "elevation"
-    ax = fig.add_subplot() if flat else fig.add_subplot(projection="3d")
+    ax = fig.add_subplot() if flat else fig.add_subplot(projection="3d", computed_zorder=False)
     verts = _block_vertices(asm)
     vel = _mechanism(ds, scenario, asm)
     lmax = _lambda_max(ds, scenario)
+    disp = None
     if vel is None:
         moved, title = verts, f"{scenario}: no collapse mechanism ({_text(ds, 'outcome', scenario, 'none')})"
     else:
@@ -536,13 +580,8 @@ def mechanism_view(
         moved = [v + s * d for v, d in zip(verts, disp)]
         lam = f"λmax = {lmax:.3f}" if math.isfinite(lmax) else "direct limit"
         title = f"{scenario}: collapse mechanism at {lam}\n(exaggerated: largest displacement drawn {s * dmax:.2f} m)"
-    hinges = np.empty((0, 3))
-    if vel is not None and "interface_mode" in ds and "hinge_point" in ds:
-        mode = _value(ds, "interface_mode", scenario).astype(str)
-        hp = np.asarray(ds["hinge_point"].sel(scenario=scenario).transpose("interface", "xyz").values, float)
-        hinges = hp[(mode == "hinge") & np.all(np.isfinite(hp), axis=1)]
-    marker = dict(linestyle="none", marker="o", markersize=7, markerfacecolor="white",
-                  markeredgecolor=HINGE_COLOUR, markeredgewidth=1.8, gid="hinges")
+    hinges = _hinge_points(ds, scenario) if vel is not None else np.empty((0, 3))
+    marker = HINGE_MARKER | dict(gid="hinges")
     if flat:
         _draw_blocks_2d(ax, asm, verts, faint=True)
         _draw_blocks_2d(ax, asm, moved)
@@ -553,12 +592,12 @@ def mechanism_view(
         _draw_blocks_3d(ax, asm, moved)
         ax.plot(*hinges.T, **marker)
         _equal_3d(ax, np.vstack(verts + moved), asm.size, view)
-        ax.view_init(*_camera(asm, view))
-    ax.legend(
+        ax.view_init(*_camera(asm, view, None if disp is None else np.vstack(disp)))
+    fig.legend(
         handles=[Patch(facecolor="none", edgecolor="#9a9a9a", linestyle="--", label="original position"),
                  Patch(facecolor=BLOCK_COLOUR, edgecolor="#3c3c3c", alpha=0.6, label="displaced block"),
-                 Line2D([], [], **{k: v for k, v in marker.items() if k != "gid"}, label="hinge")],
-        loc="upper right" if flat else "upper left", fontsize=7, frameon=False,
+                 Line2D([], [], **HINGE_MARKER, label="hinge")],
+        loc="outside lower center", ncols=3, fontsize=7, frameon=False,
     )
     ax.set_title(title, fontsize=10)
     return fig
@@ -595,8 +634,8 @@ def figure_sheet(ds: xr.Dataset, max_columns: int = 4) -> Figure:
     for cell, s in zip(cells, scen):
         panels = cell.subfigures(3, 1)
         assembly_view(ds, s, fig=panels[0])
-        if _is_planar(ds, s):
-            thrust_line(ds, s, fig=panels[1])
+        if _is_planar(ds, s):  # the settlement alone against the limit state (the paper's Fig. 7)
+            thrust_line(ds, s, step=_first_and_limit(ds, s), fig=panels[1])
         else:
             assembly_view(ds, s, view="plan", fig=panels[1])
         if _mechanism(ds, s, asm) is not None:
@@ -640,7 +679,7 @@ def write_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
         seen.add(slug)
         save(assembly_view(ds, s), f"assembly_{slug}.png")
         if _is_planar(ds, s):
-            save(thrust_line(ds, s), f"thrust_line_{slug}.png")
+            save(thrust_line(ds, s, step=_first_and_limit(ds, s)), f"thrust_line_{slug}.png")
         if _mechanism(ds, s, asm) is not None:
             save(mechanism_view(ds, s), f"mechanism_{slug}.png")
     sheet = figure_sheet(ds)

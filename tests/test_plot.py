@@ -203,7 +203,7 @@ def test_assembly_view_arrows_at_pressure_points(spatial: xr.Dataset, view: str)
     lengths = np.linalg.norm(shafts[:, 1] - shafts[:, 0], axis=1)
     scale = lengths / np.linalg.norm(res, axis=1)
     np.testing.assert_allclose(scale, scale[0])  # one scale for every arrow ...
-    legend = " ".join(t.get_text() for t in ax.get_legend().get_texts())
+    legend = " ".join(t.get_text() for lg in fig.legends for t in lg.get_texts())
     assert f"1 kN = {scale[0]:.3g} m" in legend  # ... and the legend states it
     (points,) = by_gid(ax, "pressure_points")
     np.testing.assert_allclose(np.array(points.get_data_3d()).T, pp)
@@ -233,17 +233,24 @@ def test_assembly_view_torques_and_vertex_forces(spatial: xr.Dataset) -> None:
 # ---------------------------------------------------------------------------- thrust line
 def test_thrust_line_through_pressure_points(planar: xr.Dataset) -> None:
     s = "right outward"
-    for step in (None, 0):
+    k_max = plot.default_step(planar, s)
+    for step, drawn in ((None, [k_max]), (0, [0]), ([0, k_max], [0, k_max])):
         fig = plot.thrust_line(planar, s, step=step)
         (ax,) = axes_of(fig)
-        k = plot.default_step(planar, s) if step is None else step
-        pp = planar.pressure_point.sel(scenario=s, step=k).values
-        (line,) = by_gid(ax, "thrust_line")
-        np.testing.assert_allclose(line.get_xdata(), pp[:, 0])
-        np.testing.assert_allclose(line.get_ydata(), pp[:, 2])
+        for k in drawn:
+            pp = planar.pressure_point.sel(scenario=s, step=k).values
+            (line,) = by_gid(ax, f"thrust_line:{k}")
+            np.testing.assert_allclose(line.get_xdata(), pp[:, 0])
+            np.testing.assert_allclose(line.get_ydata(), pp[:, 2])
         assert ax.get_aspect() == 1.0
         outlines = [p for p in ax.patches if str(p.get_gid()).startswith("block:")]
         assert len(outlines) == planar.sizes["block"]
+        # at the limit the line of thrust shows the hinges of the mechanism
+        hinges = by_gid(ax, "hinges")
+        assert len(hinges) == (k_max in drawn)
+        if hinges:
+            hp = planar.hinge_point.sel(scenario=s).values[planar.interface_mode.sel(scenario=s).values == "hinge"]
+            np.testing.assert_allclose(hinges[0].get_xdata(), hp[:, 0])
 
 
 # ---------------------------------------------------------------------------- mechanism
