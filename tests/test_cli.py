@@ -1,0 +1,125 @@
+"""The tce command line: exit codes, messages, run/show/plot end to end."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+import tce
+from tce.cli import main
+
+STUDY = """
+[study]
+name = "cli"
+
+[structure]
+type = "semicircular_arch"
+inner_radius = 1.0
+thickness = 0.2
+depth = 0.25
+voussoirs = 6
+
+[loads]
+alpha = 0.0
+lambda_step = 0.05
+tolerance = 1e-4
+
+[scenarios.outward]
+right = [0.001, 0.0, 0.0, 0.0, 0.0, 0.0]
+"""
+
+BAD = {
+    "unknown key": ("voussoirs = 6", "voussoirs = 6\nvousoirs = 7", "structure.vousoirs"),
+    "wrong type": ("depth = 0.25", "depth = [0.25]", "structure.depth"),
+    "negative thickness": ("thickness = 0.2", "thickness = -0.2", "structure.thickness"),
+    "friction below 0": ("[loads]", "[material]\nfriction = -0.5\n\n[loads]", "material.friction"),
+    "NaN": ("tolerance = 1e-4", "tolerance = nan", "loads.tolerance"),
+    "displacement of wrong length": ("0.0, 0.0, 0.0, 0.0, 0.0]", "0.0]", "scenarios.outward.right"),
+    "unknown support": ("right = [", "centre = [", "scenarios.outward.centre"),
+}
+
+
+def write(tmp_path: Path, text: str, name: str = "study.toml") -> Path:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_version(capsys) -> None:
+    with pytest.raises(SystemExit) as info:
+        main(["--version"])
+    assert info.value.code == 0 and tce.__version__ in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv", [["--help"], ["run", "--help"], ["show", "--help"], ["plot", "--help"]])
+def test_help(argv: list[str], capsys) -> None:
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    assert info.value.code == 0 and "usage: tce" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_study_exit_2_no_traceback_no_file(case: str, tmp_path: Path, capsys) -> None:
+    old, new, key = BAD[case]
+    assert old in STUDY
+    study = write(tmp_path, STUDY.replace(old, new, 1))
+    out = tmp_path / "results"
+    assert main(["run", str(study), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert f"{study}: {key}" in err and "fix:" in err and "Traceback" not in err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["run", "missing.toml"], "cannot read"),
+        (["run", "{study}", "--scheduler", "tcp://127.0.0.1:1"], "--backend dask"),
+        (["show", "missing.nc"], "no such results file"),
+        (["plot", "{study}"], "not a readable results file"),
+    ],
+)
+def test_bad_arguments_exit_2(argv: list[str], message: str, tmp_path: Path, capsys) -> None:
+    study = write(tmp_path, STUDY)
+    assert main([a.format(study=study) for a in argv]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
+
+
+def test_bad_jobs_is_a_usage_error(tmp_path: Path, capsys) -> None:
+    with pytest.raises(SystemExit) as info:
+        main(["run", str(write(tmp_path, STUDY)), "--jobs", "0"])
+    assert info.value.code == 2 and "--jobs" in capsys.readouterr().err
+
+
+def test_run_show_plot(tmp_path: Path, capsys, monkeypatch) -> None:
+    import tce.plot
+
+    study = write(tmp_path, STUDY)
+    out = tmp_path / "results"
+    drawn: list[Path] = []
+    monkeypatch.setattr(tce.plot, "write_figures", lambda ds, outdir: drawn.append(outdir) or [outdir / "a.png"])
+    assert main(["run", str(study), "--out", str(out), "--jobs", "1"]) == 0
+    results = out / "cli" / "results.nc"
+    stdout = capsys.readouterr().out
+    assert str(results) in stdout and "1 solved" in stdout and "1 figures" in stdout
+    assert drawn == [out / "cli"]  # tce run plots beside the results
+    monkeypatch.undo()
+    ds = xr.open_dataset(results)
+    assert list(ds["scenario"].values) == ["outward"] and ds.attrs["study"] == STUDY
+    ds.close()
+
+    assert main(["-q", "run", str(study), "--out", str(out), "--no-plots"]) == 0
+    assert "0 solved, 1 reused" in capsys.readouterr().out
+
+    assert main(["show", str(results)]) == 0
+    table = capsys.readouterr().out
+    for column in ("lambda_max", "direct", "gap", "outcome", "model", "n_solves", "outward", "limit", "planar"):
+        assert column in table
+
+    figures = tmp_path / "figures"
+    assert main(["plot", str(results), "--out", str(figures)]) == 0
+    assert "figures in" in capsys.readouterr().out
+    assert list(figures.glob("*.png"))
