@@ -92,7 +92,26 @@ class DomeStructure(_Strict):
         return hemispherical_dome(**self.model_dump(exclude={"type"}))
 
 
-Structure = Annotated[ArchStructure | DomeStructure, Field(discriminator="type")]
+class FileStructure(_Strict):
+    """``[structure] type = "file"``: blocks read by :func:`tce.io.load_assembly`.
+
+    ``path`` is relative to the study file (made absolute when the study is read);
+    ``supports`` names the support blocks (default: the flags in the file).
+    """
+
+    type: Literal["file"]
+    path: str = Field(min_length=1)
+    supports: list[str] | None = None
+    unit_weight: Positive | None = None
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from .io import load_assembly
+
+        return load_assembly(self.path, supports=self.supports, unit_weight=self.unit_weight)
+
+
+Structure = Annotated[ArchStructure | DomeStructure | FileStructure, Field(discriminator="type")]
 
 
 class MaterialSection(_Strict):
@@ -307,7 +326,7 @@ def _key(loc: tuple[Any, ...]) -> str:
     for item in loc:
         if isinstance(item, int):
             parts[-1] = f"{parts[-1]}[{item}]" if parts else f"[{item}]"
-        elif item in ("float", "list[float]", "semicircular_arch", "dome") or "[" in str(item):
+        elif item in ("float", "list[float]", "semicircular_arch", "dome", "file") or "[" in str(item):
             continue
         else:
             parts.append(str(item))
@@ -339,6 +358,9 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
         spec = StudyFile.model_validate(data)
     except ValidationError as exc:
         raise StudyError(_describe(path, exc)) from None
+    if isinstance(spec.structure, FileStructure):
+        where = (path.parent / spec.structure.path).resolve()
+        spec = spec.model_copy(update={"structure": spec.structure.model_copy(update={"path": str(where)})})
     study = Study(path, text, spec)
     _check_scenarios(study)
     return study
@@ -379,9 +401,10 @@ def _check_scenarios(study: Study) -> None:
         if skey not in checked:
             try:
                 checked[skey] = build_structure(sc.structure).validate().support_names
-            except ValueError as exc:
+            except (ValueError, OSError) as exc:
+                swept = {k: v for k, v in sc.params.items() if k in GEOMETRY_SWEEPS}
                 raise StudyError(
-                    f"{study.path}: structure: cannot build it with {sc.params or 'these values'}: {exc}; "
+                    f"{study.path}: structure: cannot build it{f' with {swept}' if swept else ''}: {exc}; "
                     "fix: change the [structure] or [sweep] values"
                 ) from None
         try:

@@ -130,3 +130,36 @@ def test_heyman_when_friction_absent() -> None:
 def test_shipped_studies_are_valid(path: Path) -> None:
     study = load_study(path)
     assert study.name == path.stem and study.scenarios()
+
+
+def test_file_structure_relative_to_study(tmp_path: Path) -> None:
+    import json
+
+    from tce.arch import semicircular_arch
+    from tce.study import build_structure
+
+    (tmp_path / "blocks").mkdir()
+    (tmp_path / "blocks" / "arch.json").write_text(json.dumps(semicircular_arch(voussoirs=6).to_dict()))
+    text = """
+[study]
+name = "from_file"
+
+[structure]
+type = "file"
+path = "blocks/arch.json"
+supports = ["left", "right"]
+
+[scenarios.down]
+right = [0.0, 0.0, -0.001, 0.0, 0.0, 0.0]
+"""
+    path = tmp_path / "study.toml"
+    path.write_text(text)
+    (sc,) = load_study(path).scenarios()
+    assert sc.structure["path"] == str((tmp_path / "blocks" / "arch.json").resolve())
+    assert build_structure(sc.structure).support_names == ("left", "right")
+    path.write_text(text.replace("right = [", "keystone = ["))
+    with pytest.raises(StudyError, match="scenarios.down.keystone"):
+        load_study(path)
+    path.write_text(text.replace("blocks/arch.json", "blocks/none.json"))
+    with pytest.raises(StudyError, match="structure: cannot build it"):
+        load_study(path)
