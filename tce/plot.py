@@ -242,14 +242,13 @@ def _equal_3d(ax: Axes, pts: NDArray[np.float64], size: float, view: View) -> No
     ax.set_ylabel("y (m)")
     ax.set_zlabel("z (m)")
     hidden = {"elevation": 1, "plan": 2}.get(view)  # the axis pointing at the viewer
-    if hidden is not None:  # seen square on, labels sit on their tick labels unless pushed off
-        ax.xaxis.labelpad = 14
     mid, ranges = 0.5 * (lo + hi), hi - lo
     for k, axis in enumerate((ax.xaxis, ax.yaxis, ax.zaxis)):
         axis.set_pane_color((1.0, 1.0, 1.0, 0.0))
-        if k == hidden:  # collapses to a point: no ticks, no label
-            axis.set_major_locator(FixedLocator([]))
+        if k == hidden or (view == "plan" and k == 0):  # seen end-on (or, in plan, on its own ticks)
             axis.set_label_text("")
+        if k == hidden:  # collapses to a point: no ticks
+            axis.set_major_locator(FixedLocator([]))
         elif ranges[k] < 0.3 * ranges.max():  # a short axis: one tick, or its labels run together
             axis.set_major_locator(FixedLocator([float(np.round(mid[k], 1))]))
         else:
@@ -481,10 +480,11 @@ def assembly_view(
             pts.append(vp[live] + vf[live] * scale)
             handles.append(Line2D([], [], color=VERTEX_COLOUR, linewidth=0.7,
                                   label=f"vertex force (1 kN = {_fmt(scale)} m)"))
-        ax.set_title(f"{scenario}: {_step_label(ds, scenario, step)}", fontsize=10)
+        where = {"axo": "", "elevation": ", elevation (x-z, m)", "plan": ", plan (x-y, m)"}[view]
+        ax.set_title(f"{scenario}: {_step_label(ds, scenario, step)}{where}", fontsize=10)
     _equal_3d(ax, np.vstack(pts), asm.size, view)
     ax.view_init(*_camera(asm, view))
-    fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=7, frameon=False)
+    fig.legend(handles=handles, loc="outside upper center", ncols=2, fontsize=7, frameon=False)
     return fig
 
 
@@ -597,7 +597,7 @@ def mechanism_view(
         handles=[Patch(facecolor="none", edgecolor="#9a9a9a", linestyle="--", label="original position"),
                  Patch(facecolor=BLOCK_COLOUR, edgecolor="#3c3c3c", alpha=0.6, label="displaced block"),
                  Line2D([], [], **HINGE_MARKER, label="hinge")],
-        loc="outside lower center", ncols=3, fontsize=7, frameon=False,
+        loc="outside lower center" if flat else "outside upper center", ncols=3, fontsize=7, frameon=False,
     )
     ax.set_title(title, fontsize=10)
     return fig
