@@ -87,6 +87,8 @@ def _setup_logging(verbose: bool, quiet: bool) -> None:
     log.handlers[:] = [handler]
     log.setLevel(level)
     log.propagate = False
+    if not verbose:  # matplotlib's layout notes are not the user's business
+        logging.getLogger("matplotlib").setLevel(logging.ERROR)
 
 
 def _open_results(path: Path):
