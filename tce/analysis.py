@@ -59,6 +59,11 @@ class Analysis:
         self._limits: dict[tuple[str, float], LimitResult] = {}
         self._limit_solvers: dict[str, LimitSolver] = {}
 
+    def reset_solvers(self) -> None:
+        """Drop the warm solvers (keeping the operators), so that the next answer does not
+        depend on what was solved before (Clarabel keeps the first problem's scaling)."""
+        self._solvers.clear()
+
     def model_kind(self, alpha: float = 0.0, settlements: Settlements = None) -> str:
         """The model a scene runs on (see module docstring)."""
         if self.choice == "spatial" or self.plane is None:

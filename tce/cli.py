@@ -77,6 +77,26 @@ def _parser() -> argparse.ArgumentParser:
     plot = sub.add_parser("plot", help="plot a results file", description="Write the figures of RESULTS.nc.")
     plot.add_argument("results", type=Path, metavar="RESULTS.nc")
     plot.add_argument("--out", type=Path, default=None, metavar="DIR", help="folder of the figures (default: beside RESULTS.nc)")
+
+    check = sub.add_parser(
+        "check",
+        help="run the numerical stability report",
+        description="Solve the hard cases (near-limit loads, thin arches, extreme units, stiffness and "
+        "friction, slivers, many voussoirs, unbounded settlements) and print case, expected and actual "
+        "status, residual, retry used and time. Exit code 1 if a case fails.",
+    )
+    check.add_argument("--select", metavar="TEXT", default=None, help="only the cases whose name contains TEXT")
+
+    bench = sub.add_parser(
+        "bench",
+        help="measure speed against error",
+        description="Time the solver paths and shortcuts in one run on this machine (medians, ratios to "
+        "the Clarabel-direct 3D solve, errors against tight references) and write bench.csv, bench.md "
+        "and speed_error.png.",
+    )
+    bench.add_argument("--out", type=Path, default=Path("results/bench"), metavar="DIR", help="output folder (default: results/bench)")
+    bench.add_argument("--quick", action="store_true", help="a reduced run (under a minute)")
+    bench.add_argument("--section", action="append", default=None, metavar="NAME", help="run only this section (repeatable)")
     return p
 
 
@@ -179,6 +199,18 @@ def _plot(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check(args: argparse.Namespace) -> int:
+    from .check import check_command
+
+    return check_command(args)
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from .bench import bench_command
+
+    return bench_command(args)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tce`` command; returns the exit code.
 
@@ -189,7 +221,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
     _setup_logging(args.verbose, args.quiet)
-    commands = {"run": _run, "show": _show, "plot": _plot}
+    commands = {"run": _run, "show": _show, "plot": _plot, "check": _check, "bench": _bench}
     try:
         return commands[args.command](args)
     except UsageError as exc:

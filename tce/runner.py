@@ -85,7 +85,7 @@ def _cold(analysis: Analysis) -> Analysis:
     cold makes every answer independent of the backend, the number of jobs and resuming.
     Building a solver costs about a millisecond; the operators are the expensive part.
     """
-    analysis._solvers.clear()  # noqa: SLF001 - Analysis has no public reset yet
+    analysis.reset_solvers()
     return analysis
 
 
