@@ -207,10 +207,22 @@ class Model:
         pattern = np.arange(r) >= (3 if r == 6 else 2)
         return np.tile(pattern, len(self.assembly.free_indices))
 
+    @cached_property
+    def _lateral_cache(self) -> dict[float, NDArray[np.float64]]:
+        return {}
+
     def b_lateral(self, alpha: float) -> NDArray[np.float64]:
-        """Lateral load vector for lambda = 1 in direction ``alpha`` (degrees)."""
-        d = lateral_direction(alpha)
-        return self.b_lat @ d[:2]
+        """Lateral load vector for lambda = 1 in direction ``alpha`` (degrees); read-only,
+        kept per direction (solves along a load path ask for the same one each time)."""
+        cache = self._lateral_cache
+        v = cache.get(alpha)
+        if v is None:
+            if len(cache) >= 64:
+                cache.clear()
+            v = self.b_lat @ lateral_direction(alpha)[:2]
+            v.flags.writeable = False
+            cache[alpha] = v
+        return v
 
     def compliance(self, normal_stiffness: float, shear_stiffness: float) -> NDArray[np.float64]:
         """Diagonal of the compliance ``D`` (m/kN) for stiffnesses per unit area (kN/m^3).
