@@ -465,8 +465,14 @@ def _plot(df: pd.DataFrame, path: Path) -> None:
 
     fig, ax = plt.subplots(figsize=(8, 5.5))
     d = df[np.isfinite(df.error) & np.isfinite(df.time_s)]
-    for (section, method), g in d.groupby(["section", "solver"]):
-        ax.scatter(g.time_s * 1e3, np.maximum(g.error, 1e-16), label=f"{section} / {method}", s=22)
+    family = np.select(
+        [d.method.str.startswith("cvxpy built"), d.method.str.startswith("cvxpy param"), d.method.str.startswith("pyramid")],
+        ["cvxpy built per solve", "cvxpy parametrised", "pyramid LP"], "direct",
+    )
+    markers = {"direct": "o", "cvxpy built per solve": "x", "cvxpy parametrised": "^", "pyramid LP": "s"}
+    for (section, fam, solver), g in d.assign(family=family).groupby(["section", "family", "solver"]):
+        ax.scatter(g.time_s * 1e3, np.maximum(g.error, 1e-16), marker=markers[fam], s=24,
+                   label=f"{section}: {fam} ({solver})")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("median time per call (ms)")
