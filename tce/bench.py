@@ -66,7 +66,7 @@ from .model import Model, build_model
 from .pyramid import pyramid_lambda_max
 from .solve import SolverOptions, TCESolver
 
-__all__ = ["FastOptions", "run_bench", "bench_command", "add_bench_arguments", "evaluate_targets", "growth_exponent"]
+__all__ = ["run_bench", "bench_command", "add_bench_arguments", "evaluate_targets", "growth_exponent"]
 
 FRICTION = 0.8
 LAMS = (0.0, 0.05, 0.1, 0.15, 0.2)
@@ -77,14 +77,6 @@ COLUMNS = [
     "section", "case", "method", "solver", "model", "n_blocks", "n_solves", "time_s", "solver_time_s",
     "ratio", "error", "error_of", "residual", "peak_mem_mb", "time_min_s", "note",
 ]
-
-
-@dataclass(frozen=True)
-class FastOptions(SolverOptions):
-    """Solver options with Clarabel's iterative refinement off in the warm solver
-    (``refine``, read by :meth:`tce.solve.TCESolver._main`)."""
-
-    refine: bool = False
 
 
 # ---------------------------------------------------------------- helpers
@@ -172,8 +164,8 @@ def _per_solve(quick: bool) -> list[dict[str, Any]]:
 
         variants = (
             ("clarabel-direct (warm, update)", None),
-            ("clarabel-direct, no refinement", FastOptions()),
-            ("clarabel-direct, no refinement, tol 1e-8", FastOptions(tol=1e-8, residual_tol=1e-7)),
+            ("clarabel-direct, with refinement", SolverOptions(refine=True)),
+            ("clarabel-direct, tol 1e-8", SolverOptions(tol=1e-8, residual_tol=1e-7)),
         )
         for method, options in variants:
             direct = TCESolver(model, mat, options)
@@ -236,7 +228,7 @@ def _load_path(quick: bool) -> list[dict[str, Any]]:
     rows: list[dict[str, Any]] = []
     ref = LimitSolver(build_model(arch, "planar"), Material(friction=FRICTION), tol=1e-12).solve(0.0).lambda_max
     tols = (1e-2, 1e-4, 1e-6, 1e-8) if quick else (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
-    for (atol, options) in [(t, o) for o in (None, FastOptions()) for t in tols]:
+    for (atol, options) in [(t, o) for o in (None, SolverOptions(refine=True)) for t in tols]:
         times, res = [], None
         for _ in range(1 if quick else 3):
             an = Analysis(arch, Material(friction=FRICTION), options=options)
@@ -244,7 +236,7 @@ def _load_path(quick: bool) -> list[dict[str, Any]]:
             res = load_path(an, 0.0, SETTLEMENT, step=0.02, atol=atol)
             times.append(time.perf_counter() - t0)
         assert res is not None
-        suffix = "" if options is None else ", no refinement"
+        suffix = "" if options is None else ", with refinement"
         rows.append(
             _row("load_path", "arch in plane, 1 mm spreading, step 0.02", f"bisection atol={atol:g}{suffix}", solver="CLARABEL",
                  model=res.steps[-1].model, n_blocks=len(arch.blocks), n_solves=res.n_solves,
@@ -408,9 +400,9 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
         return None if m.empty else m.iloc[0]
 
     d3, d2 = pick("spatial", "clarabel-direct (warm"), pick("planar", "clarabel-direct (warm")
-    for variant in ("clarabel-direct (warm", "clarabel-direct, no refinement"):
+    for variant in ("clarabel-direct (warm", "clarabel-direct, with refinement"):
         s3, s2 = pick("spatial", variant), pick("planar", variant)
-        tag = "default" if variant.endswith("(warm") else "no refinement"
+        tag = "default" if variant.endswith("(warm") else "with refinement"
         if s3 is not None:
             out.append((f"3D SOCP arch solve <= 1.0 ms end to end ({tag})", f"{s3.time_s * 1e3:.3f} ms",
                         s3.time_s <= 1.0e-3))

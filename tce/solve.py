@@ -74,12 +74,19 @@ class SolverOptions:
         Phase-1 residual above which a load is declared infeasible.
     max_iter : int
         Clarabel's iteration limit.
+    refine : bool
+        Clarabel's iterative refinement of the KKT solves in the warm solver (retries
+        always refine). Off by default: on ~2,000 load-path solves the statuses were the
+        same, infeasible loads got their certificate in ~15 iterations instead of running
+        to the limit, and solves were 1.5-3x faster; an answer still has to pass
+        ``residual_tol``, so a load within ~1e-8 of lambda_max may be ``optimal``.
     """
 
     tol: float = 1e-10
     residual_tol: float = 1e-9
     feas_tol: float = 1e-9
     max_iter: int = 200
+    refine: bool = False
 
     def clarabel_settings(self, robust: bool = False, tight: bool = False) -> clarabel.DefaultSettings:
         """Clarabel settings; ``robust`` raises iterations and equilibration for a retry;
@@ -268,7 +275,7 @@ class TCESolver:
             self._P = sp.csc_matrix(sp.diags(P / self._obj_scale))
         self._solver: clarabel.DefaultSolver | None = None
         self._feas: clarabel.DefaultSolver | None = None
-        self._recession_cache: dict[bytes, tuple[float, float]] = {}
+        self._recession_cache: dict[bytes, tuple[float, float, NDArray[np.float64]]] = {}
 
     # ------------------------------------------------------------ problem vectors
     def _rhs(self, lam: float, alpha: float) -> NDArray[np.float64]:
@@ -306,18 +313,11 @@ class TCESolver:
 
     # ------------------------------------------------------------ clarabel calls
     def _main(self, q: NDArray[np.float64], b: NDArray[np.float64]) -> clarabel.DefaultSolution:
-        """The warm solver: built on the first call, then only its vectors are updated.
-
-        An options object with ``refine = False`` turns off Clarabel's iterative refinement
-        of the KKT solves for this warm solver (the retries keep it): on ~2,000 load-path
-        solves (arch planar and 3D, Heyman, friction, compliant, settlements; a dome) the
-        statuses were the same, infeasible loads got a clean certificate in ~15 iterations
-        instead of running to the iteration limit, and the time fell 2-3x; but a load a few
-        1e-9 above lambda_max can come back ``AlmostSolved`` within ``residual_tol``.
-        """
+        """The warm solver: built on the first call, then only its vectors are updated
+        (iterative refinement as ``options.refine`` says)."""
         if self._solver is None:
             settings = self.options.clarabel_settings()
-            settings.iterative_refinement_enable = bool(getattr(self.options, "refine", True))
+            settings.iterative_refinement_enable = self.options.refine
             self._solver = clarabel.DefaultSolver(self._P, q, self._A, b, self._cone_list, settings)
             self._q_main = q
         elif q is self._q_main:
@@ -406,6 +406,15 @@ class TCESolver:
         TCE is unbounded below (when feasible). Returns ``(value, solve_time)``; cached
         per ``U`` (the check does not depend on the load).
         """
+        val, t, _ = self._recession(U)
+        return val, t
+
+    def recession_direction(self, U: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The self-stress ``d`` (model variables, scaled) of :meth:`recession`: where an
+        incompatible support motion drives the forces without end (NaN if not solved)."""
+        return self._recession(U)[2]
+
+    def _recession(self, U: NDArray[np.float64]) -> tuple[float, float, NDArray[np.float64]]:
         key = np.asarray(U, dtype=float).tobytes()
         if key in self._recession_cache:
             return self._recession_cache[key]
@@ -417,8 +426,10 @@ class TCESolver:
         cones: list = [clarabel.ZeroConeT(m + self._cones.n_zero), clarabel.NonnegativeConeT(2 * n + self._cones.n_nonneg)]
         cones += [clarabel.SecondOrderConeT(3)] * self._cones.n_soc
         sol = clarabel.DefaultSolver(sp.csc_matrix((n, n)), q, A, b, cones, self.options.clarabel_settings()).solve()
-        val = float(sol.obj_val) if str(sol.status) in ("Solved", "AlmostSolved") else float("nan")
-        out = (val, float(sol.solve_time))
+        solved = str(sol.status) in ("Solved", "AlmostSolved")
+        val = float(sol.obj_val) if solved else float("nan")
+        d = np.asarray(sol.x) if solved else np.full(n, np.nan)
+        out = (val, float(sol.solve_time), d)
         self._recession_cache[key] = out
         return out
 
@@ -542,7 +553,7 @@ class TCESolver:
         else:
             unique = None
         if retry:
-            log.info("solve at lam=%g alpha=%g: %s decided by %s (%s)", lam, alpha, status, retry, message)
+            log.debug("solve at lam=%g alpha=%g: %s decided by %s (%s)", lam, alpha, status, retry, message)
         return TCEResult(
             status=status,
             lam=float(lam),
