@@ -105,6 +105,8 @@ def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
     if not isinstance(d, Mapping) or not isinstance(d.get("blocks"), list):
         raise _err(path, 'not a tce assembly: expected an object with a "blocks" list')
     units = d.get("units") or {}
+    if not isinstance(units, Mapping):
+        raise _err(path, f'"units" must be an object like {{"length": "m", "force": "kN"}}, got {units!r}')
     lu, fu = units.get("length", "m"), units.get("force", "kN")
     if lu not in _LENGTH or fu not in _FORCE:
         raise _err(path, f"unknown units {units!r}; length one of {list(_LENGTH)}, force one of {list(_FORCE)}")
