@@ -82,12 +82,16 @@ class Interface:
         Contact vertices (m), in order around the polygon.
     normal : (3,) array_like, optional
         Unit normal from A into B. Defaults to the Newell normal of ``points``.
+    stiffness : float
+        Multiplier of the material's stiffness on this interface (> 0; default 1): a mortar
+        joint or a stiffer bed, for the compliance term only.
     """
 
     a: int
     b: int
     points: NDArray[np.float64]
     normal: NDArray[np.float64] | None = field(default=None)
+    stiffness: float = 1.0
 
     def __post_init__(self) -> None:
         p = np.array(self.points, dtype=float)
@@ -100,6 +104,8 @@ class Interface:
         norm = np.linalg.norm(n)
         if not np.isfinite(norm) or norm == 0.0:
             raise AssemblyError(f"interface {self.a}-{self.b}: cannot determine a normal")
+        if not (np.isfinite(self.stiffness) and self.stiffness > 0):
+            raise AssemblyError(f"interface {self.a}-{self.b}: stiffness multiplier must be > 0, got {self.stiffness!r}")
         p.setflags(write=False)
         object.__setattr__(self, "points", p)
         object.__setattr__(self, "normal", n / norm)
@@ -225,7 +231,7 @@ class Assembly:
             for b in self.blocks
         )
         interfaces = tuple(
-            Interface(i.a, i.b, i.points * length, i.normal) for i in self.interfaces
+            Interface(i.a, i.b, i.points * length, i.normal, i.stiffness) for i in self.interfaces
         )
         return replace(self, blocks=blocks, interfaces=interfaces)
 
@@ -251,6 +257,7 @@ class Assembly:
                     "b": self.names[i.b],
                     "points": i.points.tolist(),
                     "normal": i.normal.tolist(),
+                    "stiffness": float(i.stiffness),
                 }
                 for i in self.interfaces
             ],
@@ -271,7 +278,9 @@ class Assembly:
         )
         index = {b.name: k for k, b in enumerate(blocks)}
         interfaces = tuple(
-            Interface(index[i["a"]], index[i["b"]], np.asarray(i["points"], float), i.get("normal"))
+            Interface(
+                index[i["a"]], index[i["b"]], np.asarray(i["points"], float), i.get("normal"), float(i.get("stiffness", 1.0))
+            )
             for i in data.get("interfaces", [])
         )
         return cls(blocks, interfaces, dict(data.get("meta", {})))

@@ -18,7 +18,7 @@ from __future__ import annotations
 import time
 import traceback
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -284,6 +284,24 @@ def _stiffness_range() -> Outcome:
     return out
 
 
+def _stiff_interface() -> Outcome:
+    """One joint (the crown's) 1e6 and 1e9 times stiffer than its neighbours, 1 mm spreading:
+    planar and spatial agree, and the thrust has converged as the joint becomes rigid."""
+    out = Outcome()
+    base = _arch()
+    crown = len(base.interfaces) // 2
+    h = {}
+    for ratio in (1e6, 1e9):
+        itfs = [replace(i, stiffness=ratio) if k == crown else i for k, i in enumerate(base.interfaces)]
+        a = base.with_interfaces(itfs)
+        for kind in ("planar", "spatial"):
+            an = Analysis(a, Material(0.8, 1e6), model=kind)  # type: ignore[arg-type]
+            h[ratio, kind] = _thrust(out.add(an.solve(0.0, 0.0, _right([MM, 0, 0, 0, 0, 0]))))
+        out.expect_close(f"planar vs spatial H/W, stiffness x{ratio:g}", h[ratio, "planar"], h[ratio, "spatial"], 1e-6)
+    out.expect_close("H/W stiffness x1e6 vs x1e9", h[1e6, "planar"], h[1e9, "planar"], 1e-4)
+    return out
+
+
 def _friction(mu: float | None, expected_at_zero: str) -> Callable[[], Outcome]:
     """Friction ``mu`` (None: Heyman): lam 0, and (1 -+ 1e-6) lambda_max when there is one."""
 
@@ -434,6 +452,7 @@ CASES: tuple[HardCase, ...] = (
     HardCase("settlement 1e-12..0.1 m, rigid", _rigid_settlements, ("optimal",)),
     HardCase("settlement 1e-12..0.1 m, compliant", _compliant_settlements, ("optimal",)),
     HardCase("stiffness 1e-3..1e12", _stiffness_range, ("optimal",)),
+    HardCase("one joint 1e6, 1e9 x stiffer", _stiff_interface, ("optimal",)),
     HardCase("friction 1e-4", _friction(1e-4, "infeasible"), ("infeasible",)),
     HardCase("friction 0", _friction(0.0, "infeasible"), ("infeasible",)),
     HardCase("friction 1e4", _friction(1e4, "optimal"), ("optimal", "infeasible")),

@@ -227,10 +227,12 @@ class Model:
     def compliance(self, normal_stiffness: float, shear_stiffness: float) -> NDArray[np.float64]:
         """Diagonal of the compliance ``D`` (m/kN) for stiffnesses per unit area (kN/m^3).
 
-        ``D = 1 / (k * A_trib)`` per component: ``normal_stiffness`` for fn and
-        ``shear_stiffness`` for the tangential components.
+        ``D = 1 / (k * s * A_trib)`` per component: ``k`` is ``normal_stiffness`` for fn and
+        ``shear_stiffness`` for the tangential components, ``s`` the interface's own
+        stiffness multiplier (:attr:`tce.assembly.Interface.stiffness`).
         """
-        area = np.maximum(self.contact_area, np.finfo(float).tiny)
+        factor = np.array([i.stiffness for i in self.assembly.interfaces])[self.contact_interface]
+        area = np.maximum(self.contact_area * factor, np.finfo(float).tiny)
         k = np.array([normal_stiffness] + [shear_stiffness] * (self.dim - 1))
         return (1.0 / (area[:, None] * k[None, :])).ravel()
 
