@@ -38,6 +38,17 @@ def check_positive(**params: float) -> None:
             raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
 
 
+def check_whole(value: int, name: str, minimum: int = 1) -> int:
+    """``value`` as an int; ``ValueError`` naming ``name`` unless it is a whole number >= ``minimum``."""
+    try:
+        ok = not isinstance(value, bool) and int(value) == value and value >= minimum
+    except (TypeError, ValueError, OverflowError):
+        ok = False
+    if not ok:
+        raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
+    return int(value)
+
+
 def _at_depth(xz: np.ndarray, y: float) -> np.ndarray:
     """Lift (k, 2) points of the x-z plane to 3D at depth coordinate y."""
     return np.column_stack([xz[:, 0], np.full(len(xz), y), xz[:, 1]])
@@ -148,9 +159,9 @@ def semicircular_arch(
         See :func:`arch_from_joints`.
     """
     check_positive(inner_radius=inner_radius, thickness=thickness, depth=depth, unit_weight=unit_weight)
-    if int(voussoirs) != voussoirs or voussoirs < 1:
-        raise ValueError(f"voussoirs must be a whole number >= 1, got {voussoirs!r}")
-    theta = np.linspace(np.pi, 0.0, int(voussoirs) + 1)
+    n = check_whole(voussoirs, "voussoirs")
+    height = thickness if support_height is None else support_height
+    theta = np.linspace(np.pi, 0.0, n + 1)
     c, s = np.cos(theta), np.sin(theta)
     c[[0, -1]] = [-1.0, 1.0]
     s[[0, -1]] = 0.0
@@ -160,24 +171,20 @@ def semicircular_arch(
         inner_radius=float(inner_radius),
         thickness=float(thickness),
         depth=float(depth),
-        voussoirs=int(voussoirs),
+        voussoirs=n,
         unit_weight=float(unit_weight),
-        support_height=float(support_height if support_height is not None else thickness),
+        support_height=float(height),
     )
     return arch_from_joints(
         np.column_stack([inner_radius * c, inner_radius * s]),
         np.column_stack([ro * c, ro * s]),
         depth,
         unit_weight,
-        support_height if support_height is not None else thickness,
+        height,
         meta,
     )
 
 
-def _whole_number(value: int, name: str, minimum: int = 1) -> int:
-    if isinstance(value, bool) or int(value) != value or value < minimum:
-        raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
-    return int(value)
 
 
 def _mirror_joints(left: np.ndarray, n: int) -> np.ndarray:
@@ -238,7 +245,7 @@ def pointed_arch(
         See :func:`arch_from_joints`; ``meta["generator"] == "pointed_arch"``.
     """
     check_positive(span=span, thickness=thickness, depth=depth, unit_weight=unit_weight)
-    n = _whole_number(voussoirs, "voussoirs", 2)
+    n = check_whole(voussoirs, "voussoirs", 2)
     s = float(span)
     if rise is not None and centre_offset is not None:
         raise ValueError("give either rise or centre_offset, not both")
@@ -323,7 +330,7 @@ def segmental_arch(
         See :func:`arch_from_joints`; ``meta["generator"] == "segmental_arch"``.
     """
     check_positive(span=span, rise=rise, thickness=thickness, depth=depth, unit_weight=unit_weight)
-    n = _whole_number(voussoirs, "voussoirs", 1)
+    n = check_whole(voussoirs, "voussoirs")
     s, f, t = float(span), float(rise), float(thickness)
     if f > s / 2.0 * (1.0 + 1e-12):
         raise ValueError(f"rise must be <= span / 2 = {s / 2.0} for a segmental arch, got {rise!r}")

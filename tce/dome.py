@@ -46,7 +46,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from .arch import check_positive
+from .arch import check_positive, check_whole
 from .assembly import Assembly, Block, Interface
 from .geometry import Polyhedron, prism
 
@@ -68,12 +68,6 @@ def _wedge(ci: NDArray, co: NDArray, i1: NDArray, i2: NDArray, o1: NDArray, o2: 
     if poly.volume < 0:
         poly = Polyhedron(v, [f[::-1] for f in faces])
     return poly
-
-
-def _whole(value: int, name: str, minimum: int) -> int:
-    if isinstance(value, bool) or int(value) != value or value < minimum:
-        raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
-    return int(value)
 
 
 def hemispherical_dome(
@@ -118,8 +112,8 @@ def hemispherical_dome(
         A parameter out of range, naming it.
     """
     check_positive(radius=radius, thickness=thickness, unit_weight=unit_weight)
-    sectors = _whole(sectors, "sectors", 3)
-    courses = _whole(courses, "courses", 1)
+    sectors = check_whole(sectors, "sectors", 3)
+    courses = check_whole(courses, "courses")
     if not thickness < 2.0 * radius:
         raise ValueError(f"thickness must be < 2 * radius (the intrados radius R - t/2 > 0), got {thickness!r}")
     try:

@@ -15,7 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from .analysis import Analysis
-from .arch import check_positive, semicircular_arch
+from .arch import check_positive, check_whole, semicircular_arch
 from .assembly import Assembly
 from .material import Material
 
@@ -116,12 +116,11 @@ def arch_minimum_thickness(
     The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``.
     """
     check_positive(centre_radius=centre_radius, depth=depth)
+    n = check_whole(voussoirs, "voussoirs")
 
     def build(t: float) -> Assembly:
-        return semicircular_arch(centre_radius - t / 2, t, depth, voussoirs)
+        return semicircular_arch(centre_radius - t / 2, t, depth, n)
 
-    if not (isinstance(voussoirs, int) and voussoirs >= 1):
-        raise ValueError(f"voussoirs must be a whole number >= 1, got {voussoirs!r}")
     return minimum_thickness(
         build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius
     )
