@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from tce.arch import semicircular_arch
-from tce.assembly import Assembly
+from tce.structures.arch import semicircular_arch
+from tce.structures.assembly import Assembly
 
 
 @pytest.fixture(scope="session")

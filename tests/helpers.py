@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from tce.assembly import Assembly, Block, Interface
-from tce.geometry import box
+from tce.structures.assembly import Assembly, Block, Interface
+from tce.structures.geometry import box
 
 
 def block_on_support(b: float = 0.4, h: float = 1.0, d: float = 0.3, unit_weight: float = 20.0) -> Assembly:

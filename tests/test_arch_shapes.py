@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from tce.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
-from tce.material import Material
-from tce.model import build_model
-from tce.solve import TCESolver
+from tce.structures.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
+from tce.core.material import Material
+from tce.core.model import build_model
+from tce.core.solve import TCESolver
 
 
 def _ring_volume(asm):

@@ -7,11 +7,11 @@ import time
 import numpy as np
 import pytest
 
-from tce.arch import pointed_arch, semicircular_arch
-from tce.assembly import AssemblyError, Block
-from tce.contacts import block_pairs, check_overlaps, detect_interfaces
-from tce.dome import hemispherical_dome
-from tce.geometry import box, prism
+from tce.structures.arch import pointed_arch, semicircular_arch
+from tce.structures.assembly import AssemblyError, Block
+from tce.structures.contacts import block_pairs, check_overlaps, detect_interfaces
+from tce.structures.dome import hemispherical_dome
+from tce.structures.geometry import box, prism
 
 
 def _same_interfaces(asm, found):
@@ -77,7 +77,7 @@ def test_non_convex_contact_polygon():
     assert itf.area == pytest.approx(0.75)
     assert len(itf.points) == 6 and np.allclose(itf.points[:, 2], 1.0)
     # counter-clockwise about the normal (Newell normal along +n)
-    from tce.geometry import newell_normal
+    from tce.structures.geometry import newell_normal
 
     assert newell_normal(itf.points) @ itf.normal > 0
 

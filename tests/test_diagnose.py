@@ -1,9 +1,9 @@
 """Why a scene fails: binding interfaces and mechanisms named for the user."""
 
 from tce.analysis import Analysis
-from tce.arch import semicircular_arch
-from tce.diagnose import diagnose
-from tce.material import Material
+from tce.structures.arch import semicircular_arch
+from tce.analysis.diagnose import diagnose
+from tce.core.material import Material
 
 MM = 1e-3
 

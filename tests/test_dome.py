@@ -8,10 +8,10 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from tce.dome import hemispherical_dome, radial_settlement, shell_centroid_height, shell_volume
-from tce.material import Material
-from tce.model import build_model
-from tce.solve import TCESolver
+from tce.structures.dome import hemispherical_dome, radial_settlement, shell_centroid_height, shell_volume
+from tce.core.material import Material
+from tce.core.model import build_model
+from tce.core.solve import TCESolver
 
 R, T = 5.0, 0.3
 

@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from tce.arch import semicircular_arch
-from tce.assembly import AssemblyError
-from tce.geometry import GeometryError, Polyhedron, box, prism, tributary_areas
-from tce.model import build_model
+from tce.structures.arch import semicircular_arch
+from tce.structures.assembly import AssemblyError
+from tce.structures.geometry import GeometryError, Polyhedron, box, prism, tributary_areas
+from tce.core.model import build_model
 
 
 def test_box_volume_and_centroid():

@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 
 import tce
-from tce.arch import semicircular_arch
-from tce.assembly import AssemblyError
-from tce.geometry import GeometryError, box, polygon_area
-from tce.io import load_assembly, save_assembly_json
-from tce.material import Material
-from tce.model import build_model
-from tce.solve import TCESolver
+from tce.structures.arch import semicircular_arch
+from tce.structures.assembly import AssemblyError
+from tce.structures.geometry import GeometryError, box, polygon_area
+from tce.structures.io import load_assembly, save_assembly_json
+from tce.core.material import Material
+from tce.core.model import build_model
+from tce.core.solve import TCESolver
 
 DATA = Path(tce.__file__).parent / "data" / "assemblies"
 CUBE_FACES = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]

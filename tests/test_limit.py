@@ -5,10 +5,10 @@ import pytest
 from helpers import arch_centroid_height, block_on_support
 
 from tce.analysis import Analysis
-from tce.arch import semicircular_arch
-from tce.loadpath import load_path
-from tce.material import Material
-from tce.thickness import arch_minimum_thickness
+from tce.structures.arch import semicircular_arch
+from tce.analysis.loadpath import load_path
+from tce.core.material import Material
+from tce.analysis.thickness import arch_minimum_thickness
 
 MM = 1e-3
 

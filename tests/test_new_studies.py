@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from tce.runner import run_study
-from tce.study import load_study
+from tce.study.runner import run_study
+from tce.study.schema import load_study
 
 STUDIES = Path(__file__).resolve().parent.parent / "studies"
 

@@ -15,13 +15,13 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from tce import plot
+from tce.plot import figures as plot
 from tce.analysis import Analysis
-from tce.arch import semicircular_arch
-from tce.assembly import Assembly
-from tce.loadpath import LoadPathResult, load_path
-from tce.material import Material
-from tce.resultants import global_vertex_forces
+from tce.structures.arch import semicircular_arch
+from tce.structures.assembly import Assembly
+from tce.analysis.loadpath import LoadPathResult, load_path
+from tce.core.material import Material
+from tce.core.resultants import global_vertex_forces
 
 COMPONENTS = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"]
 

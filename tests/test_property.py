@@ -10,8 +10,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from tce.analysis import Analysis
-from tce.arch import semicircular_arch
-from tce.material import Material
+from tce.structures.arch import semicircular_arch
+from tce.core.material import Material
 
 RESIDUAL = 1e-9
 # lam / lambda_direct: well inside, near and beyond the limit (never within 0.1 % of it)

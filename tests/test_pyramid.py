@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tce.arch import semicircular_arch
-from tce.limit import LimitSolver
-from tce.material import Material
-from tce.model import build_model
-from tce.pyramid import pyramid_bracket, pyramid_lambda_max, pyramid_rows
+from tce.structures.arch import semicircular_arch
+from tce.core.limit import LimitSolver
+from tce.core.material import Material
+from tce.core.model import build_model
+from tce.core.pyramid import pyramid_bracket, pyramid_lambda_max, pyramid_rows
 
 
 @pytest.fixture(scope="module")

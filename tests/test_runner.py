@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from tce import runner
-from tce.results import TIMING
-from tce.study import load_study, parse_study
+from tce.study import runner
+from tce.study.results import TIMING
+from tce.study.schema import load_study, parse_study
 
 STUDIES = Path(__file__).resolve().parents[1] / "studies"
 

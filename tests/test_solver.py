@@ -4,11 +4,11 @@ import numpy as np
 import pytest
 
 from tce.analysis import Analysis
-from tce.cvx import CvxTCE
-from tce.limit import LimitSolver
-from tce.material import Material
-from tce.model import build_model
-from tce.solve import TCESolver
+from tce.core.cvx import CvxTCE
+from tce.core.limit import LimitSolver
+from tce.core.material import Material
+from tce.core.model import build_model
+from tce.core.solve import TCESolver
 
 from helpers import block_on_support
 

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from tce.analysis import Analysis
-from tce.dome import hemispherical_dome, radial_settlement
-from tce.material import Material
-from tce.thickness import minimum_thickness
+from tce.structures.dome import hemispherical_dome, radial_settlement
+from tce.core.material import Material
+from tce.analysis.thickness import minimum_thickness
 
 from test_io import SAMPLES, _load_sample
 

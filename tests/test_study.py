@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from tce.study import StudyError, load_study, parse_study
+from tce.study.schema import StudyError, load_study, parse_study
 
 STUDIES = Path(__file__).resolve().parents[1] / "studies"
 
@@ -135,8 +135,8 @@ def test_shipped_studies_are_valid(path: Path) -> None:
 def test_file_structure_relative_to_study(tmp_path: Path) -> None:
     import json
 
-    from tce.arch import semicircular_arch
-    from tce.study import build_structure
+    from tce.structures.arch import semicircular_arch
+    from tce.study.schema import build_structure
 
     (tmp_path / "blocks").mkdir()
     (tmp_path / "blocks" / "arch.json").write_text(json.dumps(semicircular_arch(voussoirs=6).to_dict()))

@@ -13,7 +13,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from tce.bench import add_bench_arguments, bench_command  # noqa: E402
+from tce.quality.bench import add_bench_arguments, bench_command  # noqa: E402
 
 if __name__ == "__main__":
     parser = add_bench_arguments(argparse.ArgumentParser(description="tce speed-against-error bench"))

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from tce.hard import CASES, run_case
+from tce.quality.hard import CASES, run_case
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
@@ -16,7 +16,7 @@ def test_hard_case(case):
 
 
 def test_check_table_lists_every_case(capsys):
-    from tce.check import check_command, run_checks
+    from tce.quality.check import check_command, run_checks
 
     table = run_checks(select="friction 0")
     assert list(table["case"]) == ["friction 0"] and bool(table["ok"].all())

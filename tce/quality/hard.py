@@ -23,12 +23,12 @@ from functools import lru_cache
 
 import numpy as np
 
-from .analysis import Analysis
-from .arch import semicircular_arch
-from .assembly import Assembly, Block, Interface
-from .geometry import box
-from .material import Material
-from .solve import TCEResult
+from ..core.analysis import Analysis
+from ..structures.arch import semicircular_arch
+from ..structures.assembly import Assembly, Block, Interface
+from ..structures.geometry import box
+from ..core.material import Material
+from ..core.solve import TCEResult
 
 __all__ = ["CASES", "CaseRun", "HardCase", "Outcome", "run_case"]
 
@@ -163,7 +163,7 @@ def _lambda_max(material: Material, kind: str) -> float:
 @lru_cache(maxsize=None)
 def _min_thickness(centre_radius: float = 1.1, voussoirs: int = 14) -> float:
     """Minimum thickness (m) of the semicircular arch with this centreline radius (Heyman)."""
-    from .thickness import arch_minimum_thickness
+    from ..analysis.thickness import arch_minimum_thickness
 
     return arch_minimum_thickness(centre_radius, voussoirs, tol=1e-8).thickness
 

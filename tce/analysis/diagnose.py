@@ -22,9 +22,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .analysis import Analysis
-from .limit import Mechanism
-from .solve import TCEResult
+from ..core.analysis import Analysis
+from ..core.limit import Mechanism
+from ..core.solve import TCEResult
 
 __all__ = ["Diagnosis", "binding_interfaces", "diagnose"]
 

@@ -14,7 +14,7 @@ from typing import Literal
 
 from numpy.typing import ArrayLike
 
-from .assembly import Assembly
+from ..structures.assembly import Assembly
 from .limit import LimitResult, LimitSolver
 from .material import Material
 from .model import Model, build_model, find_plane, scene_in_plane

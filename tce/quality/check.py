@@ -1,4 +1,4 @@
-"""``tce check``: run the hard cases (:mod:`tce.hard`) and report a stability table."""
+"""``tce check``: run the hard cases (:mod:`tce.quality.hard`) and report a stability table."""
 
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ def run_checks(cases: Sequence[HardCase] = CASES, select: str | None = None) -> 
     Parameters
     ----------
     cases : sequence of HardCase
-        Default: every case of :data:`tce.hard.CASES`.
+        Default: every case of :data:`tce.quality.hard.CASES`.
     select : str, optional
         Run only the cases whose name contains this text (case-insensitive).
 

@@ -57,14 +57,14 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .arch import semicircular_arch
-from .assembly import Assembly
-from .conic import Scaling
-from .limit import LimitSolver
-from .material import Material
-from .model import Model, build_model
-from .pyramid import pyramid_lambda_max
-from .solve import SolverOptions, TCESolver
+from ..structures.arch import semicircular_arch
+from ..structures.assembly import Assembly
+from ..core.conic import Scaling
+from ..core.limit import LimitSolver
+from ..core.material import Material
+from ..core.model import Model, build_model
+from ..core.pyramid import pyramid_lambda_max
+from ..core.solve import SolverOptions, TCESolver
 
 __all__ = ["run_bench", "bench_command", "add_bench_arguments", "evaluate_targets", "growth_exponent"]
 
@@ -127,7 +127,7 @@ def growth_exponent(n: Sequence[float], t: Sequence[float]) -> float:
 def _per_solve(quick: bool) -> list[dict[str, Any]]:
     import cvxpy as cp
 
-    from .cvx import CvxTCE
+    from ..core.cvx import CvxTCE
 
     arch = semicircular_arch().validate()
     mat = Material(friction=FRICTION)
@@ -221,8 +221,8 @@ def _limit_rows(quick: bool) -> list[dict[str, Any]]:
 
 # ---------------------------------------------------------------- load path
 def _load_path(quick: bool) -> list[dict[str, Any]]:
-    from .analysis import Analysis
-    from .loadpath import load_path
+    from ..core.analysis import Analysis
+    from ..analysis.loadpath import load_path
 
     arch = semicircular_arch().validate()
     rows: list[dict[str, Any]] = []
@@ -251,7 +251,7 @@ def _load_path(quick: bool) -> list[dict[str, Any]]:
 # ---------------------------------------------------------------- discretisation
 def _discretisation(quick: bool) -> list[dict[str, Any]]:
     try:
-        from .thickness import arch_minimum_thickness
+        from ..analysis.thickness import arch_minimum_thickness
     except ImportError:  # pragma: no cover - written by another issue
         arch_minimum_thickness = None
     rows: list[dict[str, Any]] = []
@@ -287,7 +287,7 @@ def scaling_case(structure: str, size: int, friction: float = FRICTION) -> dict[
     """
     import resource
 
-    from .dome import hemispherical_dome
+    from ..structures.dome import hemispherical_dome
 
     t0 = time.perf_counter()
     a = semicircular_arch(voussoirs=size) if structure == "arch" else hemispherical_dome(sectors=size, courses=size)
@@ -306,7 +306,7 @@ def scaling_case(structure: str, size: int, friction: float = FRICTION) -> dict[
 def _subprocess_case(structure: str, size: int, timeout: float) -> dict[str, Any] | None:
     root = str(Path(__file__).resolve().parent.parent)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
-    code = f"import json, tce.bench as b; print(json.dumps(b.scaling_case({structure!r}, {size})))"
+    code = f"import json, tce.quality.bench as b; print(json.dumps(b.scaling_case({structure!r}, {size})))"
     try:
         out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
                              timeout=timeout, check=True)

@@ -32,7 +32,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .assembly import Assembly
+from ..structures.assembly import Assembly
 
 __all__ = ["Model", "Plane", "build_model", "find_plane", "lateral_direction"]
 

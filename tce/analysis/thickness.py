@@ -14,10 +14,11 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from .analysis import Analysis
-from .arch import check_positive, check_whole, semicircular_arch
-from .assembly import Assembly
-from .material import Material
+from ..core.analysis import Analysis
+from ..structures.arch import semicircular_arch
+from ..structures.params import check_positive, check_whole
+from ..structures.assembly import Assembly
+from ..core.material import Material
 
 __all__ = ["ThicknessResult", "arch_minimum_thickness", "minimum_thickness"]
 

@@ -20,9 +20,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .analysis import Analysis
-from .limit import LimitResult
-from .solve import TCEResult
+from ..core.analysis import Analysis
+from ..core.limit import LimitResult
+from ..core.solve import TCEResult
 
 __all__ = ["LoadPathResult", "load_path"]
 

@@ -25,8 +25,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, field_validator
 
-from .assembly import Assembly
-from .material import Material
+from ..structures.assembly import Assembly
+from ..core.material import Material
 
 __all__ = ["Scenario", "Study", "StudyError", "build_material", "build_structure", "load_study", "parse_study"]
 
@@ -68,7 +68,7 @@ class ArchStructure(_Strict):
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
-        from .arch import semicircular_arch
+        from ..structures.arch import semicircular_arch
 
         return semicircular_arch(**self.model_dump(exclude={"type"}))
 
@@ -87,7 +87,7 @@ class DomeStructure(_Strict):
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
-        from .dome import hemispherical_dome
+        from ..structures.dome import hemispherical_dome
 
         return hemispherical_dome(**self.model_dump(exclude={"type"}))
 
@@ -106,7 +106,7 @@ class FileStructure(_Strict):
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
-        from .io import load_assembly
+        from ..structures.io import load_assembly
 
         return load_assembly(self.path, supports=self.supports, unit_weight=self.unit_weight)
 

@@ -16,37 +16,15 @@ from numpy.typing import ArrayLike
 
 from .assembly import Assembly, Block, Interface
 from .geometry import prism
+from .params import check_positive, check_whole
 
 __all__ = [
     "arch_from_joints",
-    "check_positive",
     "pointed_arch",
     "segmental_arch",
     "semicircular_arch",
     "semicircular_arch_on_piers",
 ]
-
-
-def check_positive(**params: float) -> None:
-    """Raise ``ValueError`` naming the first parameter that is not a finite number > 0."""
-    for name, value in params.items():
-        try:
-            ok = math.isfinite(float(value)) and float(value) > 0
-        except (TypeError, ValueError):
-            ok = False
-        if not ok:
-            raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-
-
-def check_whole(value: int, name: str, minimum: int = 1) -> int:
-    """``value`` as an int; ``ValueError`` naming ``name`` unless it is a whole number >= ``minimum``."""
-    try:
-        ok = not isinstance(value, bool) and int(value) == value and value >= minimum
-    except (TypeError, ValueError, OverflowError):
-        ok = False
-    if not ok:
-        raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
-    return int(value)
 
 
 def _at_depth(xz: np.ndarray, y: float) -> np.ndarray:

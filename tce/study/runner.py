@@ -11,8 +11,7 @@ answer of a scenario does not depend on where or in which order it runs.
 
 Each finished scenario is written at once by the calling process (atomically), so an
 interruption loses nothing finished. When all are done, ``results.nc`` is written
-(atomically) beside them, then the figures, when :mod:`tce.plot` provides
-``write_figures``.
+(atomically) beside them, then the figures (:mod:`tce.plot`).
 """
 
 from __future__ import annotations
@@ -30,10 +29,10 @@ from typing import Literal
 import joblib
 import xarray as xr
 
-from .analysis import Analysis
-from .loadpath import load_path
+from ..core.analysis import Analysis
+from ..analysis.loadpath import load_path
 from .results import load_finished, merge_scenarios, scenario_dataset, scenario_path, write_atomic
-from .study import Scenario, Study, build_material, build_structure
+from .schema import Scenario, Study, build_material, build_structure
 
 __all__ = ["RunError", "RunReport", "run_study", "solve_scenario", "write_plots"]
 
@@ -59,7 +58,7 @@ class RunReport:
     solved, reused : list of str
         Scenarios solved by this run, and scenarios taken from an earlier run.
     figures : list of Path
-        Figures written beside the results (empty without :mod:`tce.plot`).
+        Figures written beside the results.
     """
 
     results: Path
@@ -142,17 +141,10 @@ def _grouped(scenarios: list[Scenario]) -> list[Scenario]:
 
 
 def write_plots(ds: xr.Dataset, outdir: Path) -> list[Path]:
-    """Figures of a results dataset by ``tce.plot.write_figures`` (none if it does not exist)."""
-    try:
-        from . import plot
-    except ImportError:
-        log.info("no tce.plot module: no figures written")
-        return []
-    write = getattr(plot, "write_figures", None)
-    if write is None:
-        log.info("tce.plot has no write_figures: no figures written")
-        return []
-    return list(write(ds, Path(outdir)))
+    """Figures of a results dataset (:func:`tce.plot.write_figures`), imported only when drawn."""
+    from .. import plot
+
+    return list(plot.write_figures(ds, Path(outdir)))
 
 
 def _solve_missing(

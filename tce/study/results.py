@@ -24,11 +24,11 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from . import __version__
-from .analysis import Analysis
-from .loadpath import LoadPathResult
-from .solve import SOLVER_NAME, TCEResult
-from .study import Scenario, Study, build_structure
+from .. import __version__
+from ..core.analysis import Analysis
+from ..analysis.loadpath import LoadPathResult
+from ..core.solve import SOLVER_NAME, TCEResult
+from .schema import Scenario, Study, build_structure
 
 __all__ = [
     "merge_scenarios",

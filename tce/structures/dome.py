@@ -46,7 +46,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from .arch import check_positive, check_whole
+from .params import check_positive, check_whole
 from .assembly import Assembly, Block, Interface
 from .geometry import Polyhedron, prism
 

@@ -17,7 +17,7 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from . import __version__
+from .. import __version__
 
 __all__ = ["main"]
 
@@ -145,7 +145,7 @@ def _run(args: argparse.Namespace) -> int:
     import shutil
 
     from .runner import RunError, run_study
-    from .study import StudyError, load_study
+    from .schema import StudyError, load_study
 
     if args.scheduler and args.backend != "dask":
         raise UsageError("--scheduler needs --backend dask")
@@ -200,13 +200,13 @@ def _plot(args: argparse.Namespace) -> int:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from .check import check_command
+    from ..quality.check import check_command
 
     return check_command(args)
 
 
 def _bench(args: argparse.Namespace) -> int:
-    from .bench import bench_command
+    from ..quality.bench import bench_command
 
     return bench_command(args)
 

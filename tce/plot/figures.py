@@ -44,7 +44,7 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 from numpy.typing import NDArray
 from scipy.spatial import ConvexHull
 
-from .assembly import Assembly
+from ..structures.assembly import Assembly
 
 __all__ = [
     "assembly_view",

@@ -1,0 +1,8 @@
+"""The core: operators built once, conic problems, the Clarabel solves and the direct limit analysis.
+
+``material`` the contact law · ``model`` equilibrium, loads, support wrenches, compliance
+(spatial and exact planar) · ``conic`` the contact law as cones and the scaling · ``solve``
+the TCE solver · ``limit`` direct lambda_max and its mechanism · ``resultants`` interface
+resultants · ``analysis`` one assembly and material, scene by scene on the model each needs ·
+``cvx`` the same problem in cvxpy (a cross-check) · ``pyramid`` friction pyramids (LP bounds).
+"""

@@ -1,0 +1,1 @@
+"""Developer tools: the benchmark (``bench``), the hard-case suite (``hard``) and its report (``check``)."""

@@ -1,0 +1,7 @@
+"""Structures: polyhedral blocks, the interfaces between them and the supports (``docs/conventions.md``).
+
+``geometry`` polyhedra and polygons (exact volumes and centroids) · ``assembly`` blocks,
+interfaces, supports · ``contacts`` interface detection and overlap checks · ``io`` block
+files (tce JSON, OBJ, COMPAS) · ``arch``, ``dome`` generators · ``params`` argument checks
+shared by the generators.
+"""

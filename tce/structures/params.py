@@ -1,0 +1,33 @@
+"""Argument checks shared by the structure generators and the analyses that build structures.
+
+Each raises :class:`ValueError` naming the parameter, so that a study file's error can point
+at the key (``docs/studies.md``).
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["check_positive", "check_whole"]
+
+
+def check_positive(**params: float) -> None:
+    """Raise ``ValueError`` naming the first parameter that is not a finite number > 0."""
+    for name, value in params.items():
+        try:
+            ok = math.isfinite(float(value)) and float(value) > 0
+        except (TypeError, ValueError):
+            ok = False
+        if not ok:
+            raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+
+
+def check_whole(value: int, name: str, minimum: int = 1) -> int:
+    """``value`` as an int; ``ValueError`` naming ``name`` unless it is a whole number >= ``minimum``."""
+    try:
+        ok = not isinstance(value, bool) and int(value) == value and value >= minimum
+    except (TypeError, ValueError, OverflowError):
+        ok = False
+    if not ok:
+        raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
+    return int(value)

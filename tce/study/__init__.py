@@ -1,0 +1,10 @@
+"""Studies: TOML files (``schema``), the parallel runner (``runner``), results datasets (``results``)
+and the ``tce`` command line (``cli``).
+
+The schema's public names are re-exported here (the runner, which needs xarray and joblib,
+is imported from :mod:`tce.study.runner`).
+"""
+
+from .schema import Scenario, Study, StudyError, build_material, build_structure, load_study, parse_study
+
+__all__ = ["Scenario", "Study", "StudyError", "build_material", "build_structure", "load_study", "parse_study"]
