@@ -94,7 +94,8 @@ class CaseRun:
     time : float
         Wall time of the case (s).
     errors : tuple of str
-        Wrong statuses, residuals above the bound, broken invariants, exceptions.
+        Wrong statuses, residuals above the bound, broken invariants, exceptions, or no solve
+        at all.
     """
 
     case: HardCase
@@ -121,16 +122,22 @@ def run_case(case: HardCase) -> CaseRun:
         return CaseRun(case, ("error",), float("nan"), (), 0, time.perf_counter() - t0, (tb,))
     elapsed = time.perf_counter() - t0
     errors = list(out.errors)
-    res = [max(r.eq_residual, r.cone_residual) for r in out.results if r.ok]
+    if not out.results:
+        errors.append("no solve recorded: the case checked nothing")
+    res = []
     for k, r in enumerate(out.results):
+        # np.max, not max: a residual that is NaN (never computed) must not pass as small
+        worst = float(np.max([r.eq_residual, r.cone_residual]))
+        if r.ok:
+            res.append(worst)
         if r.status not in case.expected:
             errors.append(f"solve {k} (lam={r.lam:.12g}): status {r.status!r} ({r.message})")
-        elif r.ok and not max(r.eq_residual, r.cone_residual) <= case.residual_bound:
-            errors.append(f"solve {k}: residual {max(r.eq_residual, r.cone_residual):.3g} above bound")
+        elif r.ok and not worst <= case.residual_bound:
+            errors.append(f"solve {k}: residual {worst:.3g} above bound {case.residual_bound:.3g}")
     statuses = tuple(dict.fromkeys(r.status for r in out.results))
     retries = tuple(dict.fromkeys(r.retry for r in out.results if r.retry))
     return CaseRun(
-        case, statuses, max(res) if res else float("nan"), retries, len(out.results), elapsed, tuple(errors)
+        case, statuses, float(np.max(res)) if res else float("nan"), retries, len(out.results), elapsed, tuple(errors)
     )
 
 
