@@ -1,6 +1,6 @@
 """Arch generators.
 
-Axes (DESIGN.md): the arch spans along x, its depth runs along y (from -depth/2 to
+Axes (docs/conventions.md): the arch spans along x, its depth runs along y (from -depth/2 to
 +depth/2), z is up, springings at z = 0, the centre at the origin, the right springing
 at +x. Voussoirs are named ``v01``, ``v02``, ... from left to right; the two support
 blocks are ``left`` and ``right``. Every voussoir is a hexahedron bounded by two plane

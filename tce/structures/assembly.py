@@ -1,6 +1,6 @@
 """Assemblies of rigid blocks: blocks, interfaces between them, and supports.
 
-Conventions (DESIGN.md): an interface is the planar contact polygon shared by blocks A and
+Conventions (docs/conventions.md): an interface is the planar contact polygon shared by blocks A and
 B; its unit normal ``n`` points from A into B, and its frame is ``(n, t1, t2)`` (rows of
 ``Interface.frame``, see :func:`tce.geometry.frame_from_normal`). Support blocks have a
 prescribed rigid motion about their own centroid; their equilibrium is not enforced.

@@ -1,8 +1,8 @@
 """Contact detection between blocks, and a check for overlapping blocks.
 
-Interfaces (DESIGN.md): the planar contact polygon shared by blocks A and B, with its unit
-normal pointing from A into B. Here A is always the block with the lower index and the
-normal is A's outward face normal.
+Interfaces (docs/conventions.md): the planar contact polygon shared by blocks A and B, with
+its unit normal pointing from A into B. Here A is always the block with the lower index and
+the normal is A's outward face normal.
 
 Detection (:func:`detect_interfaces`)
     Two faces are in contact when they are coplanar with opposite outward normals (angle

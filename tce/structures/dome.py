@@ -1,6 +1,6 @@
 """Hemispherical dome generator and radial support settlements.
 
-Axes (DESIGN.md): z is up, the dome's axis is the z axis, its centre (the centre of the
+Axes (docs/conventions.md): z is up, the dome's axis is the z axis, its centre (the centre of the
 sphere) is at the origin and its base ring lies in the plane z = 0. Lengths in m, unit
 weights in kN/m^3.
 

@@ -1,6 +1,6 @@
 """Polyhedra and planar polygons: exact volumes, centroids, normals and frames.
 
-Conventions (see DESIGN.md): SI units (m), z up. A polyhedron is a closed surface of
+Conventions (docs/conventions.md): SI units (m), z up. A polyhedron is a closed surface of
 planar polygonal faces whose vertex loops run counter-clockwise seen from outside, so
 that Newell normals point outwards. Faces may be non-convex; so may the polyhedron.
 Volumes and centroids follow from the divergence theorem (signed tetrahedra on a fan
