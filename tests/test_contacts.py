@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import pytest
 
@@ -49,14 +47,11 @@ def test_detection_finds_exactly_the_generator_interfaces(asm):
     _same_interfaces(asm, found)
 
 
-def test_detection_on_a_big_dome_is_fast():
-    asm = hemispherical_dome(5.0, 0.3, 112, 44)
-    assert len(asm.blocks) > 5000
-    t0 = time.perf_counter()
-    found = detect_interfaces(asm)
-    elapsed = time.perf_counter() - t0
-    _same_interfaces(asm, found)
-    assert elapsed < 20.0  # about 2 s on one core
+def test_detection_on_a_big_dome():
+    """A thousand blocks: every neighbour found, nothing more (its speed belongs to the bench)."""
+    asm = hemispherical_dome(5.0, 0.3, 40, 24)
+    assert len(asm.blocks) == 1000
+    _same_interfaces(asm, detect_interfaces(asm))
 
 
 def _L_block(name="L"):

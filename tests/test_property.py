@@ -1,12 +1,15 @@
 """Property-based tests (hypothesis) over random semicircular arches, friction, load
 direction, load level and support motions: the solver never raises, its status agrees with
 the direct lambda_max, optimal answers pass the residual bounds, and the planar and spatial
-models agree on in-plane scenes."""
+models agree on in-plane scenes.
+
+Hypothesis runs with the settings profile loaded by tests/conftest.py: derandomized by default
+(the same examples on every run and in CI); ``TCE_HYPOTHESIS=explore`` draws new ones."""
 
 from __future__ import annotations
 
 import numpy as np
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from tce.analysis import Analysis
@@ -21,6 +24,13 @@ arches = st.builds(
     lambda r, ratio, n: semicircular_arch(inner_radius=r, thickness=ratio * r, voussoirs=n),
     st.floats(0.5, 20.0),
     st.floats(0.04, 0.4),  # thickness / inner radius: below ~0.12 the arch cannot stand
+    st.integers(4, 30),
+)
+# thick enough to stand under self-weight (t/R_centreline >= 0.12 > Milankovitch's 0.1075)
+standing_arches = st.builds(
+    lambda r, ratio, n: semicircular_arch(inner_radius=r, thickness=ratio * r, voussoirs=n),
+    st.floats(0.5, 20.0),
+    st.floats(0.13, 0.4),
     st.integers(4, 30),
 )
 frictions = st.one_of(st.none(), st.floats(0.3, 2.0))
@@ -59,20 +69,20 @@ def test_status_agrees_with_direct_limit(asm, mu, alpha, frac, motion, scale):
     lim = an.limit(alpha)
     assert lim.status in ("optimal", "infeasible", "numerical"), lim.status
     sett = None if motion is None else {"right": np.multiply(motion, scale)}
-    if lim.status != "optimal" or lim.lambda_max < 0:
-        # the arch does not stand: nothing is admissible, whatever the load
+    if lim.status == "optimal" and lim.lambda_max >= 0:
+        lam = frac * lim.lambda_max
+        r = an.solve(lam, alpha, sett)
+        out_of_plane_motion = motion is not None and (motion[1] != 0.0 or motion[3] != 0.0)
+        _check_status(r, lam, lim.lambda_max, may_be_unbounded=mu is None and out_of_plane_motion)
+    else:  # the arch does not stand: nothing is admissible, whatever the load
         r = an.solve(0.0, alpha, sett)
-        assert r.status in ("infeasible", "numerical") if lim.status == "numerical" else r.status == "infeasible", r.message
-        return
-    lam = frac * lim.lambda_max
-    r = an.solve(lam, alpha, sett)
-    out_of_plane_motion = motion is not None and (motion[1] != 0.0 or motion[3] != 0.0)
-    _check_status(r, lam, lim.lambda_max, may_be_unbounded=mu is None and out_of_plane_motion)
+        allowed = ("infeasible", "numerical") if lim.status == "numerical" else ("infeasible",)
+        assert r.status in allowed, r.message
 
 
 @SETTINGS
 @given(
-    asm=arches,
+    asm=standing_arches,
     mu=frictions,
     stiffness=st.one_of(st.none(), st.floats(1e3, 1e12)),
     frac=st.sampled_from(FRACTIONS[:3]),
@@ -87,8 +97,7 @@ def test_planar_and_spatial_models_agree_in_plane(asm, mu, stiffness, frac, moti
     planar = Analysis(asm, material, model="planar")
     spatial = Analysis(asm, material, model="spatial")
     lim = planar.limit(0.0)
-    if lim.status != "optimal":
-        return
+    assume(lim.status == "optimal")  # with little friction the arch slides off its springings
     np.testing.assert_allclose(spatial.limit(0.0).lambda_max, lim.lambda_max, rtol=1e-7, atol=1e-9)
     lam = frac * lim.lambda_max
     sett = {"right": np.multiply(motion, scale)}

@@ -1,4 +1,5 @@
-"""Runner: parallel sweeps that do not depend on the backend, resume, and the shipped studies."""
+"""Runner: parallel sweeps that do not depend on the backend, and resume. The shipped studies'
+figures: tests/validation/test_studies.py."""
 
 from __future__ import annotations
 
@@ -10,9 +11,8 @@ import xarray as xr
 
 from tce.study import runner
 from tce.study.results import TIMING
-from tce.study.schema import load_study, parse_study
+from tce.study.schema import parse_study
 
-STUDIES = Path(__file__).resolve().parents[1] / "studies"
 
 SWEEP = """
 [study]
@@ -122,16 +122,3 @@ def test_interrupted_sweep_resumes(study, reference, tmp_path, monkeypatch) -> N
     solved.clear()
     report = runner.run_study(changed, tmp_path, jobs=1, plots=False)
     assert len(solved) == 4 and all(name.startswith("outward") for name in solved)
-
-
-@pytest.mark.parametrize(
-    ("name", "expected", "rtol"),
-    [("fig7_8_inplane", 0.243, 0.01), ("fig9_outofplane", 0.178, 0.005)],
-)
-def test_shipped_study_reproduces_the_paper(name: str, expected: float, rtol: float, tmp_path) -> None:
-    report = runner.run_study(load_study(STUDIES / f"{name}.toml"), tmp_path, jobs=2, plots=False)
-    ds = xr.open_dataset(report.results)
-    assert (ds["outcome"].values == "limit").all()
-    np.testing.assert_allclose(ds["lambda_max"].values, expected, rtol=rtol)
-    assert ds.sizes["scenario"] >= 3
-    ds.close()

@@ -106,6 +106,14 @@ def stack(seed: int, tilted: bool = True, random_supports: bool = True) -> tuple
     return asm, ref.Blocks(np.array(volume), np.array(centroid), unit_weight, support)
 
 
+def assert_same_blocks(assembly: Assembly, blocks: ref.Blocks, rtol: float = 1e-12) -> None:
+    """tce's volumes, weights, centroids and support flags equal the reference's."""
+    np.testing.assert_allclose([b.volume for b in assembly.blocks], blocks.volume, rtol=rtol)
+    np.testing.assert_allclose(assembly.weights, blocks.weight, rtol=rtol)
+    np.testing.assert_allclose(assembly.centroids, blocks.centroid, atol=rtol * assembly.size)
+    assert [b.support for b in assembly.blocks] == blocks.support.tolist()
+
+
 SCENES = {
     "arch": arch,
     "dome": dome,

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scenes import SCENES
+from scenes import SCENES, assert_same_blocks
 
 from reference import geometry as rg
 from reference import operators as ro
@@ -35,10 +35,7 @@ def scene(request):
 
 def test_block_weights_and_centroids(scene):
     _, asm, blocks, _ = scene
-    np.testing.assert_allclose([b.volume for b in asm.blocks], blocks.volume, rtol=1e-12)
-    np.testing.assert_allclose(asm.weights, blocks.weight, rtol=1e-12)
-    np.testing.assert_allclose(asm.centroids, blocks.centroid, atol=1e-12 * asm.size)
-    assert [b.support for b in asm.blocks] == blocks.support.tolist()
+    assert_same_blocks(asm, blocks)
 
 
 def test_interface_frames(scene):
