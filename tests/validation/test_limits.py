@@ -5,6 +5,7 @@ thickness, and the minimum thickness found with the reference operators and HiGH
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 import pytest
@@ -100,6 +101,11 @@ def _reference_stands(t: float, voussoirs: int, R: float = 1.0, depth: float = 0
     return lp.rigid_tce(ops, 0.0, 0.0, np.zeros(12)).status == "optimal"
 
 
+@lru_cache(maxsize=None)
+def _minimum_thickness_14():
+    return arch_minimum_thickness(voussoirs=14, tol=1e-6)
+
+
 def test_minimum_thickness_equals_the_reference():
     """tce's minimum thickness of the 14-voussoir arch (centreline radius 1 m) is the one found by
     bisection on the reference operators with HiGHS, within the bisection's tolerance."""
@@ -107,7 +113,7 @@ def test_minimum_thickness_equals_the_reference():
     while hi - lo > 1e-8:
         mid = (lo + hi) / 2
         lo, hi = (lo, mid) if _reference_stands(mid, 14) else (mid, hi)
-    res = arch_minimum_thickness(voussoirs=14, tol=1e-6)
+    res = _minimum_thickness_14()
     assert res.undecided == 0
     assert res.lower <= hi and res.thickness >= lo  # the two brackets overlap
     assert res.thickness == pytest.approx(hi, rel=1.1e-6)
@@ -123,7 +129,7 @@ def test_minimum_thickness_converges_to_milankovitch():
 
 
 def test_minimum_thickness_brackets_the_limit():
-    res = arch_minimum_thickness(voussoirs=14, tol=1e-6)
+    res = _minimum_thickness_14()
     t, R = res.thickness, 1.0
     below = semicircular_arch(R - 0.999 * t / 2, 0.999 * t)
     above = semicircular_arch(R - 1.001 * t / 2, 1.001 * t)
