@@ -105,7 +105,7 @@ def _text(values: object) -> np.ndarray:
 
 def _step_fields(step: TCEResult, slots: np.ndarray, n_itf: int) -> dict[str, np.ndarray]:
     """Per-step arrays of one TCE answer (NaN unless optimal), interfaces in assembly order."""
-    n_sup = len(step.model_ref.assembly.support_indices)
+    n_sup = step.support_wrenches.shape[0]
     out = {
         "reaction": np.full((n_sup, 6), np.nan),
         "resultant": np.full((n_itf, 3), np.nan),
@@ -222,7 +222,7 @@ def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr
     """
     path = lp.path
     n_itf = len(analysis.assembly.interfaces)
-    step_slots = np.asarray(path[0].model_ref.interfaces, dtype=int)
+    step_slots = np.asarray(path[0].interfaces, dtype=int)
     limit_slots = np.asarray(analysis.model(lp.limit.model).interfaces, dtype=int)
     data = _path_vars(path, step_slots, n_itf)
     data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
