@@ -10,8 +10,10 @@ Its dual is the kinematic (upper-bound) problem. The multipliers ``z`` of the eq
 rows, divided by the row scaling, are the virtual velocities ``v`` of the free blocks
 (translation and rotation about each centroid; supports are fixed), normalised so that the
 lateral load does unit power: ``v . b_lat = 1``. The mechanism's virtual work then gives
-``lam_kin = -v . b_dead``, which equals ``lam_max`` at the optimum (strong duality): the
-certificate reported with every answer. Relative velocities at the contacts,
+``lam_kin = -v . b_dead + h . y / W`` (the second term, zero for the paper's laws, is what
+the offsets of the contact law dissipate: cohesion, tensile and compressive strength, with
+``y`` the multipliers of the law's rows), which equals ``lam_max`` at the optimum (strong
+duality): the certificate reported with every answer. Relative velocities at the contacts,
 ``A_eq' v``, lie in the dual cone (opening ``>= mu`` times sliding, associated flow).
 This is the lower-bound (static) theorem of limit analysis for rigid blocks with
 associated Coulomb friction (Heyman, *The stone skeleton*, 1966, for the no-tension,
@@ -223,7 +225,9 @@ class LimitSolver:
             return LimitResult(status="numerical", forces=empty, message=f"clarabel: {sol.status}; residual {eq:.3g}",
                                wall_time=time.perf_counter() - t0, **common)
         v = sol.z[:m] / f.row_div  # virtual velocities per equilibrium row, v . b_live = 1
-        lam_kin = float(-(v @ b_fixed) / (v @ b_live))
+        # power of the fixed loads plus what the law's offsets dissipate (cohesion, tension,
+        # crushing: h . y with y the law rows' multipliers; zero for the paper's laws)
+        lam_kin = float((-(v @ b_fixed) + f.law_h @ sol.z[m:]) / (v @ b_live))
         gap = abs(lam_kin - lam) / max(abs(lam), 1e-12)
         rel = model.A_eq.T @ v  # relative contact velocities (B w.r.t. A), model variables
         mech = mechanism_from_velocities(model, _block_velocities(model, v))
@@ -235,10 +239,15 @@ class LimitSolver:
 
     def _dual_cone_violation(self, rel: NDArray[np.float64]) -> float:
         """Violation of ``dn >= mu ||dt||`` (tangential free of constraint for mu = 0; no sliding
-        for Heyman), relative to the largest relative velocity."""
+        for Heyman), relative to the largest relative velocity. With a compressive strength
+        a contact may also close (crushing at ``fn = fc A``): ``dn`` is then free.
+        Cohesion and tensile strength shift the law without changing its recession cone,
+        so they leave the flow rule as it is."""
         d = rel.reshape(self.model.n_contacts, self.model.dim)
         scale = max(np.abs(d).max(initial=0.0), 1e-300)
         dn, dt = d[:, 0], np.linalg.norm(d[:, 1:], axis=1)
+        if self.material.compressive_strength is not None:
+            dn = np.full_like(dn, np.inf)
         mu = self.material.friction
         if mu is None:
             viol = np.maximum(-dn, dt)

@@ -119,8 +119,8 @@ class Formulation:
     ----------
     model : Model
     material : Material
-        Its friction gives the contact law (:func:`tce.core.conic.cone_rows`); its
-        stiffnesses the compliance.
+        Its friction and strengths give the contact law (:func:`tce.core.conic.cone_rows`);
+        its stiffnesses the compliance.
     rows : ConeRows, optional
         Another contact law (e.g. friction pyramids, :mod:`tce.core.pyramid`); default: the
         material's own (:func:`tce.core.conic.cone_rows`).
@@ -146,7 +146,7 @@ class Formulation:
         W = self.scaling.force
         self.row_div = self.scaling.rows(model)
         self.A_eq = sp.csc_matrix(sp.diags(W / self.row_div) @ model.A_eq)
-        self.law = rows if rows is not None else cone_rows(model, material.friction)
+        self.law = rows if rows is not None else cone_rows(model, material.friction, **material.strengths)
         self._own_law = rows is None
         n = model.n_vars
         if material.rigid:
@@ -192,12 +192,13 @@ class Formulation:
         The equilibrium residual is ``max |A_eq F + rhs| / row_div`` (relative to ``W`` and
         ``W L``); the contact-law residual, over ``W``, is
         :func:`tce.core.conic.cone_violation` for the material's own law (``max(-fn,
-        ||ft|| - mu fn)`` per contact, in force units whatever mu) and
+        ||ft|| - mu fn)`` per contact for the paper's law, in force units whatever mu; with
+        the material's cohesion and strengths, the violation of each of its bounds) and
         :func:`tce.core.conic.law_violation` of the rows for another law.
         """
         eq = (self.model.A_eq @ F + rhs) / self.row_div
         if self._own_law:
-            law = cone_violation(self.model, self.material.friction, F)
+            law = cone_violation(self.model, self.material.friction, F, **self.material.strengths)
         else:
             law = law_violation(self.law, F)
         return float(np.abs(eq).max(initial=0.0)), law / self.scaling.force
