@@ -648,6 +648,7 @@ def write_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
 
     Files: ``thrust.png``; per scenario ``assembly_<s>.png``, ``thrust_line_<s>.png`` (planar
     scenarios only) and ``mechanism_<s>.png`` (when the scenario has a mechanism);
+    ``bracket.png`` when a material parameter is swept (:mod:`tce.plot.materials`);
     ``sheet.png`` and ``sheet.pdf``. ``<s>`` is the scenario name made safe for file names.
 
     Parameters
@@ -682,6 +683,9 @@ def write_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
             save(thrust_line(ds, s, step=_first_and_limit(ds, s)), f"thrust_line_{slug}.png")
         if _mechanism(ds, s, asm) is not None:
             save(mechanism_view(ds, s), f"mechanism_{slug}.png")
+    from .materials import write_material_figures  # imports this module: not at the top
+
+    written += write_material_figures(ds, outdir)
     sheet = figure_sheet(ds)
     save(sheet, "sheet.png")
     save(sheet, "sheet.pdf")

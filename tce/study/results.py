@@ -27,6 +27,7 @@ import xarray as xr
 from .. import __version__
 from ..core.analysis import Analysis
 from ..analysis.loadpath import LoadPathResult
+from ..analysis.nonassoc import NonAssocResult
 from ..core.solve import SOLVER_NAME, TCEResult
 from .schema import Scenario, Study, build_structure
 
@@ -94,6 +95,17 @@ META: dict[str, tuple[str, str]] = {
     "thickness": ("m", "thickness"),
     "depth": ("m", "depth"),
     "radius": ("m", "mid-surface radius"),
+    "cohesion": ("kN/m^2", "cohesion of the joints"),
+    "tensile_strength": ("kN/m^2", "tensile strength of the joints"),
+    "compressive_strength": ("kN/m^2", "compressive strength of the joints (per contact vertex)"),
+    # non-associative bracket (flow = "non-associative" only; tce.analysis.nonassoc)
+    "lambda_assoc": ("1", "associative lambda_max of the direct limit analysis (upper end of the bracket)"),
+    "lambda_nonassoc": ("1", "non-associative estimate of lambda_max (Gilbert et al. 2006 scheme; NaN unless converged)"),
+    "nonassoc_status": ("-", "status of the non-associative scheme (converged, not_converged, dilatant, infeasible, ...)"),
+    "nonassoc_iterations": ("-", "non-associative iterations made"),
+    "nonassoc_converged": ("-", "1 when the scheme reached a fixed point, else 0"),
+    "nonassoc_admissibility": ("1", "violation of the Coulomb law by the final state, over the total weight"),
+    "nonassoc_dilatancy": ("1", "largest opening of a loaded sliding contact in the final mechanism (0: none)"),
 }
 
 
@@ -208,7 +220,24 @@ def _label(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
-def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr.Dataset:
+def _nonassoc_vars(na: NonAssocResult) -> dict[str, tuple]:
+    """The associative/non-associative bracket of the scenario."""
+    scalars = {
+        "lambda_assoc": na.lambda_assoc,
+        "lambda_nonassoc": na.lambda_nonassoc,
+        "nonassoc_iterations": na.iterations,
+        "nonassoc_converged": int(na.converged),
+        "nonassoc_admissibility": na.admissibility,
+        "nonassoc_dilatancy": na.dilatancy,
+    }
+    out: dict[str, tuple] = {k: (("scenario",), np.asarray([v])) for k, v in scalars.items()}
+    out["nonassoc_status"] = (("scenario",), _text([na.status]))
+    return out
+
+
+def scenario_dataset(
+    sc: Scenario, lp: LoadPathResult, analysis: Analysis, nonassoc: NonAssocResult | None = None
+) -> xr.Dataset:
     """The one-scenario dataset of a load path (``docs/results.md``).
 
     Parameters
@@ -219,6 +248,9 @@ def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr
     lp : LoadPathResult
     analysis : Analysis
         The analysis that ran it (for the assembly and the model's interfaces).
+    nonassoc : NonAssocResult, optional
+        The non-associative bracket (materials with ``flow = "non-associative"``): adds
+        ``lambda_assoc``, ``lambda_nonassoc`` and the ``nonassoc_*`` variables.
     """
     path = lp.path
     n_itf = len(analysis.assembly.interfaces)
@@ -227,6 +259,8 @@ def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr
     data = _path_vars(path, step_slots, n_itf)
     data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
     data.update(_static_vars(analysis))
+    if nonassoc is not None:
+        data.update(_nonassoc_vars(nonassoc))
     ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)))
     ds.attrs["scenario_key"] = sc.key
     return _label(ds)

@@ -31,6 +31,7 @@ import xarray as xr
 
 from ..core.analysis import Analysis
 from ..analysis.loadpath import load_path
+from ..analysis.nonassoc import nonassociative_limit
 from .results import load_finished, merge_scenarios, scenario_dataset, scenario_path, write_atomic
 from .schema import Scenario, Study, build_material, build_structure
 
@@ -100,7 +101,10 @@ def solve_scenario(sc: Scenario) -> xr.Dataset:
         lam_cap=sc.loads["lambda_cap"],
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
-    return scenario_dataset(sc, lp, analysis)
+    bracket = None
+    if analysis.material.flow == "non-associative":
+        bracket = nonassociative_limit(analysis, sc.alpha)
+    return scenario_dataset(sc, lp, analysis, nonassoc=bracket)
 
 
 # ----------------------------------------------------------------------------- caller side

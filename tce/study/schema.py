@@ -33,6 +33,8 @@ __all__ = ["Scenario", "Study", "StudyError", "build_material", "build_structure
 COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
 #: swept parameters that change the structure (the others change material or settlement)
 GEOMETRY_SWEEPS = ("inner_radius", "thickness", "depth", "radius")
+#: swept parameters of the material
+MATERIAL_SWEEPS = ("friction", "cohesion", "tensile_strength", "compressive_strength")
 
 
 class StudyError(ValueError):
@@ -115,11 +117,16 @@ Structure = Annotated[ArchStructure | DomeStructure | FileStructure, Field(discr
 
 
 class MaterialSection(_Strict):
-    """``[material]``: friction (absent: Heyman, unlimited) and optional stiffnesses."""
+    """``[material]``: friction (absent: Heyman, unlimited), optional stiffnesses, cohesion,
+    tensile and compressive strength (kN/m^2) and the flow rule (``docs/materials.md``)."""
 
     friction: NonNegative | None = None
     normal_stiffness: Positive | None = None
     shear_stiffness: Positive | None = None
+    cohesion: NonNegative = 0.0
+    tensile_strength: NonNegative = 0.0
+    compressive_strength: Positive | None = None
+    flow: Literal["associative", "non-associative"] = "associative"
 
     def build(self) -> Material:
         """The :class:`tce.material.Material` of this section."""
@@ -151,6 +158,9 @@ class SweepSection(_Strict):
     """``[sweep]``: lists of values; the study runs the cartesian product."""
 
     friction: list[NonNegative] | None = None
+    cohesion: list[NonNegative] | None = None
+    tensile_strength: list[NonNegative] | None = None
+    compressive_strength: list[Positive] | None = None
     magnitude: list[float] | None = None
     inner_radius: list[Positive] | None = None
     thickness: list[Positive] | None = None
@@ -276,7 +286,7 @@ class Study:
                     alpha=p["alpha"],
                     params=p,
                     structure=_with(spec.structure.model_dump(), p, GEOMETRY_SWEEPS),
-                    material=_with(spec.material.model_dump(), p, ("friction",)),
+                    material=_with(spec.material.model_dump(), p, MATERIAL_SWEEPS),
                     loads=loads,
                 )
 
