@@ -420,7 +420,14 @@ def _check_scenarios(study: Study) -> None:
         try:
             build_material(sc.material)
         except (ValueError, ValidationError) as exc:
-            raise StudyError(f"{study.path}: material: {exc}; fix: change the [material] values") from None
+            # Material's messages start with the parameter they are about
+            name = str(exc).split(" ", 1)[0]
+            key = f"material.{name}" if name in MaterialSection.model_fields else "material"
+            swept = {k: v for k, v in sc.params.items() if k in MATERIAL_SWEEPS}
+            raise StudyError(
+                f"{study.path}: {key}: {exc}{f' (with {swept})' if swept else ''}; "
+                "fix: change the [material] or [sweep] values"
+            ) from None
         unknown = sorted(set(sc.settlements) - set(checked[skey]))
         if unknown:
             raise StudyError(
