@@ -42,6 +42,7 @@ _PUBLIC = {
     "minimum_thickness": "tce.analysis.thickness",
     "arch_minimum_thickness": "tce.analysis.thickness",
     "diagnose": "tce.analysis.diagnose",
+    "nonassociative_limit": "tce.analysis.nonassoc",
     "Assembly": "tce.structures.assembly",
     "Block": "tce.structures.assembly",
     "Interface": "tce.structures.assembly",
