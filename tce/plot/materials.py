@@ -73,6 +73,8 @@ def bracket_figure(ds: xr.Dataset) -> Figure | None:
             if len(bad):
                 ax.plot(x[bad], assoc[bad], color=colour, linestyle="none", marker="x", markersize=9,
                         label="non-associative scheme did not converge")
+    if np.all(x > 0) and x.max() > 50 * x.min():
+        ax.set_xscale("log")  # strengths swept over decades
     ax.set_xlabel(_LABELS[x_name])
     ax.set_ylabel("load multiplier at the limit $\\lambda_{max}$")
     title = "lambda_max against " + x_name.replace("_", " ")
