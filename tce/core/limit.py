@@ -267,3 +267,67 @@ class LimitSolver:
         else:
             viol = np.maximum(mu * dt - dn, 0.0)
         return float(viol.max(initial=0.0) / scale)
+
+    # ------------------------------------------------------------------------------------
+    # Certificate of no finite limit (added with issue 15, kept apart from `solve` so that
+    # the conic problem refactor can carry it over as one more named problem).
+    def lateral_ray(self, alpha: float = 0.0, contacts: NDArray[np.bool_] | None = None) -> NDArray[np.float64] | None:
+        """A force state carrying the unit lateral load alone, with the least total contact force.
+
+        Solves, scaled as :meth:`solve`::
+
+            minimise    sum_k ||F_k||
+            subject to  A_eq F + b_lat(alpha) = 0,   F admissible (cones),
+                        F_k = 0 for the contacts not in ``contacts``
+
+        When the direct limit is unbounded, such a state exists: Clarabel's certificate of
+        dual infeasibility of the max-lambda problem is a direction ``(dF, dlam)`` with
+        ``A_eq dF + dlam b_lat = 0``, ``dF`` admissible and ``dlam > 0``, and ``dF / dlam``
+        is one. Adding any multiple of it to an admissible state at ``lam`` gives one at any
+        larger ``lam``: the contacts it loads carry the lateral load without limit. Among all
+        such states this is the one of least total force, which loads few contacts (those
+        that lock), where an interior-point certificate loads all of them.
+
+        Parameters
+        ----------
+        alpha : float
+            Direction of the lateral load (degrees).
+        contacts : (n_contacts,) bool array, optional
+            The contacts allowed to carry force (default: all).
+
+        Returns
+        -------
+        (n_contacts, dim) ndarray or None
+            Contact forces (kN per unit lambda), or None when no such state exists (the limit
+            is finite, or the allowed contacts cannot carry the load) or the solve fails.
+        """
+        model = self.model
+        m, n = self._A_eq_hat.shape
+        nc, dim = model.n_contacts, model.dim
+        keep = np.ones(nc, dtype=bool) if contacts is None else np.asarray(contacts, dtype=bool)
+        off = (np.flatnonzero(~keep)[:, None] * dim + np.arange(dim)).ravel()
+        fixed = sp.csr_matrix((np.ones(len(off)), (np.arange(len(off)), off)), shape=(len(off), n))
+        # t_k >= ||F_k||: one second-order cone (t_k, F_k) per contact, rows -(t_k, F_k)
+        rows = (np.arange(nc)[:, None] * (dim + 1) + np.arange(1, dim + 1)).ravel()
+        norm_f = sp.csr_matrix((-np.ones(n), (rows, np.arange(n))), shape=(nc * (dim + 1), n))
+        norm_t = sp.csr_matrix((-np.ones(nc), (np.arange(nc) * (dim + 1), np.arange(nc))), shape=(nc * (dim + 1), nc))
+        A = sp.vstack(
+            [
+                sp.hstack([self._A_eq_hat, sp.csr_matrix((m, nc))]),
+                sp.hstack([fixed, sp.csr_matrix((len(off), nc))]),
+                sp.hstack([-self._cones.M, sp.csr_matrix((self._cones.M.shape[0], nc))]),
+                sp.hstack([norm_f, norm_t]),
+            ]
+        ).tocsc()
+        b = np.concatenate([-model.b_lateral(alpha) / self._row_div, np.zeros(A.shape[0] - m)])
+        q = np.concatenate([np.zeros(n), np.ones(nc)])
+        cones = self._cones.cones(leading_zero=m + len(off)) + [clarabel.SecondOrderConeT(dim + 1)] * nc
+        sol = clarabel.DefaultSolver(sp.csc_matrix((n + nc, n + nc)), q, A, b, cones, self._settings()).solve()
+        if str(sol.status) not in ("Solved", "AlmostSolved"):
+            return None
+        F = np.asarray(sol.x)[:n] * self.scaling.force
+        F[off] = 0.0
+        eq = (model.A_eq @ F + model.b_lateral(alpha)) / self._row_div
+        if np.abs(eq).max(initial=0.0) > 1e-7 or cone_violation(model, self.material.friction, F) > 1e-7 * self.scaling.force:
+            return None
+        return F.reshape(nc, dim)
