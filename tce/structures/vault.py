@@ -54,34 +54,21 @@ Groin vault (:func:`groin_vault`)
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 import numpy as np
 import shapely
 from numpy.typing import ArrayLike, NDArray
 from shapely.geometry import Polygon
 
-from .arch import semicircle_joints
+from .arch import _at_depth, _mirror_joints, semicircle_joints
 from .assembly import Assembly, Block, Interface
 from .geometry import Polyhedron, newell_normal, prism
-from .params import check_positive, check_whole
+from .params import check_choice, check_positive, check_whole
 
 __all__ = ["barrel_vault", "groin_vault"]
 
 BONDS = ("stack", "running")
 BARREL_SUPPORTS = ("walls", "courses")
 GROIN_SUPPORTS = ("corners", "springings")
-
-
-def _choice(value: str, name: str, options: Sequence[str]) -> str:
-    if value not in options:
-        raise ValueError(f"{name} must be one of {list(options)}, got {value!r}")
-    return value
-
-
-def _xz_at(xz: NDArray[np.float64], y: float) -> NDArray[np.float64]:
-    """Points ``(x, z)`` of a section lifted to 3D in the plane of depth coordinate ``y``."""
-    return np.column_stack([xz[:, 0], np.full(len(xz), y), xz[:, 1]])
 
 
 def _solid(bottom: ArrayLike, top: ArrayLike) -> Polyhedron:
@@ -205,8 +192,8 @@ def barrel_vault(
     check_positive(inner_radius=inner_radius, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs")
     nc = check_whole(courses, "courses")
-    _choice(bond, "bond", BONDS)
-    _choice(supports, "supports", BARREL_SUPPORTS)
+    check_choice(bond, "bond", BONDS)
+    check_choice(supports, "supports", BARREL_SUPPORTS)
     h = float(thickness) if support_height is None else support_height
     check_positive(support_height=h)
     ri, ro = float(inner_radius), float(inner_radius) + float(thickness)
@@ -217,7 +204,13 @@ def barrel_vault(
         sections.append([np.array([ji[i], ji[i + 1], je[i + 1], je[i]]) for i in range(len(ji) - 1)])
     wc = max(2, len(str(nc)))
     wv = max(2, len(str(n + 1)))
-    name = lambda c, i: f"c{c + 1:0{wc}d}v{i + 1:0{wv}d}"  # noqa: E731
+
+    def name(c: int, i: int) -> str:
+        return f"c{c + 1:0{wc}d}v{i + 1:0{wv}d}"
+
+    def support(side: str, c: int) -> str:
+        """The support block under the springing ``side`` of course ``c``."""
+        return side if supports == "walls" else f"{side}{c + 1:0{wc}d}"
 
     out = _Builder(unit_weight)
     ends = {"left": (-ro, -ri), "right": (ri, ro)}
@@ -225,24 +218,21 @@ def barrel_vault(
     for side, (x0, x1) in ends.items():
         for c0, c1 in spans:
             loop = np.array([[x0, 0.0], [x1, 0.0], [x1, -h], [x0, -h]])
-            label = side if supports == "walls" else f"{side}{c0 + 1:0{wc}d}"
-            out.block(label, prism(_xz_at(loop, ys[c0]), _xz_at(loop, ys[c1])), support=True)
+            out.block(support(side, c0), prism(_at_depth(loop, ys[c0]), _at_depth(loop, ys[c1])), support=True)
     for c, secs in enumerate(sections):
         for i, q in enumerate(secs):
-            out.block(name(c, i), prism(_xz_at(q, ys[c]), _xz_at(q, ys[c + 1])))
+            out.block(name(c, i), prism(_at_depth(q, ys[c]), _at_depth(q, ys[c + 1])))
 
     def rectangle(a: NDArray[np.float64], b: NDArray[np.float64], c: int) -> NDArray[np.float64]:
         seg = np.array([a, b])
-        return np.vstack([_xz_at(seg, ys[c]), _xz_at(seg[::-1], ys[c + 1])])
+        return np.vstack([_at_depth(seg, ys[c]), _at_depth(seg[::-1], ys[c + 1])])
 
     for c, secs in enumerate(sections):
         m = len(secs)
-        left = "left" if supports == "walls" else f"left{c + 1:0{wc}d}"
-        right = "right" if supports == "walls" else f"right{c + 1:0{wc}d}"
-        out.joint(left, name(c, 0), rectangle(secs[0][0], secs[0][3], c))
+        out.joint(support("left", c), name(c, 0), rectangle(secs[0][0], secs[0][3], c))
         for i in range(1, m):
             out.joint(name(c, i - 1), name(c, i), rectangle(secs[i][0], secs[i][3], c))
-        out.joint(name(c, m - 1), right, rectangle(secs[m - 1][1], secs[m - 1][2], c))
+        out.joint(name(c, m - 1), support("right", c), rectangle(secs[m - 1][1], secs[m - 1][2], c))
     min_area = 1e-9 * (ro - ri) ** 2
     for c in range(nc - 1):
         for i, p in enumerate(sections[c]):
@@ -252,7 +242,7 @@ def barrel_vault(
                 else:
                     overlap = _section_overlap(p, q, min_area)
                 if overlap is not None:
-                    out.joint(name(c, i), name(c + 1, j), _xz_at(overlap, ys[c + 1]))
+                    out.joint(name(c, i), name(c + 1, j), _at_depth(overlap, ys[c + 1]))
     meta = dict(
         generator="barrel_vault",
         inner_radius=ri,
@@ -327,7 +317,7 @@ def groin_vault(
     n = check_whole(voussoirs, "voussoirs", 2)
     if n % 2:
         raise ValueError(f"voussoirs must be an even number (a crown joint in each web's mid-plane), got {voussoirs!r}")
-    _choice(supports, "supports", GROIN_SUPPORTS)
+    check_choice(supports, "supports", GROIN_SUPPORTS)
     h = float(thickness) if support_height is None else support_height
     check_positive(support_height=h)
     k = float(span_y) / float(span_x)
@@ -335,8 +325,7 @@ def groin_vault(
     ro = ri + float(thickness)
     ji, je = semicircle_joints(ri, ro, np.linspace(np.pi, 0.0, n + 1))
     # right half as the exact mirror of the left one, so that the groin faces of two webs match
-    ji[n // 2 + 1 :] = ji[: n // 2][::-1] * [-1.0, 1.0]
-    je[n // 2 + 1 :] = je[: n // 2][::-1] * [-1.0, 1.0]
+    ji, je = _mirror_joints(ji[: n // 2 + 1], n), _mirror_joints(je[: n // 2 + 1], n)
     sections = [np.array([ji[i], ji[i + 1], je[i + 1], je[i]]) for i in range(n)]
 
     def on_groin(xz: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -366,7 +355,10 @@ def groin_vault(
                 top = _turn(part, r, k)
                 out.block(f"{corner}_{web}", prism(top + down, top), support=True)
                 pier[r, web] = f"{corner}_{web}"
-    name = lambda r, i: f"{_WEBS[r]}{i + 1:0{w}d}"  # noqa: E731
+
+    def name(r: int, i: int) -> str:
+        return f"{_WEBS[r]}{i + 1:0{w}d}"
+
     for r in range(4):
         for i, q in enumerate(sections):
             out.block(name(r, i), _solid(_turn(on_groin(q), r, k), _turn(at_face(q), r, k)))
