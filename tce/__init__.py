@@ -50,6 +50,8 @@ _PUBLIC = {
     "pointed_arch": "tce.structures.arch",
     "segmental_arch": "tce.structures.arch",
     "semicircular_arch_on_piers": "tce.structures.arch",
+    "barrel_vault": "tce.structures.vault",
+    "groin_vault": "tce.structures.vault",
     "hemispherical_dome": "tce.structures.dome",
     "load_assembly": "tce.structures.io",
     "load_study": "tce.study.schema",

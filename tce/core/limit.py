@@ -27,16 +27,16 @@ interface is that of block B with respect to block A (positive normal part = ope
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from .clarabel_solver import SolverOptions, solve_once
-from .conic import ConeRows
+from .conic import ConeRows, law_violation
 from .material import Material
 from .model import EZ, Model, lateral_direction
-from .problem import Formulation, limit_problem
+from .problem import Formulation, lateral_ray_problem, limit_problem
 from .result import Result
 
 __all__ = ["LimitResult", "LimitSolver", "Mechanism", "mechanism_from_velocities"]
@@ -256,3 +256,50 @@ class LimitSolver:
         else:
             viol = np.maximum(mu * dt - dn, 0.0)
         return float(viol.max(initial=0.0) / scale)
+
+    # ------------------------------------------------------------------------------------
+    # Certificate of no finite limit (issue 15): the named problem
+    # :func:`tce.core.problem.lateral_ray_problem`.
+    def lateral_ray(self, alpha: float = 0.0, contacts: NDArray[np.bool_] | None = None) -> NDArray[np.float64] | None:
+        """A force state carrying the unit lateral load alone, with the least total contact force.
+
+        Solves, scaled as :meth:`solve`::
+
+            minimise    sum_k ||F_k||
+            subject to  A_eq F + b_lat(alpha) = 0,   F admissible (cones),
+                        F_k = 0 for the contacts not in ``contacts``
+
+        When the direct limit is unbounded, such a state exists: Clarabel's certificate of
+        dual infeasibility of the max-lambda problem is a direction ``(dF, dlam)`` with
+        ``A_eq dF + dlam b_lat = 0``, ``dF`` admissible and ``dlam > 0``, and ``dF / dlam``
+        is one. Adding any multiple of it to an admissible state at ``lam`` gives one at any
+        larger ``lam``: the contacts it loads carry the lateral load without limit. Among all
+        such states this is the one of least total force, which loads few contacts (those
+        that lock), where an interior-point certificate loads all of them.
+
+        Parameters
+        ----------
+        alpha : float
+            Direction of the lateral load (degrees).
+        contacts : (n_contacts,) bool array, optional
+            The contacts allowed to carry force (default: all).
+
+        Returns
+        -------
+        (n_contacts, dim) ndarray or None
+            Contact forces (kN per unit lambda), or None when no such state exists (the limit
+            is finite, or the allowed contacts cannot carry the load) or the solve fails.
+        """
+        model, f = self.model, self.formulation
+        allowed = np.ones(model.n_contacts, dtype=bool) if contacts is None else np.asarray(contacts, dtype=bool)
+        b_live = model.b_lateral(alpha)
+        sol = solve_once(lateral_ray_problem(f, b_live, allowed), self.options.settings())
+        if not sol.solved:
+            return None
+        F = f.forces(sol.x)
+        F.reshape(model.n_contacts, model.dim)[~allowed] = 0.0
+        eq = np.abs((model.A_eq @ F + b_live) / f.row_div).max(initial=0.0)
+        law = law_violation(replace(f.law, h=None), F)  # the homogeneous law: a direction
+        if eq > 1e-7 or law > 1e-7 * f.scaling.force:
+            return None
+        return F.reshape(model.n_contacts, model.dim)

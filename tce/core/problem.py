@@ -62,6 +62,7 @@ from .model import Model
 __all__ = [
     "ConicProblem",
     "Formulation",
+    "lateral_ray_problem",
     "limit_problem",
     "phase1_b",
     "phase1_problem",
@@ -313,3 +314,39 @@ def limit_problem(f: Formulation, b_fixed: NDArray[np.float64], b_live: NDArray[
     q[-1] = -1.0
     cones = _cones(("zero", m + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
     return ConicProblem("limit", sp.csc_matrix((n + 1, n + 1)), q, A, b, cones)
+
+
+# ----------------------------------------------------------------------------------------
+# Certificate of no finite limit (issue 15): the least-force state that carries the live
+# load alone, solved by :meth:`tce.core.limit.LimitSolver.lateral_ray`.
+def lateral_ray_problem(f: Formulation, b_live: NDArray[np.float64], allowed: NDArray[np.bool_]) -> ConicProblem:
+    """``min sum_k ||F_k||  s.t.  A_eq F + b_live = 0,  M F in K,  F_k = 0 off ``allowed````.
+
+    The homogeneous contact law (the recession cone of ``M F + h in K``, as in
+    :func:`recession_problem`): the state is a direction along which the live load grows
+    without limit. Unknowns ``(x, t)`` (n + nc), ``t_k >= ||x_k||`` one second-order cone of
+    dimension ``dim + 1`` per contact; rows: ``m_eq`` equalities, the forces fixed to zero
+    on the contacts not allowed and the law's zero rows, its nonnegative rows, its cones,
+    then the norm cones.
+    """
+    law = f.law
+    m, n = f.A_eq.shape
+    nc, dim = f.model.n_contacts, f.model.dim
+    off = (np.flatnonzero(~np.asarray(allowed, dtype=bool))[:, None] * dim + np.arange(dim)).ravel()
+    fixed = sp.csr_matrix((np.ones(len(off)), (np.arange(len(off)), off)), shape=(len(off), n))
+    rows = (np.arange(nc)[:, None] * (dim + 1) + np.arange(1, dim + 1)).ravel()
+    norm_x = sp.csr_matrix((-np.ones(n), (rows, np.arange(n))), shape=(nc * (dim + 1), n))
+    norm_t = sp.csr_matrix((-np.ones(nc), (np.arange(nc) * (dim + 1), np.arange(nc))), shape=(nc * (dim + 1), nc))
+    zeros = lambda k: sp.csr_matrix((k, nc))  # noqa: E731
+    A = sp.vstack(
+        [
+            sp.hstack([f.A_eq, zeros(m)]),
+            sp.hstack([fixed, zeros(len(off))]),
+            sp.hstack([-law.M, zeros(law.n_rows)]),
+            sp.hstack([norm_x, norm_t]),
+        ]
+    ).tocsc()
+    b = np.concatenate([f.b_eq(b_live), np.zeros(A.shape[0] - m)])
+    q = np.concatenate([np.zeros(n), np.ones(nc)])
+    cones = _cones(("zero", m + len(off) + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
+    return ConicProblem("lateral-ray", sp.csc_matrix((n + nc, n + nc)), q, A, b, cones + (("soc", dim + 1),) * nc)

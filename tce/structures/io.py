@@ -33,14 +33,31 @@ compas_assembly and compas_cra)
     ``data.graph.data.node`` maps node keys to ``{"block": {"data": {"vertex": {id: {x, y,
     z}}, "face": {id: [vertex ids]}}}, "is_support": bool}`` (the ``data`` wrappers and the
     ``is_support`` flag are optional; vertices may also be ``[x, y, z]`` lists). Blocks
-    are named after their node keys (``"0"``, ``"1"``, ...) in key order; stored interfaces
-    are ignored and found again from the geometry.
+    are named after their node keys (``"0"``, ``"1"``, ...) in key order. COMPAS meshes may
+    have non-planar faces (COMPAS itself splits them into triangles for volumes), so by
+    default a non-planar face of a COMPAS block is split into a fan of triangles.
+    Interfaces stored on the edges (``data.graph.data.edge[u][v]["interfaces"]``, as
+    compas_assembly and compas_cra write them: each a polygon ``points`` with a ``frame``
+    whose z axis points from block u into block v) are used as they are, after checks.
+
+Stored interfaces (tce or COMPAS)
+    A file's interfaces are used instead of detection (which remains the fallback when the
+    file stores none). Each is checked: at least three points; planar (every point within
+    ``min(tol, 1e-6) L`` of the polygon's plane, ``L`` the larger size of its two blocks),
+    in the plane of its frame when it has one; and lying on the surface of **both** its
+    blocks (every point within ``interface_tol * L`` of a face of each). The tolerance is
+    loose by default (5e-3): curved contacts stored by COMPAS are approximations of two
+    facetted surfaces meshed differently (the bundled ``curve-3-blocks.json`` is off by up to
+    2.7e-3 L). The normal is oriented from block A (the one of lower index) into block B by
+    the faces it lies on. A failed check raises an error naming the file, the interface
+    (``A|B`` and its position) and what is wrong. Since such contacts may overlap slightly,
+    the overlap check then tolerates a depth of ``interface_tol * L`` too.
 
 Units are SI (m, kN) after loading. Every loaded block is checked (closed, consistently
 oriented, planar faces, positive volume), blocks must not overlap
-(:func:`tce.contacts.check_overlaps`), interfaces are detected
+(:func:`tce.contacts.check_overlaps`), interfaces are read and checked or detected
 (:func:`tce.contacts.detect_interfaces`) and the assembly is validated (a support, no
-loose block). Errors name the file and the block.
+loose block). Errors name the file and the block or interface.
 """
 
 from __future__ import annotations
@@ -55,9 +72,12 @@ from typing import Any, Literal
 
 import numpy as np
 
+import shapely
+from shapely.geometry import Polygon
+
 from .assembly import Assembly, AssemblyError, Block, Interface
 from .contacts import check_overlaps, detect_interfaces
-from .geometry import GeometryError, Polyhedron, newell_normal
+from .geometry import GeometryError, Polyhedron, frame_from_normal, newell_normal
 
 __all__ = ["load_assembly", "read_compas_json", "read_obj", "read_tce_json", "save_assembly_json"]
 
@@ -66,6 +86,8 @@ log = logging.getLogger(__name__)
 DEFAULT_UNIT_WEIGHT = 20.0
 #: Planarity tolerance of faces, relative to the block size: the one Assembly.validate uses.
 PLANAR_TOL = 1e-6
+#: Default distance (relative to the larger block size) of a stored interface from its blocks' faces.
+INTERFACE_TOL = 5e-3
 _LENGTH = {"m": 1.0, "cm": 0.01, "mm": 0.001}
 _FORCE = {"kN": 1.0, "N": 0.001}
 
@@ -208,7 +230,60 @@ def read_compas_json(path: str | Path, data: Mapping | None = None) -> RawAssemb
         except KeyError as exc:
             raise _err(path, f"block {key!r}: a face refers to vertex {exc} that does not exist") from None
         blocks.append(RawBlock(str(key), np.asarray(rows, dtype=float), faces, bool(node.get("is_support", default_support))))
-    return RawAssembly(blocks)
+    return RawAssembly(blocks, _compas_interfaces(path, graph, [b.name for b in blocks]) or None)
+
+
+def _compas_frame_normal(frame: Any) -> np.ndarray | None:
+    """z axis (``xaxis x yaxis``) of a COMPAS frame ``{point, xaxis, yaxis}`` or ``[point, xaxis, yaxis]``."""
+    frame = _unwrap(frame)
+    if isinstance(frame, Mapping):
+        axes = frame.get("xaxis"), frame.get("yaxis")
+    elif isinstance(frame, (list, tuple)) and len(frame) == 3:
+        axes = frame[1], frame[2]
+    else:
+        return None
+    if axes[0] is None or axes[1] is None:
+        return None
+    return np.cross(np.asarray(axes[0], dtype=float), np.asarray(axes[1], dtype=float))
+
+
+def _compas_interfaces(path: Path, graph: Mapping, order: list[str]) -> list[dict]:
+    """Interfaces stored on the graph's edges, as tce interface items (see :func:`_file_interfaces`).
+
+    An edge ``u -> v`` holds a list ``"interfaces"`` (compas_cra) or one ``"interface"``
+    (compas_assembly); each is ``{"points": [[x, y, z], ...], "frame": {...}}``, its frame's
+    z axis from u into v. Items are given with ``a`` the block of lower index (points and
+    normal reversed when needed) and a ``label`` for messages.
+    """
+    edges = graph.get("edge", graph.get("edges"))
+    if not isinstance(edges, Mapping):
+        return []
+    position = {name: k for k, name in enumerate(order)}
+    out = []
+    for u, row in edges.items():
+        for v, attr in (row or {}).items() if isinstance(row, Mapping) else ():
+            attr = attr or {}
+            stored = attr.get("interfaces")
+            if stored is None and attr.get("interface") is not None:
+                stored = [attr["interface"]]
+            for k, item in enumerate(stored or []):
+                item = _unwrap(item)
+                label = f"interface {k} of edge {u}-{v}"
+                if str(u) not in position or str(v) not in position:
+                    raise _err(path, f"{label}: the edge joins a block that does not exist")
+                if not isinstance(item, Mapping) or "points" not in item:
+                    raise _err(path, f"{label}: no 'points' polygon")
+                try:
+                    pts = np.asarray(item["points"], dtype=float)
+                except (TypeError, ValueError):
+                    raise _err(path, f"{label}: 'points' must be a list of [x, y, z]") from None
+                normal = _compas_frame_normal(item.get("frame"))
+                a, b = str(u), str(v)
+                if position[a] > position[b]:
+                    a, b, pts = b, a, pts[::-1]
+                    normal = None if normal is None else -normal
+                out.append(dict(a=a, b=b, points=pts.tolist(), normal=None if normal is None else normal.tolist(), label=label))
+    return out
 
 
 # ---------------------------------------------------------------------- checks
@@ -231,18 +306,112 @@ def _triangulate_nonplanar(v: np.ndarray, faces: list[list[int]], tol: float, si
     return out, split
 
 
-def _file_interfaces(path: Path, items: list[dict], index: Mapping[str, int], scale: float) -> list[Interface]:
+class _Surface:
+    """The faces of a block, for distances from points to its surface."""
+
+    def __init__(self, shape: Polyhedron) -> None:
+        self.shape = shape
+        self.loops = [shape.vertices[list(f)] for f in shape.faces]
+        self.lo = np.array([q.min(axis=0) for q in self.loops])
+        self.hi = np.array([q.max(axis=0) for q in self.loops])
+        self._planar: dict[int, tuple[np.ndarray, np.ndarray, Polygon]] = {}
+
+    def _face(self, k: int) -> tuple[np.ndarray, np.ndarray, Polygon]:
+        """Frame rows (n, t1, t2), centre and 2D polygon (in the frame) of face ``k``."""
+        if k not in self._planar:
+            frame = frame_from_normal(self.shape.face_normals[k])
+            centre = self.loops[k].mean(axis=0)
+            self._planar[k] = frame, centre, Polygon((self.loops[k] - centre) @ frame[1:].T)
+        return self._planar[k]
+
+    def distance(self, pts: np.ndarray, cutoff: float) -> tuple[np.ndarray, np.ndarray]:
+        """Distance (m) from each point to the surface (inf beyond ``cutoff`` of every face),
+        and the outward normal of the nearest face (NaN when none is within ``cutoff``)."""
+        inside = (pts[:, None, :] >= self.lo[None] - cutoff) & (pts[:, None, :] <= self.hi[None] + cutoff)
+        p, f = np.nonzero(np.all(inside, axis=2))
+        dist = np.full(len(pts), np.inf)
+        normal = np.full((len(pts), 3), np.nan)
+        if not len(p):
+            return dist, normal
+        data = [self._face(int(k)) for k in f]
+        axes = np.array([d[0] for d in data])  # (pairs, 3, 3) rows n, t1, t2
+        off = pts[p] - np.array([d[1] for d in data])
+        uv = np.einsum("kj,kij->ki", off, axes[:, 1:])
+        inplane = shapely.distance(shapely.points(uv), [d[2] for d in data])
+        d = np.hypot(np.einsum("kj,kj->k", off, axes[:, 0]), inplane)
+        order = np.lexsort((d, p))  # per point, the nearest face first
+        first = order[np.r_[True, p[order][1:] != p[order][:-1]]]
+        dist[p[first]] = d[first]
+        normal[p[first]] = axes[first, 0]
+        return dist, normal
+
+
+def _file_interfaces(
+    path: Path, items: list[dict], blocks: list[Block], scale: float, planar_tol: float, interface_tol: float
+) -> list[Interface]:
+    """The interfaces stored in a file, checked against the blocks (module docstring)."""
+    index = {b.name: k for k, b in enumerate(blocks)}
+    surfaces: dict[int, _Surface] = {}
     out = []
     for k, it in enumerate(items):
+        label = it.get("label", f"interface {k}")
         try:
             a, b = index[str(it["a"])], index[str(it["b"])]
             pts = np.asarray(it["points"], dtype=float) * scale
             n = it.get("normal")
         except KeyError as exc:
-            raise _err(path, f"interface {k}: unknown block or missing key {exc}") from None
+            raise _err(path, f"{label}: unknown block or missing key {exc}") from None
+        except (TypeError, ValueError):
+            raise _err(path, f"{label}: 'points' must be a list of [x, y, z]") from None
         if a > b:
-            raise _err(path, f"interface {k}: 'a' must be the block listed first (normal from a into b)")
-        out.append(Interface(a, b, pts, None if n is None else np.asarray(n, dtype=float)))
+            raise _err(path, f"{label}: 'a' must be the block listed first (normal from a into b)")
+        name = f"{label} ({blocks[a].name}|{blocks[b].name})"
+        if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) < 3 or not np.all(np.isfinite(pts)):
+            raise _err(path, f"{name}: needs at least 3 finite points [x, y, z]")
+        size = max(blocks[a].shape.size, blocks[b].shape.size)
+        nv = newell_normal(pts)
+        if np.linalg.norm(nv) <= (1e-9 * size) ** 2:
+            raise _err(path, f"{name}: the polygon has no area")
+        nv = nv / np.linalg.norm(nv)
+        off = np.abs((pts - pts.mean(axis=0)) @ nv).max()
+        if off > planar_tol * size:
+            raise _err(path, f"{name}: not planar (a point lies {off:.3g} m off its plane)")
+        if n is not None:
+            n = np.asarray(n, dtype=float)
+            if n.shape != (3,) or not np.all(np.isfinite(n)) or np.linalg.norm(n) == 0.0:
+                raise _err(path, f"{name}: its normal (frame z axis) must be 3 finite numbers, not all 0")
+            n = n / np.linalg.norm(n)
+            tilt = np.linalg.norm(np.cross(n, nv))
+            if tilt * float(np.ptp(pts, axis=0).max()) > planar_tol * size:
+                raise _err(path, f"{name}: its polygon does not lie in the plane of its frame (normal off by {np.degrees(np.arcsin(min(tilt, 1.0))):.3g} deg)")
+        far = interface_tol * size
+        facing = []
+        for i in (a, b):
+            blk = blocks[i]
+            if i not in surfaces:
+                surfaces[i] = _Surface(blk.shape)
+            surface = surfaces[i]
+            dist, fn = surface.distance(np.vstack([pts, pts.mean(axis=0)]), far)
+            if dist.max() > far:
+                worst = "more than" if not np.isfinite(dist.max()) else f"{dist.max():.3g} m,"
+                raise _err(
+                    path,
+                    f"{name}: does not lie on block {blk.name!r} (a point is {worst} {far:.3g} m off its faces; "
+                    f"interface_tol = {interface_tol:g} of the block size): check the interface's blocks",
+                )
+            facing.append(float(fn[-1] @ nv))
+        # the faces it lies on: A's faces out along +n, B's along -n
+        if facing[0] > 0 > facing[1]:
+            n_ab = nv
+        elif facing[0] < 0 < facing[1]:
+            n_ab = -nv
+        else:
+            raise _err(path, f"{name}: it does not separate its two blocks (their faces there do not face each other)")
+        if n is not None:
+            if n @ n_ab < 0:
+                log.info("%s: %s: the stored normal points from B into A; oriented from A into B", path, name)
+            n_ab = n if n @ n_ab > 0 else -n
+        out.append(Interface(a, b, pts, n_ab))
     return out
 
 
@@ -253,9 +422,10 @@ def load_assembly(
     tol: float = 1e-6,
     min_area: float | None = None,
     angle_tol: float | None = None,
-    nonplanar: Literal["error", "triangulate"] = "error",
+    nonplanar: Literal["error", "triangulate"] | None = None,
     check_overlap: bool = True,
     detect: bool | None = None,
+    interface_tol: float = INTERFACE_TOL,
 ) -> Assembly:
     """Read, check and assemble a block assembly file (see module docstring).
 
@@ -275,16 +445,22 @@ def load_assembly(
         ``min(tol, 1e-6)`` times the block size (what :meth:`Assembly.validate` requires).
     min_area, angle_tol : float, optional
         Passed to :func:`tce.contacts.detect_interfaces`.
-    nonplanar : {"error", "triangulate"}
+    nonplanar : {"error", "triangulate"}, optional
         What to do with a face that is not planar: report it, or split it into triangles
-        (for curved surfaces given as quad meshes). Facets of two curved surfaces meshed
-        differently are not coplanar: finding their contacts then needs a looser ``tol``
-        and ``angle_tol``, and ``check_overlap=False`` if the facetted blocks interpenetrate.
+        (for curved surfaces given as quad meshes). Default: ``"triangulate"`` for COMPAS
+        files (COMPAS meshes may have non-planar faces), ``"error"`` otherwise. Facets of
+        two curved surfaces meshed differently are not coplanar: *detecting* their contacts
+        needs a looser ``tol`` and ``angle_tol``, and ``check_overlap=False`` if the
+        facetted blocks interpenetrate; a file that stores its interfaces needs neither.
     check_overlap : bool
-        Run :func:`tce.contacts.check_overlaps`.
+        Run :func:`tce.contacts.check_overlaps` (at ``max(tol, interface_tol)`` when the
+        file's interfaces are used).
     detect : bool, optional
         Detect the interfaces from the geometry; by default only when the file stores none
-        (a tce JSON file may store them).
+        (tce JSON and COMPAS files may store them).
+    interface_tol : float
+        How far (relative to the larger block size) the points of a stored interface may lie
+        from each of its blocks' faces (module docstring).
 
     Returns
     -------
@@ -299,10 +475,12 @@ def load_assembly(
         When the file does not exist.
     """
     path = Path(path)
-    if nonplanar not in ("error", "triangulate"):
+    if nonplanar not in (None, "error", "triangulate"):
         raise ValueError(f"nonplanar must be 'error' or 'triangulate', got {nonplanar!r}")
     if not (math.isfinite(tol) and tol > 0):
         raise ValueError(f"tol must be a finite number > 0, got {tol!r}")
+    if not (math.isfinite(interface_tol) and interface_tol > 0):
+        raise ValueError(f"interface_tol must be a finite number > 0, got {interface_tol!r}")
     ext = path.suffix.lower()
     if ext == ".obj":
         raw, fmt = read_obj(path), "obj"
@@ -319,6 +497,8 @@ def load_assembly(
         raise _err(path, f"unknown file type {ext!r}: expected .json or .obj")
     if not raw.blocks:
         raise _err(path, "the file holds no blocks")
+    if nonplanar is None:
+        nonplanar = "triangulate" if fmt == "compas-json" else "error"
 
     names = [b.name for b in raw.blocks]
     if len(set(names)) != len(names):
@@ -369,17 +549,17 @@ def load_assembly(
     if split_total:
         log.info("%s: split %d non-planar faces into triangles", path, split_total)
 
-    if check_overlap:
-        try:
-            check_overlaps(blocks, tol)
-        except AssemblyError as exc:
-            raise _err(path, str(exc)) from None
     if detect is None:
         detect = not raw.interfaces
+    if check_overlap:
+        try:
+            check_overlaps(blocks, tol if detect else max(tol, interface_tol))
+        except AssemblyError as exc:
+            raise _err(path, str(exc)) from None
     if detect:
         interfaces = detect_interfaces(blocks, tol=tol, min_area=min_area, angle_tol=angle_tol)
     else:
-        interfaces = _file_interfaces(path, raw.interfaces or [], {b.name: k for k, b in enumerate(blocks)}, ls)
+        interfaces = _file_interfaces(path, raw.interfaces or [], blocks, ls, min(tol, PLANAR_TOL), interface_tol)
     meta = dict(raw.meta)
     meta.update(
         source=str(path),
@@ -388,6 +568,8 @@ def load_assembly(
         nonplanar=nonplanar,
         interfaces="detected" if detect else "from file",
     )
+    if not detect:
+        meta["interface_tol"] = interface_tol
     if split_total:
         meta["faces_triangulated"] = split_total
     asm = Assembly(tuple(blocks), tuple(interfaces), meta)

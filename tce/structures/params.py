@@ -7,8 +7,9 @@ at the key (``docs/studies.md``).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
-__all__ = ["check_positive", "check_whole"]
+__all__ = ["check_choice", "check_positive", "check_whole"]
 
 
 def check_positive(**params: float) -> None:
@@ -31,3 +32,10 @@ def check_whole(value: int, name: str, minimum: int = 1) -> int:
     if not ok:
         raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
     return int(value)
+
+
+def check_choice(value: str, name: str, options: Sequence[str]) -> str:
+    """``value``; ``ValueError`` naming ``name`` and the options unless it is one of ``options``."""
+    if value not in options:
+        raise ValueError(f"{name} must be one of {list(options)}, got {value!r}")
+    return value

@@ -186,6 +186,10 @@ def _show(args: argparse.Namespace) -> int:
     table = ds[cols].to_dataframe()[cols].rename(columns={"lambda_direct": "direct", "lambda_gap": "gap"})
     print(f"study {ds.attrs.get('study_name', '?')} (tce {ds.attrs.get('tce_version', '?')}, {ds.attrs.get('solver', '?')})")
     print(table.to_string(float_format=lambda v: f"{v:.6g}"))
+    if "no_limit_reason" in ds:  # results written before tce explained them have none
+        for name, why in zip(ds["scenario"].values, ds["no_limit_reason"].values):
+            if str(why):
+                print(f"{name}: no_limit: {why}")
     return 0
 
 

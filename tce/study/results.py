@@ -26,6 +26,7 @@ import xarray as xr
 
 from .. import __version__
 from ..core.analysis import Analysis
+from ..analysis.diagnose import no_limit_reason
 from ..analysis.loadpath import LoadPathResult
 from ..analysis.nonassoc import NonAssocResult
 from ..core.solve import SOLVER_NAME, TCEResult
@@ -58,6 +59,7 @@ META: dict[str, tuple[str, str]] = {
     "lambda_kinematic": ("1", "load multiplier from the virtual work of the loads on the mechanism"),
     "certificate_gap": ("1", "relative gap between kinematic and direct load multipliers"),
     "outcome": ("-", "how the load path ended (limit, unbounded, infeasible, no_limit, numerical)"),
+    "no_limit_reason": ("-", "why there is no finite limit, in words (empty unless the outcome is no_limit)"),
     "model": ("-", "model solved (planar or spatial)"),
     "n_solves": ("-", "number of TCE solves of the load path"),
     "solve_time": ("s", "wall time inside the solver's solve calls, summed over the load path (set-up excluded)"),
@@ -259,6 +261,7 @@ def scenario_dataset(
     data = _path_vars(path, step_slots, n_itf)
     data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
     data.update(_static_vars(analysis))
+    data["no_limit_reason"] = (("scenario",), _text([no_limit_reason(analysis, lp)]))
     if nonassoc is not None:
         data.update(_nonassoc_vars(nonassoc))
     ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)))

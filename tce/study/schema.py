@@ -28,7 +28,16 @@ from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError,
 from ..structures.assembly import Assembly
 from ..core.material import Material
 
-__all__ = ["Scenario", "Study", "StudyError", "build_material", "build_structure", "load_study", "parse_study"]
+__all__ = [
+    "STRUCTURE_TYPES",
+    "Scenario",
+    "Study",
+    "StudyError",
+    "build_material",
+    "build_structure",
+    "load_study",
+    "parse_study",
+]
 
 COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
 #: swept parameters that change the structure (the others change material or settlement)
@@ -75,6 +84,103 @@ class ArchStructure(_Strict):
         return semicircular_arch(**self.model_dump(exclude={"type"}))
 
 
+class PointedArchStructure(_Strict):
+    """``[structure] type = "pointed_arch"``: :func:`tce.structures.arch.pointed_arch`."""
+
+    type: Literal["pointed_arch"]
+    span: Positive = 2.0
+    rise: Positive | None = None
+    centre_offset: NonNegative | None = None
+    thickness: Positive = 0.2
+    depth: Positive = 0.25
+    voussoirs: Annotated[int, Field(ge=2)] = 14
+    unit_weight: Positive = 20.0
+    pier_height: Positive | None = None
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.arch import pointed_arch
+
+        return pointed_arch(**self.model_dump(exclude={"type"}))
+
+
+class SegmentalArchStructure(_Strict):
+    """``[structure] type = "segmental_arch"``: :func:`tce.structures.arch.segmental_arch`."""
+
+    type: Literal["segmental_arch"]
+    span: Positive = 2.0
+    rise: Positive = 0.5
+    thickness: Positive = 0.2
+    depth: Positive = 0.25
+    voussoirs: Annotated[int, Field(ge=1)] = 12
+    unit_weight: Positive = 20.0
+    pier_height: Positive | None = None
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.arch import segmental_arch
+
+        return segmental_arch(**self.model_dump(exclude={"type"}))
+
+
+class ArchOnPiersStructure(_Strict):
+    """``[structure] type = "arch_on_piers"``: :func:`tce.structures.arch.semicircular_arch_on_piers`."""
+
+    type: Literal["arch_on_piers"]
+    inner_radius: Positive = 1.0
+    thickness: Positive = 0.2
+    depth: Positive = 0.25
+    voussoirs: Annotated[int, Field(ge=1)] = 14
+    pier_height: Positive = 1.0
+    unit_weight: Positive = 20.0
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.arch import semicircular_arch_on_piers
+
+        return semicircular_arch_on_piers(**self.model_dump(exclude={"type"}))
+
+
+class BarrelVaultStructure(_Strict):
+    """``[structure] type = "barrel_vault"``: :func:`tce.structures.vault.barrel_vault`."""
+
+    type: Literal["barrel_vault"]
+    inner_radius: Positive = 1.0
+    thickness: Positive = 0.2
+    depth: Positive = 1.5
+    voussoirs: Annotated[int, Field(ge=1)] = 12
+    courses: Annotated[int, Field(ge=1)] = 6
+    bond: Literal["stack", "running"] = "stack"
+    unit_weight: Positive = 20.0
+    support_height: Positive | None = None
+    supports: Literal["walls", "courses"] = "walls"
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.vault import barrel_vault
+
+        return barrel_vault(**self.model_dump(exclude={"type"}))
+
+
+class GroinVaultStructure(_Strict):
+    """``[structure] type = "groin_vault"``: :func:`tce.structures.vault.groin_vault`."""
+
+    type: Literal["groin_vault"]
+    span_x: Positive = 2.0
+    span_y: Positive | None = None
+    thickness: Positive = 0.2
+    voussoirs: Annotated[int, Field(ge=2, multiple_of=2)] = 8
+    unit_weight: Positive = 20.0
+    support_height: Positive | None = None
+    supports: Literal["corners", "springings"] = "corners"
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.vault import groin_vault
+
+        return groin_vault(**self.model_dump(exclude={"type"}))
+
+
 class DomeStructure(_Strict):
     """``[structure] type = "dome"``: :func:`tce.dome.hemispherical_dome`."""
 
@@ -113,7 +219,29 @@ class FileStructure(_Strict):
         return load_assembly(self.path, supports=self.supports, unit_weight=self.unit_weight)
 
 
-Structure = Annotated[ArchStructure | DomeStructure | FileStructure, Field(discriminator="type")]
+_STRUCTURES = (
+    ArchStructure,
+    PointedArchStructure,
+    SegmentalArchStructure,
+    ArchOnPiersStructure,
+    BarrelVaultStructure,
+    GroinVaultStructure,
+    DomeStructure,
+    FileStructure,
+)
+#: the ``[structure] type`` values, in the order docs/studies.md lists them
+STRUCTURE_TYPES = tuple(cls.model_fields["type"].annotation.__args__[0] for cls in _STRUCTURES)
+Structure = Annotated[
+    ArchStructure
+    | PointedArchStructure
+    | SegmentalArchStructure
+    | ArchOnPiersStructure
+    | BarrelVaultStructure
+    | GroinVaultStructure
+    | DomeStructure
+    | FileStructure,
+    Field(discriminator="type"),
+]
 
 
 class MaterialSection(_Strict):
@@ -310,6 +438,7 @@ _HINTS = {
     "greater_than": "use a value > {gt}",
     "greater_than_equal": "use a value >= {ge}",
     "less_than": "use a value < {lt}",
+    "multiple_of": "use a multiple of {multiple_of}",
     "finite_number": "use a finite number (NaN and inf are not allowed)",
     "too_short": "give exactly 6 numbers [ux, uy, uz, rx, ry, rz] (m, rad)",
     "too_long": "give exactly 6 numbers [ux, uy, uz, rx, ry, rz] (m, rad)",
@@ -336,7 +465,7 @@ def _key(loc: tuple[Any, ...]) -> str:
     for item in loc:
         if isinstance(item, int):
             parts[-1] = f"{parts[-1]}[{item}]" if parts else f"[{item}]"
-        elif item in ("float", "list[float]", "semicircular_arch", "dome", "file") or "[" in str(item):
+        elif item in ("float", "list[float]", *STRUCTURE_TYPES) or "[" in str(item):
             continue
         else:
             parts.append(str(item))
@@ -405,6 +534,14 @@ def build_material(section: dict[str, Any]) -> Material:
 
 def _check_scenarios(study: Study) -> None:
     """Build every distinct structure and material; check the supports each scenario moves."""
+    fields = type(study.spec.structure).model_fields
+    for key, _ in study.spec.sweep.items():
+        if key in GEOMETRY_SWEEPS and key not in fields:
+            usable = [k for k in GEOMETRY_SWEEPS if k in fields]
+            raise StudyError(
+                f"{study.path}: sweep.{key}: the structure type {study.spec.structure.type!r} has no parameter "
+                f"{key!r}; fix: sweep one of {usable} or remove it"
+            )
     checked: dict[str, tuple[str, ...]] = {}
     for sc in study.scenarios():
         skey = json.dumps(sc.structure, sort_keys=True)
