@@ -329,8 +329,11 @@ class TCESolver:
 
     def _fresh(self, q: NDArray[np.float64], b: NDArray[np.float64], robust: bool) -> clarabel.DefaultSolution:
         """Solve the main problem with a new solver (equilibrated for this ``q`` and ``b``)."""
+        # the objective's scale is free: keep q of order one (a compliance of 1e-18 with a 1 mm
+        # motion puts |q| near 1e15 once P is normalised, and Clarabel then misreads the scene)
+        scale = max(1.0, float(np.abs(q).max(initial=0.0)))
         s = clarabel.DefaultSolver(
-            self._P, q, self._A, b, self._cone_list, self.options.clarabel_settings(robust=robust)
+            self._P / scale, q / scale, self._A, b, self._cone_list, self.options.clarabel_settings(robust=robust)
         )
         return s.solve()
 
@@ -455,7 +458,8 @@ class TCESolver:
         b = self._b.copy()
         b[: len(b_eq)] = b_eq
         q = self._q(U)
-        sol = self._main(q, b)
+        # a q far from order one (extreme stiffness) goes to a solver scaled for it
+        sol = self._main(q, b) if np.abs(q).max(initial=0.0) <= 1e6 else self._fresh(q, b, robust=False)
         raw = str(sol.status)
         stime = float(sol.solve_time)
         notes = [f"clarabel: {raw}"]
