@@ -48,7 +48,8 @@ class LoadPathResult:
         the support motion is incompatible with the material), ``infeasible`` (no
         admissible state at lambda = 0), ``no_limit`` (still admissible at ``lam_cap``),
         ``numerical`` (undecided: the bracket, the steps before the first infeasible
-        one, or the last steps up to ``lam_cap`` could not be decided).
+        one, or the last steps up to ``lam_cap`` could not be decided, or no optimal step
+        lies within the tolerance of the first inadmissible one).
     lambda_max : float
         Last admissible multiplier of the bisection (NaN unless ``outcome == "limit"``).
     lambda_upper : float
@@ -194,6 +195,10 @@ def load_path(
             else:
                 outcome = "numerical"
                 break
+        if outcome == "limit" and hi - lo > max(atol, rtol * abs(hi), math.ulp(hi)):
+            # the bracket closed on undecided steps: no optimal step lies within the
+            # tolerance of the limit, so the last optimal one is not the answer
+            outcome = "numerical"
     lam_max = lo if outcome == "limit" and lo is not None else float("nan")
     return LoadPathResult(
         alpha=float(alpha),

@@ -134,8 +134,8 @@ def _err(path: Path | str, msg: str) -> AssemblyError:
     return AssemblyError(f"{path}: {msg}")
 
 
-def _read_text(path: Path) -> str:
-    """The text of a regular file of at most :data:`MAX_FILE_BYTES`."""
+def _check_file(path: Path) -> None:
+    """Refuse what is not a regular file of at most :data:`MAX_FILE_BYTES`."""
     try:
         info = path.stat()
     except FileNotFoundError:
@@ -144,6 +144,11 @@ def _read_text(path: Path) -> str:
         raise _err(path, "not a regular file (a folder, device or pipe cannot hold blocks)")
     if info.st_size > MAX_FILE_BYTES:
         raise InputLimitError(f"{path}: {info.st_size} bytes, more than MAX_FILE_BYTES = {MAX_FILE_BYTES}")
+
+
+def _read_text(path: Path) -> str:
+    """The text of a regular file of at most :data:`MAX_FILE_BYTES`."""
+    _check_file(path)
     try:
         return path.read_text(encoding="utf-8")
     except UnicodeDecodeError as exc:

@@ -290,15 +290,15 @@ _CAUSES = {
 def storage_error(path: Path, exc: BaseException) -> StorageError:
     """A :class:`StorageError` for ``path`` saying why ``exc`` happened, and what to do."""
     no = getattr(exc, "errno", None)
-    cause = _CAUSES.get(no) if no else None
-    if cause is None:  # the netCDF library reports a full disk as "NetCDF: HDF error"
-        try:
-            full = shutil.disk_usage(next(p for p in (path, *path.parents) if p.exists())).free < 2**20
-        except OSError:
-            full = False
-        cause = "no space left on the device" if full else f"{exc}"
+    try:  # the netCDF library reports a full disk as "NetCDF: HDF error" or "Permission denied"
+        full = shutil.disk_usage(next(p for p in (path, *path.parents) if p.exists())).free < 2**20
+    except OSError:
+        full = False
+    cause = "no space left on the device" if full else _CAUSES.get(no or 0, str(exc))
     fix = "free some space" if "space" in cause or "quota" in cause else "choose another --out"
-    return StorageError(no or 0, f"cannot write {path}: {cause}; fix: {fix}, then run the same command again")
+    err = StorageError(f"cannot write {path}: {cause}; fix: {fix}, then run the same command again")
+    err.errno = no
+    return err
 
 
 def write_atomic(ds: xr.Dataset, path: Path) -> Path:
