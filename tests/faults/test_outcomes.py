@@ -81,6 +81,21 @@ class Scripted:
         return SimpleNamespace(lambda_max=self.direct)
 
 
+def test_bisection_below_float_spacing_ends_with_neighbouring_floats() -> None:
+    """The same with scripted statuses: fails (instead of hanging) if the bisection does not stop."""
+    calls = []
+
+    def status(lam: float) -> str:
+        calls.append(lam)
+        if len(calls) > 500:
+            raise RuntimeError("the bisection does not end")
+        return "optimal" if lam < 0.25 else "infeasible"
+
+    lp = load_path(Scripted(status, direct=0.25), step=0.1, atol=1e-300, lam_cap=1.0)
+    assert lp.outcome == "limit" and lp.lambda_upper == math.nextafter(lp.lambda_max, math.inf)
+    assert lp.lambda_max < 0.25 <= lp.lambda_upper
+
+
 @pytest.mark.parametrize(
     ("status", "outcome"),
     [

@@ -18,7 +18,7 @@ import xarray as xr
 
 from tce.study import runner
 from tce.study.cli import main
-from tce.study.results import LOCK_NAME, folder_lock, scenario_path
+from tce.study.results import LOCK_NAME, content_digest, folder_lock, scenario_path
 from tce.study.schema import parse_study
 
 from .common import NAMES, TINY, answer, clean, errors, leftovers, tce_run, write
@@ -162,8 +162,10 @@ def test_damaged_scenario_files_are_solved_again(study, reference, tmp_path, cap
     ds = xr.load_dataset(edited)
     ds["lambda_max"] = ds["lambda_max"] + 0.1
     ds.to_netcdf(edited)
-    holed = by_name[NAMES[2]]  # a variable removed, the attrs kept (was reused: a NaN hole)
-    xr.load_dataset(holed).drop_vars("lambda_direct").to_netcdf(holed)
+    holed = by_name[NAMES[2]]  # a variable missing, the key and a matching digest kept (was reused: a NaN hole)
+    ds = xr.load_dataset(holed).drop_vars("lambda_direct")
+    ds.attrs["content_sha256"] = content_digest(ds)
+    ds.to_netcdf(holed)
     resume_equals(study, reference, out, reused=1)
 
 
