@@ -44,7 +44,7 @@ def dataset_from_load_paths(assembly: Assembly, runs: Mapping[str, LoadPathResul
     nstep = max(len(r.path) for r in runs.values())
     ni, nb, ns = len(asm.interfaces), len(asm.blocks), len(asm.support_names)
     first = next(r for lp in runs.values() for r in lp.path if r.ok)
-    nv = len(first.model_ref.vertex_points)
+    nv = len(first.interface_map.vertex_points)
 
     def full(*shape: int) -> np.ndarray:
         return np.full(shape, np.nan)
@@ -62,14 +62,14 @@ def dataset_from_load_paths(assembly: Assembly, runs: Mapping[str, LoadPathResul
             model[s] = r.model
             if not r.ok:
                 continue
-            slots = list(r.model_ref.interfaces)
+            slots = list(r.interfaces)
             reaction[s, k], tce[s, k] = r.support_wrenches, r.tce
             res[s, k, slots], pp[s, k, slots], torque[s, k, slots] = r.resultants, r.pressure_points, r.torques
-            vforce[s, k] = global_vertex_forces(r.model_ref, r.vertex_forces)
+            vforce[s, k] = global_vertex_forces(r.interface_map, r.vertex_forces)
         m = lp.limit.mechanism
         if m is not None:
             mech[s] = m.velocities
-            slots = list(r.model_ref.interfaces)
+            slots = list(r.interfaces)
             mode[s, slots], hinge[s, slots] = m.modes, m.hinge_points
     sc, st, itf = ("scenario",), ("scenario", "step"), ("scenario", "step", "interface")
 
@@ -91,7 +91,7 @@ def dataset_from_load_paths(assembly: Assembly, runs: Mapping[str, LoadPathResul
             "pressure_point": var(itf + ("xyz",), pp, "m", "pressure point"),
             "torque": var(itf, torque, "kN m", "torque about the normal"),
             "vertex_force": var(st + ("vertex", "xyz"), vforce, "kN", "vertex force"),
-            "vertex_point": var(("vertex", "xyz"), first.model_ref.vertex_points, "m", "vertex position"),
+            "vertex_point": var(("vertex", "xyz"), first.interface_map.vertex_points, "m", "vertex position"),
             "mechanism": var(("scenario", "block", "dof"), mech, "m, rad", "collapse mechanism"),
             "interface_mode": var(("scenario", "interface"), mode, "-", "interface mode"),
             "hinge_point": var(("scenario", "interface", "xyz"), hinge, "m", "hinge point"),

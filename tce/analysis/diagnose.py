@@ -16,6 +16,7 @@ solves a scene and explains a non-``optimal`` answer:
 
 from __future__ import annotations
 
+import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -24,7 +25,9 @@ from numpy.typing import ArrayLike
 
 from ..core.analysis import Analysis
 from ..core.limit import Mechanism
+from ..core.result import Result
 from ..core.solve import TCEResult
+from ..structures.assembly import Assembly
 
 __all__ = ["Diagnosis", "binding_interfaces", "diagnose"]
 
@@ -38,7 +41,9 @@ def _on_boundary(point: np.ndarray, polygon: np.ndarray, tol: float) -> bool:
     return bool(d.min() <= tol)
 
 
-def binding_interfaces(result: TCEResult, friction: float | None, tol: float = 1e-6) -> list[tuple[str, str]]:
+def binding_interfaces(
+    result: TCEResult, assembly: Assembly, friction: float | None, tol: float = 1e-6
+) -> list[tuple[str, str]]:
     """``(interface, what)`` pairs of an optimal force state that sit on a limit.
 
     ``what`` is ``"hinge"`` (pressure point on the polygon's boundary) or ``"sliding"``
@@ -47,43 +52,46 @@ def binding_interfaces(result: TCEResult, friction: float | None, tol: float = 1
     """
     if not result.ok:
         return []
-    model = result.model_ref
-    a = model.assembly
+    a = assembly
     vf = result.vertex_forces
+    vertex_slot = result.interface_map.vertex_slot
     out = []
-    for slot, k in enumerate(model.interfaces):
+    for slot, k in enumerate(result.interfaces):
         itf = a.interfaces[k]
         name = f"{a.names[itf.a]}|{a.names[itf.b]}"
         pp = result.pressure_points[slot]
         if np.all(np.isfinite(pp)) and _on_boundary(pp, itf.points, tol * a.size):
             out.append((name, "hinge"))
         if friction is not None and friction > 0:
-            f = vf[model.vertex_slot == slot]
+            f = vf[vertex_slot == slot]
             fn, ft = f[:, 0], np.linalg.norm(f[:, 1:], axis=1)
             if np.any((fn > tol * a.total_weight) & (ft >= (1 - tol) * friction * fn)):
                 out.append((name, "sliding"))
     return out
 
 
-@dataclass(frozen=True)
-class Diagnosis:
+@dataclass(frozen=True, eq=False, kw_only=True)
+class Diagnosis(Result):
     """What a scene's status means, where.
 
     Attributes
     ----------
     status : str
         Status of the scene's TCE solve.
-    summary : str
-        One or two sentences for the user.
+    message : str
+        One or two sentences for the user (also :attr:`summary`).
     binding : list of (str, str)
         ``(interface "A|B", "hinge" | "sliding" | "self-stress")``.
     mechanism : Mechanism or None
     """
 
-    status: str
-    summary: str
     binding: list[tuple[str, str]] = field(default_factory=list)
     mechanism: Mechanism | None = None
+
+    @property
+    def summary(self) -> str:
+        """The explanation: the :attr:`message`."""
+        return self.message
 
 
 def diagnose(
@@ -93,31 +101,43 @@ def diagnose(
     settlements: Mapping[str, ArrayLike] | None = None,
 ) -> Diagnosis:
     """Solve one scene and explain its status (see module docstring)."""
+    t0 = time.perf_counter()
+    solved: list[Result] = []
+
+    def done(status: str, summary: str, binding: list | None = None, mechanism: Mechanism | None = None) -> Diagnosis:
+        return Diagnosis(
+            status=status, message=summary, binding=list(binding or []), mechanism=mechanism,
+            solve_time=sum(r.solve_time for r in solved), wall_time=time.perf_counter() - t0,
+        )
+
     result = analysis.solve(lam, alpha, settlements)
+    solved.append(result)
     mu = analysis.material.friction
     a = analysis.assembly
     if result.status == "optimal":
-        bind = binding_interfaces(result, mu)
-        return Diagnosis("optimal", f"admissible at lambda = {lam:g}; {len(bind)} interface limit(s) reached", bind)
+        bind = binding_interfaces(result, a, mu)
+        return done("optimal", f"admissible at lambda = {lam:g}; {len(bind)} interface limit(s) reached", bind)
     if result.status == "infeasible":
         lim = analysis.limit(alpha)
+        solved.append(lim)
         if lim.status == "optimal" and lam > lim.lambda_max:
             at = analysis.solve(lim.lambda_max * (1 - 1e-9), alpha, settlements)
-            bind = binding_interfaces(at, mu, tol=1e-5)
+            solved.append(at)
+            bind = binding_interfaces(at, a, mu, tol=1e-5)
             slots = analysis.model(lim.model).interfaces
             what = ", ".join(
                 f"{a.names[a.interfaces[k].a]}|{a.names[a.interfaces[k].b]} {m}"
                 for k, m in zip(slots, lim.mechanism.modes)
                 if m != "closed"
             )
-            return Diagnosis(
+            return done(
                 "infeasible",
                 f"lambda = {lam:g} exceeds lambda_max = {lim.lambda_max:.6g} in direction {alpha:g} deg; "
                 f"the collapse mechanism: {what}",
                 bind,
                 lim.mechanism,
             )
-        return Diagnosis(
+        return done(
             "infeasible",
             "no admissible force state: the structure cannot carry these loads"
             + ("" if lim.mechanism is None else " (mechanism from the infeasibility certificate)"),
@@ -132,11 +152,11 @@ def diagnose(
         mag = np.abs(d.reshape(model.n_contacts, model.dim)).max(axis=1)
         hot = sorted({int(model.contact_interface[c]) for c in np.flatnonzero(mag > 1e-6 * max(mag.max(), 1e-300))})
         names = [f"{a.names[a.interfaces[k].a]}|{a.names[a.interfaces[k].b]}" for k in hot]
-        return Diagnosis(
+        return done(
             "unbounded",
             "the support motion is incompatible with the material: the energy decreases without end along a "
             f"self-stress through {', '.join(names)}"
             + (" (tangential forces with no friction limit: give the joints a friction coefficient)" if mu is None else ""),
             [(n, "self-stress") for n in names],
         )
-    return Diagnosis(result.status, f"the solver could not decide ({result.message})")
+    return done(result.status, f"the solver could not decide ({result.message})")

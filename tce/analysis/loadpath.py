@@ -23,6 +23,7 @@ from numpy.typing import ArrayLike
 
 from ..core.analysis import Analysis
 from ..core.limit import LimitResult
+from ..core.result import Result
 from ..core.solve import TCEResult
 
 __all__ = ["MAX_INCREMENTS", "LoadPathResult", "load_path"]
@@ -31,25 +32,26 @@ __all__ = ["MAX_INCREMENTS", "LoadPathResult", "load_path"]
 MAX_INCREMENTS = 100_000
 
 
-@dataclass(frozen=True, eq=False)
-class LoadPathResult:
-    """A load path and its limit.
+@dataclass(frozen=True, eq=False, kw_only=True)
+class LoadPathResult(Result):
+    """A load path and its limit (``ok`` when ``status == "limit"``).
 
     Attributes
     ----------
+    status : str
+        How the path ended (also :attr:`outcome`): ``limit`` (bisected to an infeasible
+        load), ``unbounded`` (a step is unbounded: the support motion is incompatible with
+        the material), ``infeasible`` (no admissible state at lambda = 0), ``no_limit``
+        (still admissible at ``lam_cap``), ``numerical`` (undecided: the bracket, the
+        steps before the first infeasible one, or the last steps up to ``lam_cap`` could
+        not be decided, or no optimal step lies within the tolerance of the first
+        inadmissible one).
     alpha : float
         Direction of the lateral loads (degrees).
     settlements : dict
         Support motions of the scenario ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad).
     steps : list of TCEResult
         Every solve, in the order made: the increments, then the bisection.
-    outcome : str
-        ``limit`` (bisected to an infeasible load), ``unbounded`` (a step is unbounded:
-        the support motion is incompatible with the material), ``infeasible`` (no
-        admissible state at lambda = 0), ``no_limit`` (still admissible at ``lam_cap``),
-        ``numerical`` (undecided: the bracket, the steps before the first infeasible
-        one, or the last steps up to ``lam_cap`` could not be decided, or no optimal step
-        lies within the tolerance of the first inadmissible one).
     lambda_max : float
         Last admissible multiplier of the bisection (NaN unless ``outcome == "limit"``).
     lambda_upper : float
@@ -58,21 +60,25 @@ class LoadPathResult:
         The direct limit analysis in the same direction.
     n_solves : int
     solve_time : float
-        Clarabel's time summed over the steps (s).
+        Wall time inside the solver's solve calls, summed over the steps (s).
     wall_time : float
         Time of the whole call (s).
     """
 
+    OK = ("limit",)
+
     alpha: float
     settlements: dict
     steps: list[TCEResult] = field(repr=False)
-    outcome: str
     lambda_max: float
     lambda_upper: float
     limit: LimitResult = field(repr=False)
     n_solves: int = 0
-    solve_time: float = 0.0
-    wall_time: float = 0.0
+
+    @property
+    def outcome(self) -> str:
+        """How the path ended: the :attr:`status`."""
+        return self.status
 
     @property
     def lambda_direct(self) -> float:
@@ -147,9 +153,10 @@ def load_path(
     t0 = time.perf_counter()
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in (settlements or {}).items()}
     steps: list[TCEResult] = []
+    solve_at = analysis.path(alpha, sett)
 
     def run(lam: float) -> TCEResult:
-        r = analysis.solve(lam, alpha, sett)
+        r = solve_at(lam)
         steps.append(r)
         return r
 
@@ -201,10 +208,11 @@ def load_path(
             outcome = "numerical"
     lam_max = lo if outcome == "limit" and lo is not None else float("nan")
     return LoadPathResult(
+        status=outcome,
+        message=f"{outcome} after {len(steps)} solves",
         alpha=float(alpha),
         settlements=sett,
         steps=steps,
-        outcome=outcome,
         lambda_max=float(lam_max),
         lambda_upper=float(hi) if hi is not None else float("nan"),
         limit=analysis.limit(alpha),

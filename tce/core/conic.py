@@ -1,12 +1,15 @@
-"""Conic data of a model in Clarabel's standard form, scaled to be dimensionless.
+"""The contact law as cone rows, and the scaling that makes the conic data dimensionless.
 
-Clarabel solves ``min 1/2 x'Px + q'x  s.t.  Ax + s = b,  s in K`` with K a product of a
-zero cone, a nonnegative cone and second-order cones, in that row order here. The unknown
-``x`` is the force vector divided by the reference force ``W`` (the total weight of the
-free blocks); equilibrium force rows are divided by ``W`` and moment rows by ``W L``
-(``L`` the assembly size). Answers are therefore independent of the units a user picks.
+The contact law of a model is a set of rows ``M F + h in K`` on the force vector ``F``
+(``(nc * dim,)``, kN), with ``K`` a product of a zero cone, a nonnegative cone and
+second-order cones of dimension 3, in that row order (:class:`ConeRows`). The problems of
+:mod:`tce.core.problem` put them in Clarabel's form ``A x + s = b, s in K`` with ``A = -M``
+and ``b = h / W``: the unknown ``x`` is ``F`` divided by the reference force ``W`` (the
+total weight of the free blocks, :class:`Scaling`); equilibrium force rows are divided by
+``W`` and moment rows by ``W L`` (``L`` the assembly size). Answers are therefore
+independent of the units a user picks (``docs/conventions.md``).
 
-Contact laws (per contact, ``fn`` first):
+Contact laws (per contact, ``fn`` first; ``h = 0`` for all of them):
 
 - spatial, mu > 0: ``(mu fn, ft1, ft2)`` in a second-order cone;
 - planar, mu > 0: ``mu fn - ft >= 0`` and ``mu fn + ft >= 0``;
@@ -18,35 +21,43 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import clarabel
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from .model import Model
 
-__all__ = ["ConeRows", "cone_rows", "Scaling", "cone_violation"]
+__all__ = ["ConeRows", "Scaling", "cone_rows", "cone_violation", "law_violation"]
 
 
 @dataclass(frozen=True)
 class ConeRows:
-    """Rows ``M`` with ``M x`` in (zero^nz x nonneg^nn x SOC(3)^ns), stacked in that order."""
+    """Rows ``M F + h`` in ``zero^n_zero x nonneg^n_nonneg x SOC(3)^n_soc``, stacked in that order.
+
+    Attributes
+    ----------
+    M : (n_zero + n_nonneg + 3 n_soc, nc * dim) sparse
+        Row operator on the force vector (homogeneous: the same on scaled forces).
+    n_zero, n_nonneg, n_soc : int
+        Rows in the zero cone, rows in the nonnegative cone, number of 3D second-order cones.
+    h : (n_rows,) ndarray or None
+        Offset of each row (kN); None is zero (every law of :func:`cone_rows`).
+    """
 
     M: sp.csr_matrix
     n_zero: int
     n_nonneg: int
     n_soc: int
+    h: NDArray[np.float64] | None = None
 
-    def cones(self, leading_zero: int = 0, extra_nonneg: int = 0) -> list:
-        """Clarabel cone list, with ``leading_zero`` equality rows before these rows and
-        ``extra_nonneg`` nonnegative rows placed before this block's nonnegative rows."""
-        out: list = []
-        if leading_zero + self.n_zero:
-            out.append(clarabel.ZeroConeT(leading_zero + self.n_zero))
-        if extra_nonneg + self.n_nonneg:
-            out.append(clarabel.NonnegativeConeT(extra_nonneg + self.n_nonneg))
-        out += [clarabel.SecondOrderConeT(3)] * self.n_soc
-        return out
+    @property
+    def n_rows(self) -> int:
+        """Number of rows of ``M``."""
+        return self.n_zero + self.n_nonneg + 3 * self.n_soc
+
+    def offset(self) -> NDArray[np.float64]:
+        """``h`` as an array (zeros when None), kN."""
+        return np.zeros(self.n_rows) if self.h is None else np.asarray(self.h, dtype=float)
 
     @property
     def zero(self) -> sp.csr_matrix:
@@ -95,11 +106,29 @@ def cone_violation(model: Model, friction: float | None, forces: NDArray[np.floa
     -fn)`` with friction; with ``mu = 0`` it is ``max(|ft|, -fn)``.
     """
     f = np.asarray(forces).reshape(model.n_contacts, model.dim)
-    fn, ft = f[:, 0], f[:, 1:]
-    viol = np.maximum(0.0, -fn)
+    if not len(f):
+        return 0.0
+    fn = f[:, 0]
+    worst = max(0.0, -float(fn.min()))
     if friction is not None:
-        viol = np.maximum(viol, np.linalg.norm(ft, axis=1) - float(friction) * fn)
-    return float(viol.max(initial=0.0))
+        ft = np.abs(f[:, 1]) if model.dim == 2 else np.sqrt(f[:, 1] ** 2 + f[:, 2] ** 2)
+        worst = max(worst, float((ft - float(friction) * fn).max()))
+    return worst
+
+
+def law_violation(rows: ConeRows, forces: NDArray[np.float64]) -> float:
+    """Largest violation of ``M F + h in K`` by ``forces`` (same units as the rows, kN).
+
+    Zero rows count ``|v|``, nonnegative rows ``max(0, -v)``, a second-order cone
+    ``(t, u)`` counts ``max(0, ||u|| - t)``.
+    """
+    v = rows.M @ np.ravel(forces) + rows.offset()
+    nz, nn = rows.n_zero, rows.n_nonneg
+    parts = [np.abs(v[:nz]), np.maximum(0.0, -v[nz : nz + nn])]
+    if rows.n_soc:
+        c = v[nz + nn :].reshape(-1, 3)
+        parts.append(np.maximum(0.0, np.linalg.norm(c[:, 1:], axis=1) - c[:, 0]))
+    return float(max((p.max(initial=0.0) for p in parts), default=0.0))
 
 
 @dataclass(frozen=True)

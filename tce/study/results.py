@@ -86,8 +86,8 @@ META: dict[str, tuple[str, str]] = {
     "outcome": ("-", "how the load path ended (limit, unbounded, infeasible, no_limit, numerical)"),
     "model": ("-", "model solved (planar or spatial)"),
     "n_solves": ("-", "number of TCE solves of the load path"),
-    "solve_time": ("s", "solver time summed over the load path"),
-    "wall_time": ("s", "wall-clock time of the load path"),
+    "solve_time": ("s", "wall time inside the solver's solve calls, summed over the load path (set-up excluded)"),
+    "wall_time": ("s", "wall-clock time of the whole load path (solves, set-up, checks, direct limit)"),
     "lam": ("1", "load multiplier of the step"),
     "status": ("-", "status of the step's TCE solve (optimal, infeasible, unbounded, numerical)"),
     "reaction": ("kN, kN m", "wrench each support exerts on the structure, global frame, about the support centroid"),
@@ -132,7 +132,7 @@ def _text(values: object) -> np.ndarray:
 
 def _step_fields(step: TCEResult, slots: np.ndarray, n_itf: int) -> dict[str, np.ndarray]:
     """Per-step arrays of one TCE answer (NaN unless optimal), interfaces in assembly order."""
-    n_sup = len(step.model_ref.assembly.support_indices)
+    n_sup = step.support_wrenches.shape[0]
     out = {
         "reaction": np.full((n_sup, 6), np.nan),
         "resultant": np.full((n_itf, 3), np.nan),
@@ -249,7 +249,7 @@ def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr
     """
     path = lp.path
     n_itf = len(analysis.assembly.interfaces)
-    step_slots = np.asarray(path[0].model_ref.interfaces, dtype=int)
+    step_slots = np.asarray(path[0].interfaces, dtype=int)
     limit_slots = np.asarray(analysis.model(lp.limit.model).interfaces, dtype=int)
     data = _path_vars(path, step_slots, n_itf)
     data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
