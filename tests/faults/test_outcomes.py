@@ -73,9 +73,14 @@ class Scripted:
     def __init__(self, status, direct: float = float("nan")) -> None:
         self.status, self.direct = status, direct
 
-    def solve(self, lam, alpha, settlements):
-        s = self.status(lam)
-        return SimpleNamespace(lam=lam, status=s, ok=s == "optimal", solve_time=0.0)
+    def path(self, alpha, settlements):
+        """The solve of each step of a path (as :meth:`tce.core.analysis.Analysis.path`)."""
+
+        def solve_at(lam):
+            s = self.status(lam)
+            return SimpleNamespace(lam=lam, status=s, ok=s == "optimal", solve_time=0.0)
+
+        return solve_at
 
     def limit(self, alpha):
         return SimpleNamespace(lambda_max=self.direct)
