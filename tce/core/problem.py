@@ -240,7 +240,23 @@ def tce_problem(f: Formulation, rhs: NDArray[np.float64], U: NDArray[np.float64]
     A = sp.vstack([f.A_eq, -law.M]).tocsc()
     b = tce_b(f, rhs)
     cones = _cones(("zero", f.A_eq.shape[0] + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
-    return ConicProblem("tce", f.P, f.q(U), A, b, cones)
+    # the objective's scale is free: a q far from order one (a compliance of 1e-18 with a 1 mm
+    # motion puts |q| near 1e15 once P is normalised, and Clarabel then misreads the scene as
+    # infeasible or unbounded) is brought back to one
+    q = f.q(U)
+    s = q_scale(q)
+    return ConicProblem("tce", f.P / s, q / s, A, b, cones)
+
+
+#: Largest ``|q|`` of a TCE objective solved as it is (see :func:`q_scale`): a 1 mm motion with a
+#: stiffness of 1e15 kN/m^3 gives about 1e10; rescaling well-posed scenes below costs accuracy.
+Q_MAX = 1e10
+
+
+def q_scale(q: NDArray[np.float64]) -> float:
+    """Divisor of a TCE objective: ``max |q|`` when it exceeds :data:`Q_MAX`, else 1."""
+    m = float(np.abs(q).max(initial=0.0))
+    return m if m > Q_MAX else 1.0
 
 
 def phase1_b(f: Formulation, rhs: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -53,6 +53,12 @@ Stored interfaces (tce or COMPAS)
     (``A|B`` and its position) and what is wrong. Since such contacts may overlap slightly,
     the overlap check then tolerates a depth of ``interface_tol * L`` too.
 
+Limits (:class:`InputLimitError`, naming the limit): a file of at most
+:data:`MAX_FILE_BYTES`, JSON nested at most :data:`MAX_DEPTH` deep (checked before decoding,
+so no input makes the decoder recurse without bound), at most :data:`MAX_BLOCKS` blocks,
+:data:`MAX_BLOCK_VERTICES` vertices per block and :data:`MAX_VERTICES` in all. The path
+must be a regular file (not a folder, a device or a pipe).
+
 Units are SI (m, kN) after loading. Every loaded block is checked (closed, consistently
 oriented, planar faces, positive volume), blocks must not overlap
 (:func:`tce.contacts.check_overlaps`), interfaces are read and checked or detected
@@ -65,6 +71,8 @@ from __future__ import annotations
 import json
 import logging
 import math
+import re
+import stat
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -78,10 +86,34 @@ from shapely.geometry import Polygon
 from .assembly import Assembly, AssemblyError, Block, Interface
 from .contacts import check_overlaps, detect_interfaces
 from .geometry import GeometryError, Polyhedron, frame_from_normal, newell_normal
+from .params import did_you_mean
 
-__all__ = ["load_assembly", "read_compas_json", "read_obj", "read_tce_json", "save_assembly_json"]
+__all__ = [
+    "MAX_BLOCKS",
+    "MAX_BLOCK_VERTICES",
+    "MAX_DEPTH",
+    "MAX_FILE_BYTES",
+    "MAX_VERTICES",
+    "InputLimitError",
+    "load_assembly",
+    "read_compas_json",
+    "read_obj",
+    "read_tce_json",
+    "save_assembly_json",
+]
 
 log = logging.getLogger(__name__)
+
+#: Largest block file read (bytes).
+MAX_FILE_BYTES = 256 * 2**20
+#: Deepest nesting of JSON arrays and objects (a tce file needs 4, a COMPAS file about 8).
+MAX_DEPTH = 64
+#: Most blocks in an assembly (the study runner applies it to generated structures too).
+MAX_BLOCKS = 50_000
+#: Most vertices of one block.
+MAX_BLOCK_VERTICES = 10_000
+#: Most vertices of all blocks together.
+MAX_VERTICES = 2_000_000
 
 DEFAULT_UNIT_WEIGHT = 20.0
 #: Planarity tolerance of faces, relative to the block size: the one Assembly.validate uses.
@@ -115,17 +147,75 @@ class RawAssembly:
     meta: dict = field(default_factory=dict)
 
 
+class InputLimitError(AssemblyError):
+    """A block file beyond one of the module's limits (size, nesting, block or vertex count)."""
+
+
 # ---------------------------------------------------------------------- readers
 def _err(path: Path | str, msg: str) -> AssemblyError:
     return AssemblyError(f"{path}: {msg}")
 
 
+def _check_file(path: Path) -> None:
+    """Refuse what is not a regular file of at most :data:`MAX_FILE_BYTES`."""
+    try:
+        info = path.stat()
+    except FileNotFoundError:
+        raise FileNotFoundError(f"{path}: no such file") from None
+    if not stat.S_ISREG(info.st_mode):
+        raise _err(path, "not a regular file (a folder, device or pipe cannot hold blocks)")
+    if info.st_size > MAX_FILE_BYTES:
+        raise InputLimitError(f"{path}: {info.st_size} bytes, more than MAX_FILE_BYTES = {MAX_FILE_BYTES}")
+
+
+def _read_text(path: Path) -> str:
+    """The text of a regular file of at most :data:`MAX_FILE_BYTES`."""
+    _check_file(path)
+    try:
+        return path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise _err(path, f"not a text file ({exc})") from None
+
+
+_JSON_STRING = re.compile(r'"(?:[^"\\]|\\.)*"')
+
+
+def _load_json(path: Path, text: str) -> Any:
+    """Decode JSON ``text`` after checking, in one linear pass, that it nests at most
+    :data:`MAX_DEPTH` deep (the decoder recurses once per level)."""
+    bare = np.frombuffer(_JSON_STRING.sub("", text).encode("utf-8"), dtype=np.uint8)
+    step = np.isin(bare, (ord("["), ord("{"))).astype(np.int64) - np.isin(bare, (ord("]"), ord("}")))
+    depth = int(np.cumsum(step).max(initial=0))
+    if depth > MAX_DEPTH:
+        raise InputLimitError(f"{path}: JSON nested {depth} deep, more than MAX_DEPTH = {MAX_DEPTH}")
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise _err(path, f"not valid JSON ({exc})") from None
+
+
+def _check_counts(path: Path, blocks: list[RawBlock]) -> None:
+    """Refuse more than :data:`MAX_BLOCKS` blocks or too many vertices, naming the limit."""
+    if len(blocks) > MAX_BLOCKS:
+        raise InputLimitError(f"{path}: {len(blocks)} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
+    for b in blocks:
+        if len(b.vertices) > MAX_BLOCK_VERTICES:
+            raise InputLimitError(
+                f"{path}: block {b.name!r} has {len(b.vertices)} vertices, more than MAX_BLOCK_VERTICES = {MAX_BLOCK_VERTICES}"
+            )
+    total = sum(len(b.vertices) for b in blocks)
+    if total > MAX_VERTICES:
+        raise InputLimitError(f"{path}: {total} vertices, more than MAX_VERTICES = {MAX_VERTICES}")
+
+
 def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
     """Parse a tce JSON assembly (see module docstring)."""
     path = Path(path)
-    d = json.loads(path.read_text()) if data is None else data
+    d = _load_json(path, _read_text(path)) if data is None else data
     if not isinstance(d, Mapping) or not isinstance(d.get("blocks"), list):
         raise _err(path, 'not a tce assembly: expected an object with a "blocks" list')
+    if len(d["blocks"]) > MAX_BLOCKS:
+        raise InputLimitError(f"{path}: {len(d['blocks'])} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
     units = d.get("units") or {}
     if not isinstance(units, Mapping):
         raise _err(path, f'"units" must be an object like {{"length": "m", "force": "kN"}}, got {units!r}')
@@ -134,6 +224,8 @@ def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
         raise _err(path, f"unknown units {units!r}; length one of {list(_LENGTH)}, force one of {list(_FORCE)}")
     blocks = []
     for k, b in enumerate(d["blocks"]):
+        if not isinstance(b, Mapping):
+            raise _err(path, f"blocks[{k}]: a block must be an object with 'vertices' and 'faces', got {b!r:.40}")
         name = str(b.get("name", f"b{k + 1}"))
         try:
             v = np.asarray(b["vertices"], dtype=float)
@@ -159,7 +251,7 @@ def read_obj(path: str | Path) -> RawAssembly:
     path = Path(path)
     verts: list[list[float]] = []
     groups: list[tuple[str, list[list[int]]]] = []
-    for lineno, line in enumerate(path.read_text().splitlines(), 1):
+    for lineno, line in enumerate(_read_text(path).splitlines(), 1):
         tok = line.split("#", 1)[0].split()
         if not tok:
             continue
@@ -205,7 +297,7 @@ def _unwrap(obj: Any) -> Any:
 def read_compas_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
     """Parse a COMPAS assembly JSON file (compas_assembly / compas_cra)."""
     path = Path(path)
-    d = _unwrap(json.loads(path.read_text()) if data is None else data)
+    d = _unwrap(_load_json(path, _read_text(path)) if data is None else data)
     graph = _unwrap(d.get("graph", d)) if isinstance(d, Mapping) else None
     nodes = graph.get("node", graph.get("nodes")) if isinstance(graph, Mapping) else None
     if not isinstance(nodes, Mapping):
@@ -485,10 +577,7 @@ def load_assembly(
     if ext == ".obj":
         raw, fmt = read_obj(path), "obj"
     elif ext == ".json":
-        try:
-            data = json.loads(path.read_text())
-        except json.JSONDecodeError as exc:
-            raise _err(path, f"not valid JSON ({exc})") from None
+        data = _load_json(path, _read_text(path))
         if isinstance(data, Mapping) and isinstance(data.get("blocks"), list):
             raw, fmt = read_tce_json(path, data), "tce-json"
         else:
@@ -499,6 +588,7 @@ def load_assembly(
         raise _err(path, "the file holds no blocks")
     if nonplanar is None:
         nonplanar = "triangulate" if fmt == "compas-json" else "error"
+    _check_counts(path, raw.blocks)
 
     names = [b.name for b in raw.blocks]
     if len(set(names)) != len(names):
@@ -507,7 +597,7 @@ def load_assembly(
     uw_map = dict(unit_weight) if isinstance(unit_weight, Mapping) else {}
     unknown = [n for n in uw_map if str(n) not in names]
     if unknown:
-        raise _err(path, f"unit_weight given for unknown block(s) {unknown}")
+        raise _err(path, f"unit_weight given for unknown block(s) {unknown}{did_you_mean(unknown[0], names)}")
     uw_map = {str(k): float(v) for k, v in uw_map.items()}
     uw_all = None if isinstance(unit_weight, Mapping) or unit_weight is None else float(unit_weight)
 
@@ -515,7 +605,11 @@ def load_assembly(
     if support_set is not None:
         missing = sorted(support_set - set(names))
         if missing:
-            raise _err(path, f"support block(s) {missing} not found; blocks are {names}")
+            raise _err(
+                path,
+                f"support block(s) {missing} not found{did_you_mean(missing[0], names)}; blocks are {names[:20]}"
+                + (f" and {len(names) - 20} more" if len(names) > 20 else ""),
+            )
 
     # units: the file's lengths and unit weights are converted to m and kN/m^3 here
     ls, fs = raw.length, raw.force
