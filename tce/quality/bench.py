@@ -32,6 +32,13 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
 ``reduction``
     What the planar model, dropping the cone (Heyman) and dropping the quadratic term
     (rigid) save, each with its effect on the answer.
+``plotting``
+    For each shipped paper study, in a fresh process as ``tce run --jobs 2`` runs it: the
+    wall time of solving and writing (``run_study(plots=False)``, worker start included)
+    and of drawing every figure and the view (``write_plots``, matplotlib's import
+    included), then both again with warm workers and imports; the targets compare them
+    as a ratio. The full run adds a 300-scenario sweep of the paper's arch (10 frictions
+    x 5 settlement magnitudes x 6 settlement cases).
 
 Every row has ``time_s`` (median end-to-end seconds, from Python), ``solver_time_s``
 (the solver's own reported time), ``ratio`` (``time_s`` over the Clarabel-direct 3D
@@ -389,6 +396,98 @@ def _reduction(quick: bool) -> list[dict[str, Any]]:
     return rows
 
 
+# ---------------------------------------------------------------- plotting
+PLOT_STUDIES = ("fig3_4_settlements", "fig5_6_transversal", "fig7_8_inplane", "fig9_outofplane", "fig10_dome")
+PLOT_JOBS = 2
+_PLOT_RUN = """
+import json, shutil, sys, tempfile, time
+from pathlib import Path
+from tce.study.schema import load_study
+from tce.study.runner import run_study, write_plots
+import xarray as xr
+study, jobs, repeats = load_study(sys.argv[1]), int(sys.argv[2]), int(sys.argv[3])
+out = Path(tempfile.mkdtemp())
+rows = []
+for k in range(repeats):
+    t = time.perf_counter()
+    report = run_study(study, out / str(k), jobs=jobs, plots=False)
+    solve = time.perf_counter() - t
+    ds = xr.load_dataset(report.results)
+    t = time.perf_counter()
+    files = write_plots(ds, out / str(k) / study.name, jobs=jobs)
+    rows.append(dict(solve=solve, plot=time.perf_counter() - t, files=len(files), n_solves=int(ds.n_solves.sum()),
+                     scenarios=int(ds.sizes["scenario"])))
+shutil.rmtree(out, ignore_errors=True)
+print(json.dumps(rows))
+"""
+SWEEP_300 = """
+[study]
+name = "sweep300"
+[structure]
+type = "semicircular_arch"
+[material]
+friction = 0.8
+[loads]
+lambda_step = 0.02
+tolerance = 1e-6
+[sweep]
+friction = [0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.2, 1.4, 1.7, 2.0]
+magnitude = [0.5, 1.0, 1.5, 2.0, 3.0]
+[scenarios.none]
+[scenarios.outward]
+right = [0.001, 0, 0, 0, 0, 0]
+[scenarios.inward]
+right = [-0.001, 0, 0, 0, 0, 0]
+[scenarios.downward]
+right = [0, 0, -0.001, 0, 0, 0]
+[scenarios.transversal]
+right = [0, 0.001, 0, 0, 0, 0]
+[scenarios.rotation]
+right = [0, 0, 0, 0.001, 0, 0]
+"""
+
+
+def _plot_run(study: Path, repeats: int, timeout: float) -> list[dict[str, Any]]:
+    """Solve and plot ``study`` ``repeats`` times in one fresh process (see ``plotting``)."""
+    env = dict(os.environ, MPLBACKEND="Agg")
+    done = subprocess.run([sys.executable, "-c", _PLOT_RUN, str(study), str(PLOT_JOBS), str(repeats)],
+                          capture_output=True, text=True, timeout=timeout, env=env, check=True)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def _plotting(quick: bool) -> list[dict[str, Any]]:
+    """Plotting against solving and writing, per shipped paper study (and the 300-scenario sweep)."""
+    import tempfile
+
+    studies = Path(__file__).resolve().parents[2] / "studies"
+    cases = [(name, studies / f"{name}.toml") for name in PLOT_STUDIES if (studies / f"{name}.toml").exists()]
+    tmp = None
+    if not quick:
+        tmp = tempfile.TemporaryDirectory()
+        sweep = Path(tmp.name) / "sweep300.toml"
+        sweep.write_text(SWEEP_300)
+        cases.append(("sweep300 (10 x 5 x 6 scenarios)", sweep))
+    rows = []
+    try:
+        for name, path in cases:
+            repeats = 1 if quick or name.startswith("sweep") else 3
+            runs = _plot_run(path, repeats, timeout=3600)
+            warm = runs[1:]
+            for label, sel in (("cold process, as tce run", runs[:1]), ("warm workers and imports", warm)):
+                if not sel:
+                    continue
+                solve = statistics.median(r["solve"] for r in sel)
+                plot = statistics.median(r["plot"] for r in sel)
+                common = dict(n_solves=sel[0]["n_solves"], note=f"{sel[0]['scenarios']} scenarios, {sel[0]['files']} files; "
+                              f"plot / (solve + write) = {plot / solve:.2f}")
+                rows.append(_row("plotting", name, f"solve + write ({label})", time_s=solve, **common))
+                rows.append(_row("plotting", name, f"figures + view ({label})", time_s=plot, **common))
+    finally:
+        if tmp is not None:
+            tmp.cleanup()
+    return rows
+
+
 # ---------------------------------------------------------------- targets, outputs
 def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
     """The issue's targets as ``(target, measured figure, met)`` from a bench table."""
@@ -419,6 +518,12 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
                     f"{rb.time_s / d.time_s:.0f}x", rb.time_s / d.time_s >= 10))
         out.append((f"{model}: direct faster than parametrised cvxpy (CLARABEL)",
                     f"{pr.time_s / d.time_s:.1f}x", pr.time_s > d.time_s))
+    for case, g in df[df.section == "plotting"].groupby("case", sort=False):
+        cold = {m.split(" (")[0]: t for m, t in zip(g.method, g.time_s) if "cold" in m}
+        if len(cold) == 2:
+            r = cold["figures + view"] / cold["solve + write"]
+            out.append((f"{case}: plotting <= 0.3x solving + writing (as tce run --jobs {PLOT_JOBS})",
+                        f"{r:.2f}x ({cold['figures + view']:.1f} s / {cold['solve + write']:.1f} s)", r <= 0.3))
     big = df[(df.section == "scaling") & (df.n_blocks >= 9000)]
     for _, r in big.iterrows():
         out.append((f"{r.case}: one lambda_max solve < 60 s and < 4 GiB",
@@ -500,6 +605,7 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "discretisation": _discretisation,
     "scaling": _scaling,
     "reduction": _reduction,
+    "plotting": _plotting,
 }
 
 

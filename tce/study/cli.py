@@ -3,7 +3,9 @@
 ``tce run STUDY.toml``   validate a study, solve its scenarios in parallel, write
                          ``<out>/<study>/results.nc`` and its figures (resumes a run).
 ``tce show RESULTS.nc``  one line per scenario: limit, outcome, model, cost.
-``tce plot RESULTS.nc``  the figures of a results file.
+``tce plot RESULTS.nc``  the figures of a results file (``--scenario S --step 0.1``: one on demand).
+``tce view RESULTS.nc``  the interactive 3D view (one offline HTML file).
+``tce export RESULTS.nc --vtk``  ParaView files: blocks, vertex forces, resultants per step.
 
 Exit codes: 0 success, 1 failure while running, 2 bad input (a message on stderr, no
 traceback, nothing written), 130 interrupted (finished scenarios are kept).
@@ -18,6 +20,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .. import __version__
+from .schema import PLOT_KINDS
 
 __all__ = ["main"]
 
@@ -35,6 +38,19 @@ def _jobs(text: str) -> int:
         raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}") from None
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}")
+    return value
+
+
+def _target(text: str) -> float | str:
+    """A ``--step``: a load multiplier >= 0 or ``max``."""
+    if text == "max":
+        return text
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f'must be a number >= 0 or "max", got {text!r}') from None
+    if not (value >= 0 and value != float("inf")):
+        raise argparse.ArgumentTypeError(f'must be a number >= 0 or "max", got {text!r}')
     return value
 
 
@@ -74,9 +90,43 @@ def _parser() -> argparse.ArgumentParser:
     show = sub.add_parser("show", help="summarise a results file", description="One line per scenario of RESULTS.nc.")
     show.add_argument("results", type=Path, metavar="RESULTS.nc")
 
-    plot = sub.add_parser("plot", help="plot a results file", description="Write the figures of RESULTS.nc.")
+    plot = sub.add_parser(
+        "plot", help="plot a results file",
+        description="Write the figures of RESULTS.nc that the study's [plots] table asks for; --scenario, --step "
+        "and --kind replace its entries (with --scenario or --step and no --kind: the states figure only, its "
+        "file name tagged). A load multiplier that is not a solved step is solved, not interpolated.",
+    )
     plot.add_argument("results", type=Path, metavar="RESULTS.nc")
     plot.add_argument("--out", type=Path, default=None, metavar="DIR", help="folder of the figures (default: beside RESULTS.nc)")
+    plot.add_argument("--scenario", action="append", default=None, metavar="NAME",
+                      help="scenario to draw (name or shell pattern; repeatable)")
+    plot.add_argument("--step", action="append", type=_target, default=None, metavar="LAMBDA",
+                      help='load multiplier to draw (>= 0) or "max" (repeatable)')
+    plot.add_argument("--kind", action="append", choices=PLOT_KINDS, default=None, help="figure kind (repeatable)")
+    plot.add_argument("--jobs", type=_jobs, default=1, metavar="N", help="drawing processes (default 1)")
+
+    view = sub.add_parser(
+        "view", help="write the interactive 3D view of a results file",
+        description="Write one self-contained HTML file (works offline) with the blocks, interface resultants at "
+        "their pressure points, torques, loads and the collapse mechanism, a scenario selector and a slider over "
+        "the solved steps.",
+    )
+    view.add_argument("results", type=Path, metavar="RESULTS.nc")
+    view.add_argument("--out", type=Path, default=None, metavar="FILE", help="HTML file (default: view.html beside RESULTS.nc)")
+    view.add_argument("--scenario", action="append", default=None, metavar="NAME",
+                      help="scenario to include (name or shell pattern; repeatable; default: the study's [plots] scenarios)")
+    view.add_argument("--open", action="store_true", help="open the file in the web browser")
+
+    export = sub.add_parser(
+        "export", help="export a results file for ParaView",
+        description="Write VTK files (blocks, vertex forces and interface resultants per step, mechanism, one .pvd "
+        "time series per scenario with lambda as time).",
+    )
+    export.add_argument("results", type=Path, metavar="RESULTS.nc")
+    export.add_argument("--vtk", action="store_true", required=True, help="VTK XML files (.vtu, .pvd)")
+    export.add_argument("--out", type=Path, default=None, metavar="DIR", help="folder (default: vtk/ beside RESULTS.nc)")
+    export.add_argument("--scenario", action="append", default=None, metavar="NAME",
+                        help="scenario to export (name or shell pattern; repeatable; default: all)")
 
     check = sub.add_parser(
         "check",
@@ -189,13 +239,74 @@ def _show(args: argparse.Namespace) -> int:
     return 0
 
 
+_OPTIONS = {"scenarios": "--scenario", "steps": "--step", "kinds": "--kind"}
+
+
+def _spec(ds, **given):
+    """The plotting spec of ``ds`` with the command line's replacements; a bad one is a usage
+    error naming the option (or the ``[plots]`` key of the study stored in the file)."""
+    from ..plot.data import PlotSpecError, plot_spec
+
+    try:
+        return plot_spec(ds, **given)
+    except PlotSpecError as exc:
+        replaced = {"scenarios": "scenarios_"}.get(exc.key, exc.key)
+        where = _OPTIONS.get(exc.key, exc.key) if given.get(replaced) is not None else f"[plots] {exc.key}"
+        raise UsageError(f"{where}: {exc.message}") from None
+
+
 def _plot(args: argparse.Namespace) -> int:
-    from .runner import write_plots
+    from ..plot.data import slug
+    from ..plot.output import write_figures
 
     ds = _open_results(args.results)
+    on_demand = args.scenario is not None or args.step is not None
+    kinds = args.kind or (["states"] if on_demand else None)
+    spec = _spec(ds, steps=args.step, scenarios_=args.scenario, kinds=kinds)
+    if on_demand and not spec.scenarios:
+        raise UsageError("--scenario: no scenario selected")
+    tag = slug("_".join([*(args.scenario or []), *(f"lam{s}" for s in args.step or [])]))[:80] if on_demand else ""
     outdir = args.out or args.results.parent
-    figures = write_plots(ds, outdir)
+    figures = write_figures(ds, outdir, spec, jobs=args.jobs, tag=tag)
+    for f in figures if on_demand else []:
+        print(f)
     print(f"{len(figures)} figures in {outdir}")
+    return 0
+
+
+def _view(args: argparse.Namespace) -> int:
+    from ..plot.view import view_html
+
+    ds = _open_results(args.results)
+    spec = _spec(ds, scenarios_=args.scenario)
+    if not spec.scenarios:
+        raise UsageError("--scenario: the study draws no scenario by default (a large sweep): name some")
+    out = args.out or args.results.parent / "view.html"
+    if out.suffix.lower() not in (".html", ".htm"):
+        raise UsageError(f"--out: {out} is not an .html file")
+    page = view_html(ds, spec.scenarios)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(page, encoding="utf-8")
+    print(out)
+    if args.open:
+        import webbrowser
+
+        webbrowser.open(out.resolve().as_uri())
+    return 0
+
+
+def _export(args: argparse.Namespace) -> int:
+    from ..plot.export import export_vtk
+
+    ds = _open_results(args.results)
+    names = None
+    if args.scenario:
+        names = _spec(ds, scenarios_=args.scenario).scenarios
+    if "vertex_force" not in ds:
+        raise UsageError(f"{args.results}: no vertex forces (written by an older tce); fix: run the study again")
+    out = args.out or args.results.parent / "vtk"
+    files = export_vtk(ds, out, names)
+    print(f"{len(files)} VTK files in {out}")
     return 0
 
 
@@ -221,7 +332,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
     _setup_logging(args.verbose, args.quiet)
-    commands = {"run": _run, "show": _show, "plot": _plot, "check": _check, "bench": _bench}
+    commands = {"run": _run, "show": _show, "plot": _plot, "view": _view, "export": _export, "check": _check,
+                "bench": _bench}
     try:
         return commands[args.command](args)
     except UsageError as exc:

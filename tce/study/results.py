@@ -27,11 +27,14 @@ import xarray as xr
 from .. import __version__
 from ..core.analysis import Analysis
 from ..analysis.loadpath import LoadPathResult
+from ..core.model import Model
+from ..core.resultants import global_vertex_forces
 from ..core.solve import SOLVER_NAME, TCEResult
 from .schema import Scenario, Study, build_structure
 
 __all__ = [
     "merge_scenarios",
+    "steps_dataset",
     "load_finished",
     "scenario_dataset",
     "scenario_path",
@@ -70,6 +73,11 @@ META: dict[str, tuple[str, str]] = {
     "resultant": ("kN", "interface resultant force on block B, global frame"),
     "pressure_point": ("m", "interface pressure point"),
     "torque": ("kN m", "torque about the interface normal at the pressure point, on block B"),
+    "unique": ("1", "1 if the step's force state is the unique minimiser, 0 if not (rigid, no support motion: "
+               "one admissible state of many), NaN if unknown"),
+    "vertex_force": ("kN", "force at each interface vertex on block B, global frame"),
+    "vertex_point": ("m", "interface vertex position"),
+    "vertex_interface": ("-", "interface of the vertex, as 'A|B' block names"),
     "mechanism": ("m, rad", "collapse mechanism velocities at the limit (unit amplitude, supports zero)"),
     "interface_mode": ("-", "interface behaviour in the mechanism (hinge, sliding, opening, closed)"),
     "hinge_point": ("m", "trace point of the hinge line (NaN if no hinge)"),
@@ -86,6 +94,7 @@ META: dict[str, tuple[str, str]] = {
     "xyz": ("-", "global axis"),
     "block": ("-", "block name"),
     "dof": ("-", "rigid-body velocity component"),
+    "vertex": ("-", "interface vertex (every vertex of the model's interfaces)"),
     "settlement": ("-", "settlement case ([scenarios.NAME] of the study)"),
     "alpha": ("degree", "direction of the lateral loads, from +x towards +y"),
     "friction": ("1", "friction coefficient (NaN: unlimited)"),
@@ -111,12 +120,14 @@ def _step_fields(step: TCEResult, slots: np.ndarray, n_itf: int) -> dict[str, np
         "resultant": np.full((n_itf, 3), np.nan),
         "pressure_point": np.full((n_itf, 3), np.nan),
         "torque": np.full(n_itf, np.nan),
+        "vertex_force": np.full((len(step.model_ref.vertex_points), 3), np.nan),
     }
     if step.ok:
         out["reaction"] = step.support_wrenches
         out["resultant"][slots] = step.resultants
         out["pressure_point"][slots] = step.pressure_points
         out["torque"][slots] = step.torques
+        out["vertex_force"] = global_vertex_forces(step.model_ref, step.vertex_forces)
     return out
 
 
@@ -133,11 +144,21 @@ def _path_vars(path: Sequence[TCEResult], slots: np.ndarray, n_itf: int) -> dict
     dims = ("scenario", "step")
     out: dict[str, tuple] = {k: (dims, np.asarray([v], dtype=float)) for k, v in scalar.items()}
     out["status"] = (dims, _text([[s.status for s in path]]))
+    out["unique"] = (dims, np.asarray([[np.nan if s.unique is None else float(s.unique) for s in path]]))
+    out["vertex_force"] = (dims + ("vertex", "xyz"), stack["vertex_force"])
     out["reaction"] = (dims + ("support", "component"), stack["reaction"])
     out["resultant"] = (dims + ("interface", "xyz"), stack["resultant"])
     out["pressure_point"] = (dims + ("interface", "xyz"), stack["pressure_point"])
     out["torque"] = (dims + ("interface",), stack["torque"])
     return out
+
+
+def steps_dataset(scenario: str, steps: Sequence[TCEResult], n_interfaces: int) -> xr.Dataset:
+    """Per-step variables (``lam``, ``status``, ``reaction``, ...) of ``steps`` as a
+    one-scenario dataset, ``step`` in the given order (for states solved after a run)."""
+    slots = np.asarray(steps[0].model_ref.interfaces, dtype=int)
+    ds = xr.Dataset(_path_vars(steps, slots, n_interfaces), coords={"scenario": [scenario]})
+    return _label(ds)
 
 
 def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int) -> dict[str, tuple]:
@@ -171,10 +192,13 @@ def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int
     return out
 
 
-def _static_vars(analysis: Analysis) -> dict[str, tuple]:
-    """Variables of the assembly (no scenario dimension)."""
+def _static_vars(analysis: Analysis, model: Model) -> dict[str, tuple]:
+    """Variables of the assembly and of the interface vertices of ``model`` (no scenario dimension)."""
     a = analysis.assembly
+    names = [f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces]
     return {
+        "vertex_point": (("vertex", "xyz"), model.vertex_points),
+        "vertex_interface": (("vertex",), _text([names[k] for k in model.vertex_interface])),
         "interface_a": (("interface",), _text([a.names[i.a] for i in a.interfaces])),
         "interface_b": (("interface",), _text([a.names[i.b] for i in a.interfaces])),
         "block_centroid": (("block", "xyz"), a.centroids),
@@ -226,7 +250,7 @@ def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr
     limit_slots = np.asarray(analysis.model(lp.limit.model).interfaces, dtype=int)
     data = _path_vars(path, step_slots, n_itf)
     data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
-    data.update(_static_vars(analysis))
+    data.update(_static_vars(analysis, path[0].model_ref))
     ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)))
     ds.attrs["scenario_key"] = sc.key
     return _label(ds)

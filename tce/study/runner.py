@@ -19,9 +19,11 @@ from __future__ import annotations
 import contextlib
 import json
 import logging
+import math
 import os
-from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+import time
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from pathlib import Path
 from typing import Literal
@@ -30,15 +32,27 @@ import joblib
 import xarray as xr
 
 from ..core.analysis import Analysis
-from ..analysis.loadpath import load_path
+from ..analysis.loadpath import LoadPathResult, load_path
 from .results import load_finished, merge_scenarios, scenario_dataset, scenario_path, write_atomic
 from .schema import Scenario, Study, build_material, build_structure
 
-__all__ = ["RunError", "RunReport", "run_study", "solve_scenario", "write_plots"]
+__all__ = [
+    "LAMBDA_TOL",
+    "RunError",
+    "RunReport",
+    "missing_lambdas",
+    "run_study",
+    "same_lambda",
+    "solve_scenario",
+    "with_drawn_states",
+    "write_plots",
+]
 
 log = logging.getLogger(__name__)
 
 Backend = Literal["loky", "dask"]
+#: two load multipliers closer than this (relative to max(1, |lambda|)) are the same step
+LAMBDA_TOL = 1e-9
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
 
@@ -89,7 +103,12 @@ def _cold(analysis: Analysis) -> Analysis:
 
 
 def solve_scenario(sc: Scenario) -> xr.Dataset:
-    """Run the load path of one scenario and return its one-scenario dataset."""
+    """Run the load path of one scenario and return its one-scenario dataset.
+
+    The multipliers the study's figures draw (:attr:`Scenario.draw`) that the load path did
+    not reach are solved after it and stored as steps like the others
+    (:func:`with_drawn_states`).
+    """
     analysis = _cold(_analysis(sc.group))
     lp = load_path(
         analysis,
@@ -100,7 +119,50 @@ def solve_scenario(sc: Scenario) -> xr.Dataset:
         lam_cap=sc.loads["lambda_cap"],
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
-    return scenario_dataset(sc, lp, analysis)
+    return scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis)
+
+
+def same_lambda(a: float, b: float) -> bool:
+    """Whether two load multipliers are the same step (within :data:`LAMBDA_TOL`)."""
+    return abs(a - b) <= LAMBDA_TOL * max(1.0, abs(a), abs(b))
+
+
+def missing_lambdas(solved: Sequence[float], wanted: Sequence[float], upper: float) -> list[float]:
+    """The multipliers of ``wanted`` that are not ``solved`` and may be admissible.
+
+    A multiplier is missing when no solved one is :func:`same_lambda` as it. Those at or
+    above ``upper`` (the smallest multiplier found inadmissible; NaN: none) are left out:
+    the admissible multipliers of a scene form an interval (its set of admissible
+    ``(lambda, F)`` is convex and holds ``lambda = 0`` or nothing), so they have no
+    admissible state.
+    """
+    return [
+        float(w) for w in wanted
+        if not any(same_lambda(w, s) for s in solved) and not (math.isfinite(upper) and w >= upper)
+    ]
+
+
+def with_drawn_states(analysis: Analysis, lp: LoadPathResult, lams: Sequence[float]) -> LoadPathResult:
+    """``lp`` with the multipliers ``lams`` solved and added to its steps (when missing).
+
+    See :func:`missing_lambdas`. Nothing is solved when the path has no optimal step. The
+    counts and times of the result include the added solves.
+    """
+    if not any(r.ok for r in lp.steps):
+        return lp
+    todo = missing_lambdas([r.lam for r in lp.steps], lams, lp.lambda_upper)
+    if not todo:
+        return lp
+    t0 = time.perf_counter()
+    extra = [analysis.solve(lam, lp.alpha, lp.settlements) for lam in todo]
+    log.debug("solved the drawn states %s", todo)
+    return replace(
+        lp,
+        steps=lp.steps + extra,
+        n_solves=lp.n_solves + len(extra),
+        solve_time=lp.solve_time + sum(r.solve_time for r in extra),
+        wall_time=lp.wall_time + time.perf_counter() - t0,
+    )
 
 
 # ----------------------------------------------------------------------------- caller side
@@ -140,11 +202,12 @@ def _grouped(scenarios: list[Scenario]) -> list[Scenario]:
     return sorted(scenarios, key=lambda sc: first[sc.group])
 
 
-def write_plots(ds: xr.Dataset, outdir: Path) -> list[Path]:
-    """Figures of a results dataset (:func:`tce.plot.write_figures`), imported only when drawn."""
+def write_plots(ds: xr.Dataset, outdir: Path, jobs: int = 1) -> list[Path]:
+    """Figures and interactive view of a results dataset (:func:`tce.plot.write_figures`,
+    ``[plots]`` of the study), drawn by up to ``jobs`` processes; imported only when drawn."""
     from .. import plot
 
-    return list(plot.write_figures(ds, Path(outdir)))
+    return list(plot.write_figures(ds, Path(outdir), jobs=jobs))
 
 
 def _solve_missing(
@@ -226,5 +289,5 @@ def run_study(
     write_atomic(ds, report.results)
     log.info("wrote %s", report.results)
     if plots:
-        report.figures = write_plots(ds, directory)
+        report.figures = write_plots(ds, directory, jobs=jobs)
     return report

@@ -13,12 +13,13 @@ in that order, each expanded :class:`Scenario` carrying everything a worker need
 
 from __future__ import annotations
 
+import fnmatch
 import itertools
 import json
 import math
 import tomllib
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -28,7 +29,16 @@ from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError,
 from ..structures.assembly import Assembly
 from ..core.material import Material
 
-__all__ = ["Scenario", "Study", "StudyError", "build_material", "build_structure", "load_study", "parse_study"]
+__all__ = [
+    "PlotsSection",
+    "Scenario",
+    "Study",
+    "StudyError",
+    "build_material",
+    "build_structure",
+    "load_study",
+    "parse_study",
+]
 
 COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
 #: swept parameters that change the structure (the others change material or settlement)
@@ -162,6 +172,73 @@ class SweepSection(_Strict):
         return [(k, list(v)) for k, v in self if v is not None]
 
 
+#: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
+PLOT_KINDS = ("thrust", "states", "thrust_lines", "base", "mechanism", "summary", "view")
+#: studies with more scenarios draw per-scenario figures only for those ``[plots] scenarios`` names
+MAX_DRAWN_SCENARIOS = 12
+
+
+class PlotsSection(_Strict):
+    """``[plots]``: the states, scenarios and figure kinds a study draws (docs/studies.md).
+
+    Attributes
+    ----------
+    steps : list
+        Load multipliers to draw (numbers >= 0) and ``"max"`` (lambda_max). A number that
+        is not a step of the load path is solved, never interpolated.
+    scenarios : list of str, optional
+        Scenario names or shell patterns (``"outward/*"``) drawn in the per-scenario figures,
+        the thrust curves and the interactive view. Default: every scenario when the study
+        has at most :data:`MAX_DRAWN_SCENARIOS`, none otherwise (summary figures only).
+    kinds : list of str, optional
+        Figure kinds among :data:`PLOT_KINDS`; default: every kind that applies except
+        ``"base"``.
+    """
+
+    steps: list[Any] = Field(default_factory=lambda: [0.0, "max"])
+    scenarios: list[str] | None = None
+    kinds: list[Literal[PLOT_KINDS]] | None = None  # type: ignore[valid-type]
+
+    @field_validator("steps")
+    @classmethod
+    def _steps(cls, v: list[Any]) -> list[Any]:
+        if not v:
+            raise ValueError('give at least one load multiplier, e.g. [0.0, "max"]')
+        out: list[Any] = []
+        for item in v:
+            ok = item == "max" or (
+                isinstance(item, int | float) and not isinstance(item, bool) and math.isfinite(item) and item >= 0
+            )
+            if not ok:
+                raise ValueError(f'{item!r} is neither a load multiplier >= 0 nor "max"')
+            value = "max" if item == "max" else float(item)
+            if value not in out:
+                out.append(value)
+        return out
+
+    @field_validator("scenarios", "kinds")
+    @classmethod
+    def _not_empty(cls, v: list[str] | None) -> list[str] | None:
+        if v is not None and not v:
+            raise ValueError("give at least one entry or remove the key")
+        return v
+
+    @property
+    def lambdas(self) -> list[float]:
+        """The numeric load multipliers of :attr:`steps`."""
+        return [s for s in self.steps if s != "max"]
+
+    def unmatched(self, names: list[str]) -> list[str]:
+        """Entries of :attr:`scenarios` that match none of ``names``."""
+        return [p for p in self.scenarios or [] if not any(fnmatch.fnmatchcase(n, p) for n in names)]
+
+    def select(self, names: list[str]) -> list[str]:
+        """The scenarios of ``names`` (in that order) drawn per scenario (see :attr:`scenarios`)."""
+        if self.scenarios is None:
+            return list(names) if len(names) <= MAX_DRAWN_SCENARIOS else []
+        return [n for n in names if any(fnmatch.fnmatchcase(n, p) for p in self.scenarios)]
+
+
 class StudyFile(_Strict):
     """The whole study file."""
 
@@ -171,6 +248,7 @@ class StudyFile(_Strict):
     loads: LoadsSection = LoadsSection()
     sweep: SweepSection = SweepSection()
     scenarios: dict[str, dict[str, Vector6]] = Field(default_factory=lambda: {"none": {}})
+    plots: PlotsSection = PlotsSection()
 
     @field_validator("sweep")
     @classmethod
@@ -202,6 +280,10 @@ class Scenario:
         Validated ``[structure]`` and ``[material]`` sections with the swept values applied.
     loads : dict
         ``lambda_step``, ``tolerance``, ``lambda_cap``.
+    draw : tuple of float
+        Load multipliers the study's figures draw for this scenario (``[plots] steps``,
+        empty unless ``[plots]`` selects the scenario): solved after the load path when
+        they are not steps of it. Not part of :attr:`key`: figures do not change answers.
     """
 
     name: str
@@ -212,6 +294,7 @@ class Scenario:
     structure: dict[str, Any]
     material: dict[str, Any]
     loads: dict[str, float]
+    draw: tuple[float, ...] = ()
 
     @property
     def group(self) -> str:
@@ -257,7 +340,11 @@ class Study:
 
     def scenarios(self) -> list[Scenario]:
         """The cartesian product of settlement cases, directions and sweeps, in file order."""
-        return list(self._expand())
+        out = list(self._expand())
+        plots = self.spec.plots
+        drawn = set(plots.select([sc.name for sc in out]))
+        lams = tuple(plots.lambdas)
+        return [replace(sc, draw=lams) if lams and sc.name in drawn else sc for sc in out]
 
     def _expand(self) -> Iterator[Scenario]:
         spec = self.spec
@@ -363,6 +450,7 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
         spec = spec.model_copy(update={"structure": spec.structure.model_copy(update={"path": str(where)})})
     study = Study(path, text, spec)
     _check_scenarios(study)
+    _check_plots(study)
     return study
 
 
@@ -419,3 +507,14 @@ def _check_scenarios(study: Study) -> None:
             )
         if any(not math.isfinite(u) for v in sc.settlements.values() for u in v):
             raise StudyError(f"{study.path}: scenarios.{sc.settlement}: a displacement overflows; fix: smaller values")
+
+
+def _check_plots(study: Study) -> None:
+    """Every ``[plots] scenarios`` entry names (or matches) a scenario of the study."""
+    names = [sc.name for sc in study._expand()]
+    for entry in study.spec.plots.unmatched(names):
+        k = (study.spec.plots.scenarios or []).index(entry)
+        raise StudyError(
+            f"{study.path}: plots.scenarios[{k}]: no scenario named {entry!r}; "
+            f"fix: use one of {names[:8]}{' ...' if len(names) > 8 else ''} (or a pattern such as 'outward/*')"
+        )
