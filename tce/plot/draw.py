@@ -198,19 +198,27 @@ def torque_arcs(
     centres: NDArray[np.float64], normals: NDArray[np.float64], torques: NDArray[np.float64], scale: float
 ) -> list[NDArray[np.float64]]:
     """3D polylines: a 270-degree arc of radius ``scale * |T|`` around each normal, turning by
-    the right-hand rule with the torque's sign, and an arrow head at its end."""
-    segs = []
-    for c, n, t in zip(centres, normals, torques):
-        a = np.cross(n, [0.0, 0.0, 1.0] if abs(n[2]) < 0.9 else [1.0, 0.0, 0.0])
-        a /= np.linalg.norm(a)
-        b = np.cross(n, a)  # (a, b, n) right-handed: positive angle = positive torque
-        r = scale * abs(t)
-        phi = np.linspace(0.0, 1.5 * math.pi, 19) * math.copysign(1.0, t)
-        arc = c + r * (np.outer(np.cos(phi), a) + np.outer(np.sin(phi), b))
-        tip, tangent = arc[-1], arc[-1] - arc[-2]
-        tangent /= np.linalg.norm(tangent)
-        radial = (tip - c) / r
-        head = 0.35 * r
-        segs.append(arc)
-        segs.append(np.array([tip - head * (tangent - 0.6 * radial), tip, tip - head * (tangent + 0.6 * radial)]))
-    return segs
+    the right-hand rule with the torque's sign, and an arrow head at its end (two polylines
+    per torque, arc then head)."""
+    c = np.asarray(centres, float).reshape(-1, 3)
+    n = np.asarray(normals, float).reshape(-1, 3)
+    t = np.asarray(torques, float).ravel()
+    if not len(t):
+        return []
+    ref = np.where(np.abs(n[:, 2:3]) < 0.9, [[0.0, 0.0, 1.0]], [[1.0, 0.0, 0.0]])
+    a = np.cross(n, ref)
+    a /= np.linalg.norm(a, axis=1)[:, None]
+    b = np.cross(n, a)  # (a, b, n) right-handed: positive angle = positive torque
+    r = (scale * np.abs(t))[:, None, None]
+    phi = np.linspace(0.0, 1.5 * math.pi, 19)[None, :] * np.sign(t)[:, None]
+    arcs = c[:, None, :] + r * (np.cos(phi)[..., None] * a[:, None, :] + np.sin(phi)[..., None] * b[:, None, :])
+    tip = arcs[:, -1]
+    tangent = tip - arcs[:, -2]
+    tangent /= np.linalg.norm(tangent, axis=1)[:, None]
+    radial = (tip - c) / r[:, 0]
+    h = 0.35 * r[:, 0]
+    heads = np.stack([tip - h * (tangent - 0.6 * radial), tip, tip - h * (tangent + 0.6 * radial)], axis=1)
+    out: list[NDArray[np.float64]] = []
+    for arc, head in zip(arcs, heads):
+        out += [arc, head]
+    return out

@@ -55,6 +55,7 @@ from matplotlib.colors import to_hex
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon
+from matplotlib.ticker import MaxNLocator
 from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
@@ -131,6 +132,8 @@ class _Grid:
             for ax in row:
                 ax.tick_params(labelsize=FONT - 0.5, length=2.5, pad=1.5)
                 ax.ticklabel_format(useOffset=False)
+                ax.xaxis.set_major_locator(MaxNLocator(6))
+                ax.yaxis.set_major_locator(MaxNLocator(6))
 
 
 def _legend_rows(labels: Sequence[str], width: float) -> tuple[int, int]:
@@ -406,20 +409,22 @@ class _Sheet:
     MIN_WIDTH = 5.0  # inches: room for the title and the legend
 
     def __init__(self, nrows: int, ncols: int, lo: NDArray, hi: NDArray, width: float, title: float,
-                 below: float, camera: draw.Camera, top: float = 0.45) -> None:
+                 below: float, camera: draw.Camera, top: float = 0.45, header: float = 0.0) -> None:
         self.lo, ext = np.asarray(lo, float), np.asarray(hi, float) - np.asarray(lo, float)
         self.k = width / ext[0]  # inches per metre
         gap, self.title_h = self.GAP / self.k, title / self.k
         self.cell = np.array([ext[0] + gap, ext[1] + self.title_h + gap])
         self.strip = 0.3 / self.k  # scale bar and axes
         data_w, data_h = ncols * self.cell[0], nrows * self.cell[1] + self.strip
+        self.header_h = header / self.k
+        data_h += self.header_h
         fw, fh = max(data_w * self.k + 0.2, self.MIN_WIDTH), data_h * self.k + top + below
         self.fig = Figure(figsize=(fw, fh))
         left = 0.5 * (fw - data_w * self.k)
         self.ax = self.fig.add_axes((left / fw, below / fh, data_w * self.k / fw, data_h * self.k / fh))
         self.ax.set_axis_off()
         self.ax.set_xlim(0.0, data_w)
-        self.ax.set_ylim(-data_h, 0.0)
+        self.ax.set_ylim(-data_h + self.header_h, self.header_h)
         self.width, self.height, self.nrows, self.camera = fw, fh, nrows, camera
         self._scale_bar(ext)
 
@@ -432,6 +437,11 @@ class _Sheet:
         x = (c + 0.5) * self.cell[0]
         y = -r * self.cell[1] - 0.2 * self.GAP / self.k
         self.ax.text(x, y, text, ha="center", va="top", fontsize=FONT, color=colour)
+
+    def header(self, c: int, text: str, colour: str = "black") -> None:
+        """Text above column ``c`` (in the header band)."""
+        self.ax.text((c + 0.5) * self.cell[0], self.header_h, text, ha="center", va="top", fontsize=FONT,
+                     color=colour)
 
     def note(self, r: int, c: int, text: str) -> None:
         """A framed message in the middle of panel ``(r, c)``."""
@@ -627,23 +637,34 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
     art = draw.BlockArt.of(asm, camera)
     lo, hi = _content_box(art, 0.5 * scales.fmax * scales.force + 0.03 * asm.size)
     many = len(targets) > 1
-    cols = len(names) if many else min(len(names), 2)
-    rows = len(targets) if many else math.ceil(len(names) / cols)
     across = many and len(names) == 1  # one scenario: its states side by side
+    grid = many and not across  # a column per scenario, a row per target: headers name them
     if across:
         cols, rows = min(len(targets), MAX_COLUMNS), math.ceil(len(targets) / MAX_COLUMNS)
-    notes = {k: st.note for k, st in states.items() if st.step is not None and st.note}
-    title_lines = 1 + max((_wrap(n, 3.0).count("\n") + 1 for n in notes.values()), default=0)
-    handles = _state_handles(scales, chain is not None, any(t == "max" for t in targets))
+    elif grid:
+        cols, rows = len(names), len(targets)
+    else:
+        cols = min(len(names), 2)
+        rows = math.ceil(len(names) / cols)
     width = 3.0 if camera.flat else 3.2
+    # what holds for every state of a scenario (outcome, non-unique) is said once, in its header
+    common = {s: _common_note([states[(s, t)] for t in targets if (s, t) in states]) for s in names}
+    heads = {s: s + ("\n" + _wrap(common[s], width) if common[s] else "") for s in names} if many else {}
+    header_lines = max((h.count("\n") + 1 for h in heads.values()), default=0)
+    cell_notes = {k: _rest(st.note, common[k[0]] if many else "") for k, st in states.items() if st.step is not None}
+    cell_lines = 1 + max((_wrap(n, width).count("\n") + 1 for n in cell_notes.values() if n), default=0)
+    handles = _state_handles(scales, chain is not None, any(t == "max" for t in targets))
     below = _legend_height([x.get_label() for x in handles], max(cols * (width + _Sheet.GAP), _Sheet.MIN_WIDTH))
-    sheet = _Sheet(rows, cols, lo, hi, width, 0.16 * title_lines + 0.08, below, camera)
+    sheet = _Sheet(rows, cols, lo, hi, width, 0.16 * cell_lines + 0.08, below, camera,
+                   header=0.16 * header_lines + 0.05 if grid else 0.0)
     head = 0.04 * asm.size
     for s, t in panels:
         if across:
             r, c = divmod(targets.index(t), cols)
+        elif grid:
+            r, c = targets.index(t), names.index(s)
         else:
-            r, c = (targets.index(t), names.index(s)) if many else divmod(names.index(s), cols)
+            r, c = divmod(names.index(s), cols)
         st = states[(s, t)]
         off = sheet.offset(r, c)
         if st.step is None:
@@ -651,14 +672,29 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
             sheet.note(r, c, _wrap(f"{st.label}: {st.note}", 3.0))
         else:
             _state_panel(sheet.ax, off, ds, asm, art, arrays, st, camera, scales, chain, head)
-        note = notes.get((s, t), "")
-        sheet.title(r, c, f"{s}: {st.label}" + ("\n" + _wrap(note, 3.0) if note else ""),
-                    NOTE_COLOUR if note else "black")
+        note = cell_notes.get((s, t), "")
+        label = st.label if many else f"{s}: {st.label}"
+        sheet.title(r, c, label + ("\n" + _wrap(note, width) if note else ""), NOTE_COLOUR if note else "black")
+    for s in names if grid else []:
+        sheet.header(names.index(s), heads[s], NOTE_COLOUR if common[s] else "black")
     where = "elevation" if camera == draw.Camera.elevation() else "axonometric view"
-    sheet.fig.suptitle(title or f"{_study(ds)}: internal stress states ({where})", fontsize=FONT + 2,
+    what = f"{names[0]}: " if across else ""
+    sub = "\n" + _wrap(common[names[0]], sheet.width) if across and common[names[0]] else ""
+    sheet.fig.suptitle(title or f"{_study(ds)}: {what}internal stress states ({where}){sub}", fontsize=FONT + 2,
                        y=1 - 0.12 / sheet.height)
     _bottom_legend(sheet, handles)
     return sheet.fig
+
+
+def _common_note(states: Sequence[State]) -> str:
+    """The note every drawn state of a scenario shares ("" if they differ or have none)."""
+    notes = {st.note for st in states if st.step is not None}
+    return notes.pop() if len(notes) == 1 else ""
+
+
+def _rest(note: str, common: str) -> str:
+    """``note`` without what the scenario's header already says."""
+    return "" if note == common else note
 
 
 # ---------------------------------------------------------------------------- lines of thrust
@@ -781,11 +817,10 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
                         gid=f"base:{itf_names[k]}:{s}")
                 pts.append(xy[None])
         allp = np.vstack(pts)
-        lo, hi = allp.min(axis=0), allp.max(axis=0)
-        pad = 0.08 * max(np.ptp(allp, axis=0).max(), 1e-9)
-        ax.set_xlim(lo[0] - pad, hi[0] + pad)
-        ax.set_ylim(lo[1] - pad, hi[1] + pad)
-        ax.set_aspect("equal", adjustable="datalim")
+        mid = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
+        half = 0.58 * max(np.ptp(allp, axis=0).max(), 1e-9)  # square panel, equal scales
+        ax.set_xlim(mid[0] - half, mid[0] + half)
+        ax.set_ylim(mid[1] - half, mid[1] + half)
         ax.grid(True, linewidth=0.3, alpha=0.5)
         ax.set_xlabel(f"{axes_names[0]} (m)", fontsize=FONT - 0.5)
         ax.set_ylabel(f"{axes_names[1]} (m)", fontsize=FONT - 0.5)

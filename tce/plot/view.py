@@ -71,27 +71,26 @@ def _lines(segments: Sequence[NDArray[np.float64]] | NDArray[np.float64]) -> dic
 
 
 def _arrow_polylines(start: NDArray[np.float64], end: NDArray[np.float64], head: float) -> NDArray[np.float64]:
-    """Shaft and a wire-cone head (four lines from the tip) of each arrow, as one ``(m, 3)``
-    array with NaN rows between the lines."""
+    """Shaft and a wire-cone head (four lines from the tip) of each arrow, as one ``(15 n, 3)``
+    array: 15 rows per arrow, NaN rows between the lines (all NaN for an arrow of no length)."""
     start, end = np.asarray(start, float).reshape(-1, 3), np.asarray(end, float).reshape(-1, 3)
     d = end - start
     n = np.linalg.norm(d, axis=1)
     keep = np.isfinite(n) & (n > 1e-12)
-    a, b, d, n = start[keep], end[keep], d[keep], n[keep]
-    if not len(a):
-        return np.empty((0, 3))
-    u = d / n[:, None]
+    u = np.where(keep[:, None], d, [[0.0, 0.0, 1.0]]) / np.where(keep, n, 1.0)[:, None]
     ref = np.where(np.abs(u[:, 2:3]) < 0.9, [[0.0, 0.0, 1.0]], [[1.0, 0.0, 0.0]])
     p = np.cross(u, ref)
     p /= np.linalg.norm(p, axis=1)[:, None]
     q = np.cross(u, p)
-    h = np.minimum(head, 0.4 * n)[:, None]
-    back = b - h * u
-    gap = np.full_like(a, np.nan)
-    rows = [a, b, gap]
+    h = np.minimum(head, 0.4 * np.where(keep, n, 0.0))[:, None]
+    back = end - h * u
+    gap = np.full_like(start, np.nan)
+    rows = [start, end, gap]
     for v in (p, q, -p, -q):
-        rows += [b, back + 0.35 * h * v, gap]
-    return np.stack(rows, axis=1).reshape(-1, 3)
+        rows += [end, back + 0.35 * h * v, gap]
+    out = np.stack(rows, axis=1)
+    out[~keep] = np.nan
+    return out.reshape(-1, 3)
 
 
 def _mesh(ds: xr.Dataset) -> tuple[dict, dict]:
@@ -132,24 +131,37 @@ def _scales(ds: xr.Dataset, names: Sequence[str], size: float) -> tuple[float, f
     return force, torque
 
 
-def _state(pp: NDArray, res: NDArray, tq: NDArray, lam: float, itf_names: list[str], normals: NDArray,
-           centres: NDArray, weights: NDArray, alpha: float, force: float, torque: float, tol: float,
-           head: float) -> dict:
-    """Dynamic traces of one step: resultants, pressure points, torques, lateral loads."""
-    ok = np.all(np.isfinite(pp), axis=1) & np.all(np.isfinite(res), axis=1)
+def _split(rows: NDArray[np.float64], counts: NDArray[np.int64], per: int) -> list[dict[str, list]]:
+    """Cut the polyline rows of consecutive groups (``counts`` items of ``per`` rows each)
+    into one trace each."""
+    edges = np.concatenate([[0], np.cumsum(counts * per)])
+    return [_lines(rows[edges[k]:edges[k + 1]]) for k in range(len(counts))]
+
+
+def _states(pp: NDArray, res: NDArray, tq: NDArray, lam: NDArray, itf_names: list[str], normals: NDArray,
+            centres: NDArray, weights: NDArray, alpha: float, force: float, torque: float, tol: float,
+            head: float) -> list[dict]:
+    """Dynamic traces of the steps ``(k, ...)`` of one scenario: resultants, pressure points,
+    torques, lateral loads (computed for all steps at once, then cut per step)."""
+    ok = np.all(np.isfinite(pp), axis=2) & np.all(np.isfinite(res), axis=2)
     vec = res[ok] * force
-    arrows = _arrow_polylines(pp[ok] - 0.5 * vec, pp[ok] + 0.5 * vec, head)
+    arrows = _split(_arrow_polylines(pp[ok] - 0.5 * vec, pp[ok] + 0.5 * vec, head),
+                    ok.sum(axis=1), 15)
+    lateral = lam[:, None, None] * weights[None, :, None] * lateral_direction(alpha)[None, None, :] * force
+    live = np.broadcast_to((lam > 0)[:, None], lateral.shape[:2]) & (force > 0)
+    starts = np.broadcast_to(centres, lateral.shape)
+    loads = _split(_arrow_polylines(starts[live], (starts + lateral)[live], head), live.sum(axis=1), 15)
     sig = ok & np.isfinite(tq) & (np.abs(np.nan_to_num(tq)) > tol)
-    arcs = draw.torque_arcs(pp[sig], normals[sig], tq[sig], torque) if torque > 0 and sig.any() else []
-    norm = np.linalg.norm(res, axis=1)
-    hover = [f"{itf_names[m]}<br>R = ({res[m, 0]:.4g}, {res[m, 1]:.4g}, {res[m, 2]:.4g}) kN, |R| = "
-             f"{norm[m]:.4g} kN<br>torque {tq[m]:.3g} kN m" for m in np.flatnonzero(ok)]
-    lateral = lam * weights[:, None] * lateral_direction(alpha)[None, :] * force
-    loads = _arrow_polylines(centres, centres + lateral, head) if lam > 0 and force > 0 else np.empty((0, 3))
-    p = np.round(pp[ok], DIGITS)
-    return dict(lam=lam, res=_lines(arrows), pts=dict(x=p[:, 0].tolist(), y=p[:, 1].tolist(), z=p[:, 2].tolist(),
-                                                        text=hover),
-                tq=_lines(arcs), lat=_lines(loads))
+    norm = np.linalg.norm(np.nan_to_num(res), axis=2)
+    out = []
+    for k in range(len(lam)):
+        arcs = draw.torque_arcs(pp[k][sig[k]], normals[sig[k]], tq[k][sig[k]], torque) if torque > 0 else []
+        hover = [f"{itf_names[m]}<br>R = ({res[k, m, 0]:.4g}, {res[k, m, 1]:.4g}, {res[k, m, 2]:.4g}) kN, "
+                 f"|R| = {norm[k, m]:.4g} kN<br>torque {tq[k, m]:.3g} kN m" for m in np.flatnonzero(ok[k])]
+        p = np.round(pp[k][ok[k]], DIGITS)
+        out.append(dict(lam=float(lam[k]), res=arrows[k], tq=_lines(arcs), lat=loads[k],
+                        pts=dict(x=p[:, 0].tolist(), y=p[:, 1].tolist(), z=p[:, 2].tolist(), text=hover)))
+    return out
 
 
 def _mechanism(ds: xr.Dataset, s: str) -> dict:
@@ -196,12 +208,10 @@ def view_data(ds: xr.Dataset, names: Sequence[str] | None = None) -> dict:
         fmax = float(np.nanmax(np.linalg.norm(res[ok], axis=-1), initial=0.0)) if ok.size else 0.0
         tol = TORQUE_TOL * fmax * asm.size
         outcome = outcome_note(ds, s)
-        steps = []
-        for k in ok:
-            st = _state(pp[k], res[k], tq[k], float(lam[k]), itf_names, normals, centres, weights, alpha, force,
-                        torque, tol, head)
+        steps = _states(pp[ok], res[ok], tq[ok], lam[ok], itf_names, normals, centres, weights, alpha, force, torque,
+                        tol, head)
+        for st, k in zip(steps, ok):
             st["note"] = "; ".join(n for n in (outcome, NOT_UNIQUE if unique[k] == 0.0 else "") if n)
-            steps.append(st)
         lmax = float(value(ds, "lambda_max", s))
         at_max = [n for n, st in enumerate(steps) if math.isfinite(lmax) and abs(st["lam"] - lmax) <= 1e-12]
         out.append(dict(name=s, steps=steps, start=at_max[-1] if at_max else max(len(steps) - 1, 0),
