@@ -62,8 +62,9 @@ __all__ = [
 
 Target = float | str  # a load multiplier or "max"
 
-#: swept coordinates that may lie along ``scenario``, in the order studies expand them
-SWEPT = ("alpha", "friction", "magnitude", "inner_radius", "thickness", "depth", "radius")
+#: swept coordinates that may lie along ``scenario``, in the order studies expand them, with units
+SWEPT = {"alpha": "degree", "friction": "–", "magnitude": "× the settlements", "inner_radius": "m", "thickness": "m",
+         "depth": "m", "radius": "m"}
 #: figure kinds drawn by default (``base`` is asked for by name)
 DEFAULT_KINDS = tuple(k for k in PLOT_KINDS if k != "base")
 

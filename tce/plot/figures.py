@@ -61,6 +61,7 @@ from numpy.typing import NDArray
 from ..structures.assembly import Assembly
 from . import draw
 from .data import (
+    SWEPT,
     State,
     assembly,
     chain_interfaces,
@@ -981,12 +982,13 @@ def summary_figure(ds: xr.Dataset) -> Figure:
                         color=COLOURS[(k + 1) % len(COLOURS)], label=f"{o} (no λmax)", clip_on=False)
             finite = [v for v in lmax.values() if math.isfinite(v)]
             _min_span(ax, np.array(finite + [0.0]))
-            ax.set_xlabel(p, fontsize=FONT)
+            ax.set_xlabel(f"{p} ({SWEPT[p]}); points: scenarios", fontsize=FONT)
             ax.set_ylabel("λmax (–)", fontsize=FONT)
             ax.grid(True, linewidth=0.3, alpha=0.6)
             ax.set_title(_wrap("settlement: " + join_names(row, 6), w), fontsize=FONT - 0.5, loc="left", y=1.0)
-            ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=FONT - 1, frameon=False,
-                      title=", ".join(others) if others else None, title_fontsize=FONT - 1)
+            if others or bad:
+                ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=FONT - 1, frameon=False,
+                          title=", ".join(others) if others else None, title_fontsize=FONT - 1)
     grid.fig.suptitle(f"{_study(ds)}: λmax of {len(names)} scenarios", fontsize=FONT + 2, y=1 - 0.18 / grid.height)
     return grid.fig
 
