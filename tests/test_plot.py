@@ -313,7 +313,7 @@ def test_hinge_lines_cross_the_arch(planar: xr.Dataset) -> None:
 
 
 def test_one_mechanism_for_all_settlements(planar: xr.Dataset) -> None:
-    groups = figures.mechanism_groups(planar, data.scenarios(planar))
+    groups = data.mechanism_groups(planar, data.scenarios(planar))
     assert groups == [data.scenarios(planar)]  # the limit analysis does not see settlements
 
 

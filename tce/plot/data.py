@@ -49,11 +49,13 @@ __all__ = [
     "group_identical",
     "hinge_segments",
     "join_names",
+    "mechanism_groups",
     "optimal_steps",
     "outcome_note",
     "plot_spec",
     "scenarios",
     "slug",
+    "state_pages",
     "structure_frame",
     "support_forces",
     "swept_parameters",
@@ -313,6 +315,46 @@ def unique_note(ds: xr.Dataset, scenario: str) -> str:
     ok = optimal_steps(ds, scenario)
     u = value(ds, "unique", scenario).astype(float)[ok]
     return NOT_UNIQUE if ok.size and np.all(u == 0.0) else ""
+
+
+# ---------------------------------------------------------------------------- what each figure holds
+MAX_COLUMNS = 4  # state panels per row
+MAX_ROWS = 6  # rows of state panels per page
+
+
+def state_pages(names: Sequence[str], targets: Sequence[object]) -> list[list[tuple[str, object]]]:
+    """Panels ``(scenario, target)`` of :func:`states_figure`, split into pages.
+
+    Several targets: one column per scenario (at most :data:`MAX_COLUMNS` a page), one row
+    per target. One target: the scenarios in two columns (at most :data:`MAX_ROWS` rows a
+    page).
+    """
+    names, targets = list(names), list(targets)
+    per = MAX_COLUMNS if len(targets) > 1 else 2 * MAX_ROWS
+    return [[(s, t) for s in names[i:i + per] for t in targets] for i in range(0, len(names), per)]
+
+
+def mechanism_groups(ds: xr.Dataset, names: Sequence[str]) -> list[list[str]]:
+    """Scenarios of ``names`` grouped by identical collapse mechanism (scenarios without one
+    are left out). The direct limit analysis does not see settlements, so all the
+    scenarios of one structure, material and direction share theirs."""
+    mech = []
+    for s in names:
+        if "mechanism" not in ds:
+            break
+        v = np.asarray(ds["mechanism"].sel(scenario=s).transpose("block", "dof").values, float)
+        if np.all(np.isfinite(v)) and np.any(v):
+            mech.append((s, v, value(ds, "interface_mode", s).astype(str)))
+    groups: list[list[int]] = []
+    for i, (_, v, m) in enumerate(mech):
+        for g in groups:
+            _, v0, m0 = mech[g[0]]
+            if np.allclose(v0, v, rtol=1e-6, atol=1e-9 * np.abs(v0).max()) and np.array_equal(m0, m):
+                g.append(i)
+                break
+        else:
+            groups.append([i])
+    return [[mech[i][0] for i in g] for g in groups]
 
 
 # ---------------------------------------------------------------------------- frame of the structure

@@ -61,6 +61,7 @@ from numpy.typing import NDArray
 from ..structures.assembly import Assembly
 from . import draw
 from .data import (
+    MAX_COLUMNS,
     SWEPT,
     State,
     assembly,
@@ -83,7 +84,6 @@ from .data import (
 
 __all__ = [
     "base_figure",
-    "mechanism_groups",
     "mechanism_view",
     "states_figure",
     "summary_figure",
@@ -106,8 +106,6 @@ MECHANISM_FRACTION = 0.06  # largest drawn mechanism displacement, as a fraction
 TORQUE_TOL = 1e-3  # torques below TORQUE_TOL * max|R| * size are not drawn
 MAX_ARROWS = 40  # resultants drawn per panel (the largest)
 FACET_AT = 8  # more scenarios than this in the thrust curves: one row per value of the other parameters
-MAX_COLUMNS = 4  # state panels per row
-MAX_ROWS = 6  # rows of state panels per page
 FONT = 7.5
 
 
@@ -595,18 +593,6 @@ def _state_handles(scales: _Scales, chain: bool, hinges: bool) -> list:
     return h
 
 
-def state_pages(names: Sequence[str], targets: Sequence[object]) -> list[list[tuple[str, object]]]:
-    """Panels ``(scenario, target)`` of :func:`states_figure`, split into pages.
-
-    Several targets: one column per scenario (at most :data:`MAX_COLUMNS` a page), one row
-    per target. One target: the scenarios in two columns (at most :data:`MAX_ROWS` rows a
-    page).
-    """
-    names, targets = list(names), list(targets)
-    per = MAX_COLUMNS if len(targets) > 1 else 2 * MAX_ROWS
-    return [[(s, t) for s in names[i:i + per] for t in targets] for i in range(0, len(names), per)]
-
-
 def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: str = "") -> Figure:
     """Interface resultants, torques, lines of thrust and hinges of drawn states.
 
@@ -615,7 +601,7 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
     ds : xarray.Dataset
     panels : sequence of (scenario, target)
         One panel each (target: a multiplier or ``"max"``, see :func:`tce.plot.data.find_state`),
-        laid out by :func:`state_pages`: a column per scenario and a row per target when
+        laid out by :func:`tce.plot.data.state_pages`: a column per scenario and a row per target when
         the page has several of both, the targets side by side for one scenario, the
         scenarios in two columns for one target.
     title : str
@@ -836,29 +822,6 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
 
 
 # ---------------------------------------------------------------------------- mechanism
-def mechanism_groups(ds: xr.Dataset, names: Sequence[str]) -> list[list[str]]:
-    """Scenarios of ``names`` grouped by identical collapse mechanism (scenarios without one
-    are left out). The direct limit analysis does not see settlements, so all the
-    scenarios of one structure, material and direction share theirs."""
-    mech = []
-    for s in names:
-        if "mechanism" not in ds:
-            break
-        v = np.asarray(ds["mechanism"].sel(scenario=s).transpose("block", "dof").values, float)
-        if np.all(np.isfinite(v)) and np.any(v):
-            mech.append((s, v, value(ds, "interface_mode", s).astype(str)))
-    groups: list[list[int]] = []
-    for i, (_, v, m) in enumerate(mech):
-        for g in groups:
-            _, v0, m0 = mech[g[0]]
-            if np.allclose(v0, v, rtol=1e-6, atol=1e-9 * np.abs(v0).max()) and np.array_equal(m0, m):
-                g.append(i)
-                break
-        else:
-            groups.append([i])
-    return [[mech[i][0] for i in g] for g in groups]
-
-
 def mechanism_view(ds: xr.Dataset, names: Sequence[str]) -> Figure:
     """The collapse mechanism shared by ``names``: blocks displaced (exaggerated) over their
     original outlines, hinge lines marked.

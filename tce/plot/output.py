@@ -27,7 +27,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from .data import PlotSpec, assembly, chain_interfaces, plot_spec, swept_parameters
+from .data import PlotSpec, assembly, chain_interfaces, mechanism_groups, plot_spec, state_pages, swept_parameters
 from .states import missing_states, solve_states
 
 __all__ = ["PARALLEL_AT", "figure_tasks", "write_figures"]
@@ -55,8 +55,6 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
     A kind asked for that does not apply (no scenario drawn, no line of blocks, nothing
     swept, no mechanism) is logged and left out.
     """
-    from .figures import mechanism_groups, state_pages
-
     def name(stem: str, ext: str = "png") -> str:
         return f"{stem}_{tag}.{ext}" if tag else f"{stem}.{ext}"
 
