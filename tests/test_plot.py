@@ -86,7 +86,8 @@ kinds = ["states", "base", "thrust", "mechanism"]
 
 
 def inside_figure(fig: Figure) -> None:
-    """Every legend and text lies inside the figure (nothing clipped)."""
+    """Every legend and text lies inside the figure (nothing clipped), and the legends below
+    the panels overlap none of them (nor their tick labels)."""
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
     box = fig.bbox
@@ -95,6 +96,9 @@ def inside_figure(fig: Figure) -> None:
         ext = art.get_window_extent(renderer)
         assert ext.x0 >= box.x0 - 1 and ext.x1 <= box.x1 + 1, art
         assert ext.y0 >= box.y0 - 1 and ext.y1 <= box.y1 + 1, art
+    bottom = min(ax.get_tightbbox(renderer).y0 for ax in fig.axes if ax.axison or ax.collections or ax.lines)
+    for legend in fig.legends:
+        assert legend.get_window_extent(renderer).y1 <= bottom + 1, "legend over the panels"
 
 
 # ---------------------------------------------------------------------------- forces on the supports
