@@ -5,8 +5,9 @@ analysis' material, :func:`load_path` solves the TCE at ``lam = 0, step, 2 step,
 until the first step whose status is not ``optimal`` (``numerical`` steps are kept,
 reported and stepped over: they are never taken as the limit). When that step is
 ``infeasible``, it bisects between the last ``optimal`` and the first ``infeasible``
-multiplier until ``hi - lo <= max(atol, rtol * hi)``; ``lambda_max`` is the last
-``optimal`` multiplier (a safe lower bound). Every run also reports the direct
+multiplier until ``hi - lo <= max(atol, rtol * hi)`` or until no float lies between them
+(so any tolerance ends); ``lambda_max`` is the last ``optimal`` multiplier (a safe lower
+bound). A path never takes more than :data:`MAX_INCREMENTS` increments. Every run also reports the direct
 lambda_max (:mod:`tce.limit`) and the gap, so the bisection is checked each time.
 """
 
@@ -22,28 +23,35 @@ from numpy.typing import ArrayLike
 
 from ..core.analysis import Analysis
 from ..core.limit import LimitResult
+from ..core.result import Result
 from ..core.solve import TCEResult
 
-__all__ = ["LoadPathResult", "load_path"]
+__all__ = ["MAX_INCREMENTS", "LoadPathResult", "load_path"]
+
+#: Most load increments a path may take (``lam_cap / step``): about a minute of solves.
+MAX_INCREMENTS = 100_000
 
 
-@dataclass(frozen=True, eq=False)
-class LoadPathResult:
-    """A load path and its limit.
+@dataclass(frozen=True, eq=False, kw_only=True)
+class LoadPathResult(Result):
+    """A load path and its limit (``ok`` when ``status == "limit"``).
 
     Attributes
     ----------
+    status : str
+        How the path ended (also :attr:`outcome`): ``limit`` (bisected to an infeasible
+        load), ``unbounded`` (a step is unbounded: the support motion is incompatible with
+        the material), ``infeasible`` (no admissible state at lambda = 0), ``no_limit``
+        (still admissible at ``lam_cap``), ``numerical`` (undecided: the bracket, the
+        steps before the first infeasible one, or the last steps up to ``lam_cap`` could
+        not be decided, or no optimal step lies within the tolerance of the first
+        inadmissible one).
     alpha : float
         Direction of the lateral loads (degrees).
     settlements : dict
         Support motions of the scenario ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad).
     steps : list of TCEResult
         Every solve, in the order made: the increments, then the bisection.
-    outcome : str
-        ``limit`` (bisected to an infeasible load), ``unbounded`` (a step is unbounded:
-        the support motion is incompatible with the material), ``infeasible`` (no
-        admissible state at lambda = 0), ``no_limit`` (still admissible at ``lam_cap``),
-        ``numerical`` (the bracket could not be decided).
     lambda_max : float
         Last admissible multiplier of the bisection (NaN unless ``outcome == "limit"``).
     lambda_upper : float
@@ -52,21 +60,25 @@ class LoadPathResult:
         The direct limit analysis in the same direction.
     n_solves : int
     solve_time : float
-        Clarabel's time summed over the steps (s).
+        Wall time inside the solver's solve calls, summed over the steps (s).
     wall_time : float
         Time of the whole call (s).
     """
 
+    OK = ("limit",)
+
     alpha: float
     settlements: dict
     steps: list[TCEResult] = field(repr=False)
-    outcome: str
     lambda_max: float
     lambda_upper: float
     limit: LimitResult = field(repr=False)
     n_solves: int = 0
-    solve_time: float = 0.0
-    wall_time: float = 0.0
+
+    @property
+    def outcome(self) -> str:
+        """How the path ended: the :attr:`status`."""
+        return self.status
 
     @property
     def lambda_direct(self) -> float:
@@ -88,6 +100,15 @@ class LoadPathResult:
         """The optimal step at ``lambda_max``."""
         ok = [r for r in self.steps if r.ok and r.lam == self.lambda_max]
         return ok[0] if ok else None
+
+
+def _first_inadmissible(lo: float | None, steps: list[TCEResult]) -> str:
+    """Outcome when an increment is infeasible: ``limit`` above an admissible step;
+    ``infeasible`` only when every step before it was decided too (at lambda = 0, nothing
+    stands); ``numerical`` when undecided steps came first (the structure may stand)."""
+    if lo is not None:
+        return "limit"
+    return "numerical" if any(s.status == "numerical" for s in steps) else "infeasible"
 
 
 def load_path(
@@ -113,7 +134,8 @@ def load_path(
     atol, rtol : float
         Bisection stops when ``hi - lo <= max(atol, rtol * hi)``; at least one > 0.
     lam_cap : float
-        Largest multiplier tried before the path gives up (``outcome = "no_limit"``).
+        Largest multiplier tried before the path gives up (``outcome = "no_limit"``);
+        ``lam_cap / step`` may not exceed :data:`MAX_INCREMENTS`.
 
     Returns
     -------
@@ -123,12 +145,18 @@ def load_path(
         raise ValueError(f"step must be a finite number > 0, got {step!r}")
     if not (atol >= 0 and rtol >= 0 and (atol > 0 or rtol > 0)):
         raise ValueError(f"tolerances must be >= 0 and not both 0, got atol={atol!r}, rtol={rtol!r}")
+    if not lam_cap / step <= MAX_INCREMENTS:
+        raise ValueError(
+            f"lam_cap / step = {lam_cap / step:.3g} load increments, more than {MAX_INCREMENTS}: "
+            "use a larger step or a smaller lam_cap"
+        )
     t0 = time.perf_counter()
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in (settlements or {}).items()}
     steps: list[TCEResult] = []
+    solve_at = analysis.path(alpha, sett)
 
     def run(lam: float) -> TCEResult:
-        r = analysis.solve(lam, alpha, sett)
+        r = solve_at(lam)
         steps.append(r)
         return r
 
@@ -143,17 +171,21 @@ def load_path(
             lo = lam
         elif r.status == "infeasible":
             hi = lam
-            outcome = "limit" if lo is not None else "infeasible"
+            outcome = _first_inadmissible(lo, steps)
             break
         elif r.status == "unbounded":
             outcome = "unbounded"
             break
         k += 1
+    if outcome == "no_limit" and not steps[-1].ok:
+        outcome = "numerical"  # the last steps up to lam_cap are undecided: not known to stand
     if outcome == "limit":
         assert lo is not None and hi is not None
         lo_bracket = lo  # admissible end of the bracket; `lo` stays the last optimal step
         while hi - lo_bracket > max(atol, rtol * abs(hi)):
             mid = 0.5 * (lo_bracket + hi)
+            if not lo_bracket < mid < hi:
+                break  # the bracket is two neighbouring floats: no multiplier lies between them
             r = run(mid)
             direct = analysis.limit(alpha).lambda_max
             if r.status == "optimal":
@@ -170,12 +202,17 @@ def load_path(
             else:
                 outcome = "numerical"
                 break
+        if outcome == "limit" and hi - lo > max(atol, rtol * abs(hi), math.ulp(hi)):
+            # the bracket closed on undecided steps: no optimal step lies within the
+            # tolerance of the limit, so the last optimal one is not the answer
+            outcome = "numerical"
     lam_max = lo if outcome == "limit" and lo is not None else float("nan")
     return LoadPathResult(
+        status=outcome,
+        message=f"{outcome} after {len(steps)} solves",
         alpha=float(alpha),
         settlements=sett,
         steps=steps,
-        outcome=outcome,
         lambda_max=float(lam_max),
         lambda_upper=float(hi) if hi is not None else float("nan"),
         limit=analysis.limit(alpha),

@@ -19,13 +19,15 @@ from ..structures.arch import semicircular_arch
 from ..structures.params import check_positive, check_whole
 from ..structures.assembly import Assembly
 from ..core.material import Material
+from ..core.result import Result
 
 __all__ = ["ThicknessResult", "arch_minimum_thickness", "minimum_thickness"]
 
 
-@dataclass(frozen=True)
-class ThicknessResult:
-    """Outcome of a minimum-thickness bisection.
+@dataclass(frozen=True, eq=False, kw_only=True)
+class ThicknessResult(Result):
+    """Outcome of a minimum-thickness bisection (``status`` is ``optimal``: a bracket was
+    found; the thickness is a verified standing one whatever ``undecided`` says).
 
     Attributes
     ----------
@@ -36,8 +38,6 @@ class ThicknessResult:
     ratio : float
         ``thickness / reference`` (for arches, the centreline radius).
     n_solves : int
-    wall_time : float
-        Seconds.
     undecided : int
         Solves whose status was ``numerical`` (treated as "does not stand").
     """
@@ -46,7 +46,6 @@ class ThicknessResult:
     lower: float
     ratio: float
     n_solves: int
-    wall_time: float
     undecided: int = 0
 
 
@@ -84,13 +83,15 @@ def minimum_thickness(
     material = material or Material()
     t0 = time.perf_counter()
     n = undecided = 0
+    solve_time = 0.0
 
     def stands(t: float) -> bool:
-        nonlocal n, undecided
+        nonlocal n, undecided, solve_time
         n += 1
-        status = Analysis(build(t), material).solve(0.0).status
-        undecided += status == "numerical"
-        return status == "optimal"
+        r = Analysis(build(t), material).solve(0.0)
+        undecided += r.status == "numerical"
+        solve_time += r.solve_time
+        return r.status == "optimal"
 
     if not stands(hi):
         raise ValueError(f"the structure does not stand at the upper thickness {hi} m: raise it")
@@ -102,7 +103,11 @@ def minimum_thickness(
             hi = mid
         else:
             lo = mid
-    return ThicknessResult(hi, lo, hi / reference, n, time.perf_counter() - t0, undecided)
+    return ThicknessResult(
+        status="optimal", message=f"bracket [{lo:.9g}, {hi:.9g}] m after {n} solves ({undecided} undecided)",
+        solve_time=solve_time, wall_time=time.perf_counter() - t0,
+        thickness=hi, lower=lo, ratio=hi / reference, n_solves=n, undecided=undecided,
+    )
 
 
 def arch_minimum_thickness(

@@ -3,16 +3,18 @@
 :class:`Analysis` builds the operators of the spatial and (when the geometry allows) the
 planar model once, keeps one warm solver per model, and routes each scene: ``auto`` uses
 the planar LP when the geometry has a vertical symmetry plane and the scene's lateral
-direction and support motions lie in it (DESIGN.md, "model only what a scene needs"),
+direction and support motions lie in it (``docs/conventions.md``, "model only what a scene needs"),
 the spatial model otherwise. Every answer records the model that ran.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import time
+from collections.abc import Callable, Mapping
 from typing import Literal
 
-from numpy.typing import ArrayLike
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ..structures.assembly import Assembly
 from .limit import LimitResult, LimitSolver
@@ -66,13 +68,30 @@ class Analysis:
 
     def model_kind(self, alpha: float = 0.0, settlements: Settlements = None) -> str:
         """The model a scene runs on (see module docstring)."""
+        return self.scene(alpha, settlements)[0]
+
+    def scene(self, alpha: float = 0.0, settlements: Settlements = None) -> tuple[str, NDArray[np.float64]]:
+        """The model a scene runs on and its stacked support motions ``U`` (m, rad), checked.
+
+        Raises
+        ------
+        ValueError
+            A non-finite ``alpha``, an unknown support, a motion that is not 6 finite
+            numbers, or a scene out of plane when ``model='planar'`` was asked for.
+        """
+        if not np.isfinite(alpha):
+            raise ValueError(f"alpha must be a finite number, got {alpha!r}")
+        names = self.assembly.support_names
+        sett = check_settlements(names, settlements)
+        U = np.zeros((len(names), 6))
+        for name, v in sett.items():
+            U[names.index(name)] = v
         if self.choice == "spatial" or self.plane is None:
-            return "spatial"
-        sett = check_settlements(self.assembly.support_names, settlements)
+            return "spatial", U.ravel()
         inplane = scene_in_plane(self.plane, alpha, sett)
         if self.choice == "planar" and not inplane:
             raise ValueError("model='planar' but the scene's loads or support motions leave the plane")
-        return "planar" if inplane else "spatial"
+        return ("planar" if inplane else "spatial"), U.ravel()
 
     def model(self, kind: str) -> Model:
         """The operators of model ``kind`` (built on first use)."""
@@ -87,8 +106,26 @@ class Analysis:
         return self._solvers[kind]
 
     def solve(self, lam: float = 0.0, alpha: float = 0.0, settlements: Settlements = None) -> TCEResult:
-        """Minimise the TCE for one scene; see :meth:`tce.solve.TCESolver.solve`."""
-        return self.solver(self.model_kind(alpha, settlements)).solve(lam, alpha, settlements)
+        """Minimise the TCE for one scene (checked once, :meth:`scene`); see
+        :meth:`tce.core.solve.TCESolver.solve`."""
+        t0 = time.perf_counter()
+        if not np.isfinite(lam):
+            raise ValueError(f"lam must be a finite number, got {lam!r}")
+        kind, U = self.scene(alpha, settlements)
+        return self.solver(kind).solve_scene(lam, alpha, U, t0)
+
+    def path(self, alpha: float = 0.0, settlements: Settlements = None) -> Callable[[float], TCEResult]:
+        """``solve(lam)`` for one scene at many multipliers: the scene is checked once, here
+        (the load path's hot loop; each call is :meth:`solve` without the checks)."""
+        kind, U = self.scene(alpha, settlements)
+
+        def solve(lam: float) -> TCEResult:
+            t0 = time.perf_counter()
+            if not np.isfinite(lam):
+                raise ValueError(f"lam must be a finite number, got {lam!r}")
+            return self.solver(kind).solve_scene(lam, alpha, U, t0)
+
+        return solve
 
     def limit(self, alpha: float = 0.0) -> LimitResult:
         """Direct lambda_max in direction ``alpha`` (degrees), cached per direction."""

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import cvxpy as cp
 import numpy as np
@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .material import Material
 from .model import Model
+from .result import Result
 from .solve import settlement_vector
 
 __all__ = ["CvxResult", "CvxTCE"]
@@ -36,18 +37,26 @@ _STATUS = {
 }
 
 
-@dataclass(frozen=True, eq=False)
-class CvxResult:
-    """Answer of a cvxpy solve: status (DESIGN.md words), forces (nc, dim) in kN (NaN unless
-    optimal), support wrenches (ns, 6), TCE value (kN m), solver name and times (s)."""
+@dataclass(frozen=True, eq=False, kw_only=True)
+class CvxResult(Result):
+    """Answer of a cvxpy solve (statuses: :data:`tce.core.result.STATUSES`).
 
-    status: str
-    forces: NDArray[np.float64]
-    support_wrenches: NDArray[np.float64]
-    tce: float
-    solver: str
-    solve_time: float
-    wall_time: float
+    Attributes
+    ----------
+    forces : (nc, dim) ndarray
+        Contact forces (kN), NaN unless optimal.
+    support_wrenches : (ns, 6) ndarray
+        Support wrenches (kN, kN m), NaN unless optimal.
+    tce : float
+        Total complementary energy (kN m).
+
+    ``solver`` is the cvxpy solver's name; ``solve_time`` is the wall time of
+    ``Problem.solve`` (cvxpy's canonicalisation included); ``message`` is cvxpy's status.
+    """
+
+    forces: NDArray[np.float64] = field(repr=False)
+    support_wrenches: NDArray[np.float64] = field(repr=False)
+    tce: float = float("nan")
 
 
 class CvxTCE:
@@ -96,16 +105,18 @@ class CvxTCE:
         solver: str = "CLARABEL",
         **solver_options,
     ) -> CvxResult:
-        """Solve for one scene with cvxpy solver ``solver``; statuses as in DESIGN.md."""
+        """Solve for one scene with cvxpy solver ``solver`` (statuses: ``docs/conventions.md``)."""
         t0 = time.perf_counter()
         a = np.deg2rad(alpha)
         self.lxy.value = lam * np.array([np.cos(a), np.sin(a)])
         self.U.value = settlement_vector(self.model, settlements)
+        t1 = time.perf_counter()
         try:
             self.problem.solve(solver=solver, **solver_options)
             raw = self.problem.status
         except cp.SolverError as err:
             raw = f"solver error: {err}"
+        stime = time.perf_counter() - t1
         status = _STATUS.get(raw, "numerical")
         nan = np.full((self.model.n_contacts, self.model.dim), np.nan)
         if status == "optimal":
@@ -115,6 +126,7 @@ class CvxTCE:
             value = float(self.problem.value)
         else:
             forces, wrenches, value = nan, np.full((len(self.model.assembly.support_names), 6), np.nan), float("nan")
-        stats = self.problem.solver_stats
-        stime = float(stats.solve_time) if stats is not None and stats.solve_time is not None else float("nan")
-        return CvxResult(status, forces, wrenches, value, solver, stime, time.perf_counter() - t0)
+        return CvxResult(
+            status=status, message=f"cvxpy: {raw}", solver=solver, solve_time=stime,
+            wall_time=time.perf_counter() - t0, forces=forces, support_wrenches=wrenches, tce=value,
+        )

@@ -1,6 +1,7 @@
 """Direct limit analysis: lambda_max as one conic program, and the collapse mechanism.
 
-For a lateral direction ``alpha`` it solves (scaled as in :mod:`tce.conic`)::
+For a lateral direction ``alpha`` it solves (:func:`tce.core.problem.limit_problem`, scaled
+as in :mod:`tce.core.conic`)::
 
     maximise    lam
     subject to  A_eq F + b_dead + lam * b_lat(alpha) = 0,   F admissible (cones)
@@ -9,9 +10,15 @@ Its dual is the kinematic (upper-bound) problem. The multipliers ``z`` of the eq
 rows, divided by the row scaling, are the virtual velocities ``v`` of the free blocks
 (translation and rotation about each centroid; supports are fixed), normalised so that the
 lateral load does unit power: ``v . b_lat = 1``. The mechanism's virtual work then gives
-``lam_kin = -v . b_dead``, which equals ``lam_max`` at the optimum (strong duality): the
-certificate reported with every answer. Relative velocities at the contacts,
+``lam_kin = -v . b_dead + h . y / W`` (the second term, zero for the paper's laws, is what
+the offsets of the contact law dissipate: cohesion, tensile and compressive strength, with
+``y`` the multipliers of the law's rows), which equals ``lam_max`` at the optimum (strong
+duality): the certificate reported with every answer. Relative velocities at the contacts,
 ``A_eq' v``, lie in the dual cone (opening ``>= mu`` times sliding, associated flow).
+This is the lower-bound (static) theorem of limit analysis for rigid blocks with
+associated Coulomb friction (Heyman, *The stone skeleton*, 1966, for the no-tension,
+no-sliding material; Livesley, 1978, and Gilbert and Melbourne, 1994, for blocks in
+frictional contact), written as a conic program.
 
 Sign conventions: a velocity is positive along the global axes; the relative velocity of an
 interface is that of block B with respect to block A (positive normal part = opening).
@@ -20,16 +27,17 @@ interface is that of block B with respect to block A (positive normal part = ope
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
-import clarabel
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .conic import Scaling, cone_rows, cone_violation
+from .clarabel_solver import SolverOptions, solve_once
+from .conic import ConeRows, law_violation
 from .material import Material
-from .model import EZ, Model
+from .model import EZ, Model, lateral_direction
+from .problem import Formulation, lateral_ray_problem, limit_problem
+from .result import Result
 
 __all__ = ["LimitResult", "LimitSolver", "Mechanism", "mechanism_from_velocities"]
 
@@ -121,18 +129,17 @@ def mechanism_from_velocities(model: Model, vel: NDArray[np.float64], tol: float
     return Mechanism(vel, tuple(modes), hp)
 
 
-@dataclass(frozen=True, eq=False)
-class LimitResult:
+@dataclass(frozen=True, eq=False, kw_only=True)
+class LimitResult(Result):
     """Answer of a direct limit analysis.
 
     Attributes
     ----------
     status : str
         ``optimal`` (finite lambda_max), ``infeasible`` (the structure cannot carry its
-        self-weight for any lambda in this direction), ``unbounded`` (no finite limit) or
-        ``numerical``.
+        fixed loads for any lambda), ``unbounded`` (no finite limit) or ``numerical``.
     alpha : float
-        Direction (degrees).
+        Direction (degrees) of the lateral loads (NaN for another live load).
     lambda_max : float
         Largest load multiplier (NaN unless optimal; inf when unbounded).
     lambda_kinematic : float
@@ -143,26 +150,25 @@ class LimitResult:
         Largest violation of the dual cone by the mechanism's relative velocities (relative
         to the largest relative velocity).
     forces : (nc, dim) ndarray
-        A limit force state (kN).
+        A limit force state (kN); NaN unless optimal.
     mechanism : Mechanism or None
-    solve_time, wall_time : float
-        Clarabel's time and the call's time (s).
-    message : str
+    model : str
+        ``"spatial"`` or ``"planar"``.
+    iterations : int
+    setup_time : float
+        Wall time of the solver set-up (s).
     """
 
-    status: str
     alpha: float
-    lambda_max: float
-    lambda_kinematic: float
-    certificate_gap: float
-    admissibility: float
+    lambda_max: float = float("nan")
+    lambda_kinematic: float = float("nan")
+    certificate_gap: float = float("nan")
+    admissibility: float = float("nan")
     forces: NDArray[np.float64] = field(repr=False)
-    mechanism: Mechanism | None = field(repr=False)
+    mechanism: Mechanism | None = field(default=None, repr=False)
     model: str = "spatial"
-    solve_time: float = 0.0
-    wall_time: float = 0.0
     iterations: int = 0
-    message: str = ""
+    setup_time: float = 0.0
 
 
 class LimitSolver:
@@ -174,91 +180,74 @@ class LimitSolver:
     material : Material
     tol : float
         Clarabel's tolerances on the scaled problem.
+    rows : ConeRows, optional
+        Another contact law than the material's (e.g. a friction pyramid).
     """
 
-    def __init__(self, model: Model, material: Material, tol: float = 1e-10) -> None:
+    def __init__(self, model: Model, material: Material, tol: float = 1e-10, rows: ConeRows | None = None) -> None:
         self.model = model
         self.material = material
         self.tol = tol
-        self.scaling = Scaling.of(model)
-        self._row_div = self.scaling.rows(model)
-        self._A_eq_hat = sp.csc_matrix(sp.diags(self.scaling.force / self._row_div) @ model.A_eq)
-        self._cones = cone_rows(model, material.friction)
-
-    def _settings(self) -> clarabel.DefaultSettings:
-        s = clarabel.DefaultSettings()
-        s.verbose = False
-        s.tol_gap_abs = s.tol_gap_rel = s.tol_feas = self.tol
-        s.tol_ktratio = 1e-7
-        s.max_iter = 500
-        return s
+        self.formulation = Formulation(model, material, rows)
+        self.options = SolverOptions(tol=tol, max_iter=500)
 
     def solve(self, alpha: float = 0.0) -> LimitResult:
         """Largest multiplier of lateral loads in direction ``alpha`` (degrees), with its mechanism."""
-        t0 = time.perf_counter()
         model = self.model
-        if model.kind == "planar" and abs(np.cos(np.deg2rad(alpha)) * model.plane.m[0] + np.sin(np.deg2rad(alpha)) * model.plane.m[1]) > 1e-12:
+        if model.kind == "planar" and abs(lateral_direction(alpha) @ model.plane.m) > 1e-12:
             raise ValueError("lateral direction out of the planar model's plane: use the spatial model")
-        m, n = self._A_eq_hat.shape
-        lat = model.b_lateral(alpha) / self._row_div
-        rhs = -model.b_dead / self._row_div
-        A = sp.vstack(
-            [
-                sp.hstack([self._A_eq_hat, sp.csc_matrix(lat[:, None])]),
-                sp.hstack([-self._cones.M, sp.csr_matrix((self._cones.M.shape[0], 1))]),
-            ]
-        ).tocsc()
-        b = np.concatenate([rhs, np.zeros(self._cones.M.shape[0])])
-        q = np.zeros(n + 1)
-        q[-1] = -1.0
-        solver = clarabel.DefaultSolver(
-            sp.csc_matrix((n + 1, n + 1)), q, A, b, self._cones.cones(leading_zero=m), self._settings()
-        )
-        sol = solver.solve()
-        raw = str(sol.status)
-        nan = float("nan")
+        return self.solve_loads(model.b_dead, model.b_lateral(alpha), alpha)
+
+    def solve_loads(self, b_fixed: NDArray[np.float64], b_live: NDArray[np.float64], alpha: float = float("nan")) -> LimitResult:
+        """Largest multiplier of the live loads ``b_live`` with ``b_fixed`` always applied
+        (both in ``A_eq``'s row layout, kN and kN m), with its mechanism."""
+        t0 = time.perf_counter()
+        model, f = self.model, self.formulation
+        m = f.A_eq.shape[0]
+        sol = solve_once(limit_problem(f, b_fixed, b_live), self.options.settings())
+        common = dict(alpha=alpha, model=model.kind, solve_time=sol.solve_time, setup_time=sol.setup_time,
+                      iterations=sol.iterations)
         empty = np.full((model.n_contacts, model.dim), np.nan)
-        if raw == "PrimalInfeasible":
-            # Farkas certificate: block velocities under which the self-weight does positive
-            # work while every contact opens or slides admissibly: the collapse under self-weight
-            v = np.asarray(sol.z)[:m] / self._row_div
+        if sol.status == "PrimalInfeasible":
+            # Farkas certificate: block velocities under which the fixed loads do positive
+            # work while every contact opens or slides admissibly: the collapse under them
+            v = sol.z[:m] / f.row_div
             mech = mechanism_from_velocities(model, _block_velocities(model, v)) if np.any(v) else None
-            return LimitResult("infeasible", alpha, nan, nan, nan, nan, empty, mech, model.kind,
-                               sol.solve_time, time.perf_counter() - t0, sol.iterations, f"clarabel: {raw}")
-        if raw == "DualInfeasible":
-            return LimitResult("unbounded", alpha, float("inf"), nan, nan, nan, empty, None, model.kind,
-                               sol.solve_time, time.perf_counter() - t0, sol.iterations, f"clarabel: {raw}")
-        x = np.asarray(sol.x)
-        lam = float(x[-1])
-        F = x[:-1] * self.scaling.force
-        eq = (model.A_eq @ F + model.b_dead + lam * model.b_lateral(alpha)) / self._row_div
-        ok = (
-            raw in ("Solved", "AlmostSolved")
-            and np.abs(eq).max(initial=0.0) <= 1e-8
-            and cone_violation(model, self.material.friction, F) / self.scaling.force <= 1e-8
-        )
-        if not ok:
-            return LimitResult("numerical", alpha, nan, nan, nan, nan, empty, None, model.kind,
-                               sol.solve_time, time.perf_counter() - t0, sol.iterations,
-                               f"clarabel: {raw}; residual {np.abs(eq).max():.3g}")
-        z = np.asarray(sol.z)
-        v = z[:m] / self._row_div  # virtual velocities per equilibrium row, v . b_lat = 1
-        lam_kin = float(-(v @ model.b_dead) / (v @ model.b_lateral(alpha)))
+            return LimitResult(status="infeasible", forces=empty, mechanism=mech, message=f"clarabel: {sol.status}",
+                               wall_time=time.perf_counter() - t0, **common)
+        if sol.status == "DualInfeasible":
+            return LimitResult(status="unbounded", lambda_max=float("inf"), forces=empty, message=f"clarabel: {sol.status}",
+                               wall_time=time.perf_counter() - t0, **common)
+        lam = float(sol.x[-1])
+        F = f.forces(sol.x)
+        eq, law = f.residuals(F, b_fixed + lam * b_live)
+        if not (sol.solved and eq <= 1e-8 and law <= 1e-8):
+            return LimitResult(status="numerical", forces=empty, message=f"clarabel: {sol.status}; residual {eq:.3g}",
+                               wall_time=time.perf_counter() - t0, **common)
+        v = sol.z[:m] / f.row_div  # virtual velocities per equilibrium row, v . b_live = 1
+        # power of the fixed loads plus what the law's offsets dissipate (cohesion, tension,
+        # crushing: h . y with y the law rows' multipliers; zero for the paper's laws)
+        lam_kin = float((-(v @ b_fixed) + f.law_h @ sol.z[m:]) / (v @ b_live))
         gap = abs(lam_kin - lam) / max(abs(lam), 1e-12)
         rel = model.A_eq.T @ v  # relative contact velocities (B w.r.t. A), model variables
-        adm = self._dual_cone_violation(rel)
         mech = mechanism_from_velocities(model, _block_velocities(model, v))
         return LimitResult(
-            "optimal", alpha, lam, lam_kin, gap, adm, F.reshape(model.n_contacts, model.dim), mech,
-            model.kind, float(sol.solve_time), time.perf_counter() - t0, int(sol.iterations), f"clarabel: {raw}",
+            status="optimal", lambda_max=lam, lambda_kinematic=lam_kin, certificate_gap=gap,
+            admissibility=self._dual_cone_violation(rel), forces=F.reshape(model.n_contacts, model.dim),
+            mechanism=mech, message=f"clarabel: {sol.status}", wall_time=time.perf_counter() - t0, **common,
         )
 
     def _dual_cone_violation(self, rel: NDArray[np.float64]) -> float:
         """Violation of ``dn >= mu ||dt||`` (tangential free of constraint for mu = 0; no sliding
-        for Heyman), relative to the largest relative velocity."""
+        for Heyman), relative to the largest relative velocity. With a compressive strength
+        a contact may also close (crushing at ``fn = fc A``): ``dn`` is then free.
+        Cohesion and tensile strength shift the law without changing its recession cone,
+        so they leave the flow rule as it is."""
         d = rel.reshape(self.model.n_contacts, self.model.dim)
         scale = max(np.abs(d).max(initial=0.0), 1e-300)
         dn, dt = d[:, 0], np.linalg.norm(d[:, 1:], axis=1)
+        if self.material.compressive_strength is not None:
+            dn = np.full_like(dn, np.inf)
         mu = self.material.friction
         if mu is None:
             viol = np.maximum(-dn, dt)
@@ -267,3 +256,50 @@ class LimitSolver:
         else:
             viol = np.maximum(mu * dt - dn, 0.0)
         return float(viol.max(initial=0.0) / scale)
+
+    # ------------------------------------------------------------------------------------
+    # Certificate of no finite limit (issue 15): the named problem
+    # :func:`tce.core.problem.lateral_ray_problem`.
+    def lateral_ray(self, alpha: float = 0.0, contacts: NDArray[np.bool_] | None = None) -> NDArray[np.float64] | None:
+        """A force state carrying the unit lateral load alone, with the least total contact force.
+
+        Solves, scaled as :meth:`solve`::
+
+            minimise    sum_k ||F_k||
+            subject to  A_eq F + b_lat(alpha) = 0,   F admissible (cones),
+                        F_k = 0 for the contacts not in ``contacts``
+
+        When the direct limit is unbounded, such a state exists: Clarabel's certificate of
+        dual infeasibility of the max-lambda problem is a direction ``(dF, dlam)`` with
+        ``A_eq dF + dlam b_lat = 0``, ``dF`` admissible and ``dlam > 0``, and ``dF / dlam``
+        is one. Adding any multiple of it to an admissible state at ``lam`` gives one at any
+        larger ``lam``: the contacts it loads carry the lateral load without limit. Among all
+        such states this is the one of least total force, which loads few contacts (those
+        that lock), where an interior-point certificate loads all of them.
+
+        Parameters
+        ----------
+        alpha : float
+            Direction of the lateral load (degrees).
+        contacts : (n_contacts,) bool array, optional
+            The contacts allowed to carry force (default: all).
+
+        Returns
+        -------
+        (n_contacts, dim) ndarray or None
+            Contact forces (kN per unit lambda), or None when no such state exists (the limit
+            is finite, or the allowed contacts cannot carry the load) or the solve fails.
+        """
+        model, f = self.model, self.formulation
+        allowed = np.ones(model.n_contacts, dtype=bool) if contacts is None else np.asarray(contacts, dtype=bool)
+        b_live = model.b_lateral(alpha)
+        sol = solve_once(lateral_ray_problem(f, b_live, allowed), self.options.settings())
+        if not sol.solved:
+            return None
+        F = f.forces(sol.x)
+        F.reshape(model.n_contacts, model.dim)[~allowed] = 0.0
+        eq = np.abs((model.A_eq @ F + b_live) / f.row_div).max(initial=0.0)
+        law = law_violation(replace(f.law, h=None), F)  # the homogeneous law: a direction
+        if eq > 1e-7 or law > 1e-7 * f.scaling.force:
+            return None
+        return F.reshape(model.n_contacts, model.dim)

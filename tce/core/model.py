@@ -15,7 +15,7 @@ Two models share one layout:
     plane) and for the compliance (springs in parallel). The planar LP therefore has the same
     optimum as the spatial SOCP on such scenes.
 
-Sign conventions (DESIGN.md): equilibrium reads ``A_eq F + b_dead + lam * b_lat(alpha) = 0``
+Sign conventions (``docs/conventions.md``): equilibrium reads ``A_eq F + b_dead + lam * b_lat(alpha) = 0``
 (loads on each free block, kN and kN m); ``B_sup F`` stacks, per support, the wrench
 ``(Fx, Fy, Fz, Mx, My, Mz)`` that the support exerts on the structure, in the global frame,
 about the support's centroid (kN, kN m). Interfaces between two support blocks carry no
@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
 
-__all__ = ["Model", "Plane", "build_model", "find_plane", "lateral_direction"]
+__all__ = ["InterfaceMap", "Model", "Plane", "build_model", "find_plane", "lateral_direction"]
 
 ModelKind = Literal["spatial", "planar"]
 EZ = np.array([0.0, 0.0, 1.0])
@@ -125,6 +125,38 @@ def find_plane(assembly: Assembly, tol: float = 1e-9) -> Plane | None:
 
 
 @dataclass(frozen=True, eq=False)
+class InterfaceMap:
+    """What turns a model's force vector into vertex forces, interface resultants and support
+    wrenches: arrays only (results keep this, not the model).
+
+    Attributes
+    ----------
+    interfaces : tuple of int
+        ``(ni,)`` assembly index of each interface the model carries (its *slots*).
+    lift : (3 nv, nc * dim) sparse
+        Force vector -> ``(fn, ft1, ft2)`` at every interface vertex (identity when spatial).
+    vertex_slot : (nv,) int
+        Slot (position in ``interfaces``) of each vertex's interface.
+    vertex_points : (nv, 3) float
+        Vertex positions (m).
+    vertex_frames : (nv, 3, 3) float
+        Interface frame of each vertex, rows ``(n, t1, t2)``.
+    normals : (ni, 3) float
+        Unit normal (from A into B) of each slot's interface.
+    B_sup : (6 ns, nc * dim) sparse
+        Support wrenches on the structure (see :class:`Model`).
+    """
+
+    interfaces: tuple[int, ...]
+    lift: sp.csr_matrix
+    vertex_slot: NDArray[np.int64]
+    vertex_points: NDArray[np.float64]
+    vertex_frames: NDArray[np.float64]
+    normals: NDArray[np.float64]
+    B_sup: sp.csr_matrix
+
+
+@dataclass(frozen=True, eq=False)
 class Model:
     """Discrete operators of an assembly (see module docstring for conventions).
 
@@ -199,6 +231,14 @@ class Model:
         """Position in ``interfaces`` of each 3D vertex's interface."""
         slot = {k: i for i, k in enumerate(self.interfaces)}
         return np.array([slot[k] for k in self.vertex_interface], dtype=np.int64)
+
+    @cached_property
+    def interface_map(self) -> InterfaceMap:
+        """The arrays results need to report vertex forces, resultants and support wrenches."""
+        normals = np.array([self.assembly.interfaces[k].normal for k in self.interfaces]).reshape(-1, 3)
+        return InterfaceMap(
+            self.interfaces, self.lift, self.vertex_slot, self.vertex_points, self.vertex_frames, normals, self.B_sup
+        )
 
     @cached_property
     def row_is_moment(self) -> NDArray[np.bool_]:

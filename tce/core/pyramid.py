@@ -20,7 +20,7 @@ relative width is at most ``1 / cos(pi / k) - 1`` of the friction (about
 ``(pi / k)^2 / 2``). In a planar model the friction law is already linear
 (``|ft| <= mu fn``) and both pyramids are the cone itself; with ``mu = 0`` or a Heyman
 material there is no cone either. Scaling, the dual mechanism and the statuses are those
-of :class:`tce.limit.LimitSolver`.
+of :class:`tce.core.limit.LimitSolver`.
 """
 
 from __future__ import annotations
@@ -57,7 +57,7 @@ def pyramid_rows(model: Model, friction: float | None, k: int, kind: PyramidKind
     -------
     ConeRows
         Nonnegative rows only (an LP): ``fn >= 0`` and ``k`` facets per contact, or the
-        exact law of :func:`tce.conic.cone_rows` when it is already linear (planar model,
+        exact law of :func:`tce.core.conic.cone_rows` when it is already linear (planar model,
         ``mu = 0``, Heyman).
     """
     if int(k) != k or k < 3:
@@ -90,20 +90,17 @@ def pyramid_rows(model: Model, friction: float | None, k: int, kind: PyramidKind
     return ConeRows(sp.vstack([normal, facets]).tocsr(), 0, nc * (k + 1), 0)
 
 
-class _PyramidLimit(LimitSolver):
+def _pyramid_solver(model: Model, friction: float | None, k: int, kind: PyramidKind, tol: float) -> LimitSolver:
     """:class:`LimitSolver` on pyramid rows instead of the cone.
 
-    The residual check of :meth:`LimitSolver.solve` compares the forces with the material's
-    cone; a circumscribed pyramid reaches ``mu / cos(pi / k)``, so the check runs against
-    that enlarged cone (the polygon is inscribed in it).
+    Its residual check runs on the pyramid's own rows; the mechanism's admissibility is
+    measured against the cone the pyramid is inscribed in (``mu / cos(pi / k)`` for a
+    circumscribed pyramid, ``mu`` otherwise).
     """
-
-    def __init__(self, model: Model, friction: float | None, k: int, kind: PyramidKind, tol: float) -> None:
-        check = friction
-        if friction is not None and kind == "circumscribed" and model.dim == 3:
-            check = float(friction) / np.cos(np.pi / int(k))
-        super().__init__(model, Material(friction=check), tol)
-        self._cones = pyramid_rows(model, friction, k, kind)
+    check = friction
+    if friction is not None and kind == "circumscribed" and model.dim == 3:
+        check = float(friction) / np.cos(np.pi / int(k))
+    return LimitSolver(model, Material(friction=check), tol, rows=pyramid_rows(model, friction, k, kind))
 
 
 def pyramid_lambda_max(
@@ -134,10 +131,10 @@ def pyramid_lambda_max(
     Returns
     -------
     LimitResult
-        As :meth:`tce.limit.LimitSolver.solve`; ``lambda_max`` is the bound. Its mechanism's
+        As :meth:`tce.core.limit.LimitSolver.solve`; ``lambda_max`` is the bound. Its mechanism's
         ``admissibility`` is measured against the (possibly enlarged) cone, not the pyramid.
     """
-    return _PyramidLimit(model, friction, k, kind, tol).solve(alpha)
+    return _pyramid_solver(model, friction, k, kind, tol).solve(alpha)
 
 
 def pyramid_bracket(model: Model, friction: float | None, alpha: float = 0.0, k: int = 8) -> tuple[float, float]:

@@ -1,29 +1,34 @@
-"""The Total Complementary Energy solver (Clarabel, called directly).
+"""The Total Complementary Energy solver: one model and material, Clarabel called directly.
 
-For a model (:mod:`tce.model`), a material (:class:`tce.material.Material`), a load
+For a model (:mod:`tce.core.model`), a material (:class:`tce.core.material.Material`), a load
 multiplier ``lam``, a lateral direction ``alpha`` (degrees) and prescribed support motions
-``U_s = (ux, uy, uz, rx, ry, rz)`` (m, rad, about each support centroid), it solves::
+``U_s = (ux, uy, uz, rx, ry, rz)`` (m, rad, about each support centroid), it solves the
+discretised minimum of the Total Complementary Energy (problem (11) of the paper, *3D
+exploration of internal stresses due to lateral loads and foundation movements in a
+semicircular arch*)::
 
     minimise    1/2 F' D F  -  sum_s (R_s . U_s + M_s . Omega_s)
     subject to  A_eq F + b_dead + lam * b_lat(alpha) = 0
                 fn >= 0 and ||ft|| <= mu fn at every contact  (fn >= 0 only if mu is None)
 
-where ``(R_s, M_s) = B_s F`` is the wrench support ``s`` exerts on the structure and
-``D`` the diagonal compliance (zero for rigid contacts): an LP (planar, rigid), a QP, an
-SOCP (spatial with friction) or a QP with cones. The conic data are assembled once per
-solver; a new ``lam``, ``alpha`` or settlement only updates the vectors ``q`` and ``b``.
+where ``(R_s, M_s) = B_s F`` is the wrench support ``s`` exerts on the structure and ``D``
+the diagonal compliance (zero for rigid contacts): an LP (planar, rigid), a QP, an SOCP
+(spatial with friction) or a QP with cones. The problem is built once per solver
+(:func:`tce.core.problem.tce_problem`); a new ``lam``, ``alpha`` or settlement only updates
+the vectors ``q`` and ``b`` of the warm Clarabel solver (:mod:`tce.core.clarabel_solver`).
 
-Statuses (DESIGN.md):
+Statuses (``docs/conventions.md``):
 
 ``optimal``
     Clarabel converged and the answer passed the residual checks (equilibrium and contact
     law, relative to the total weight, below ``residual_tol``).
 ``infeasible``
     No admissible force state (Clarabel's infeasibility certificate, or the phase-1
-    problem ``min r s.t. |A_eq F + b| <= r, F admissible`` has ``r > feas_tol``).
+    problem, :func:`tce.core.problem.phase1_problem`, has a residual above ``feas_tol``).
 ``unbounded``
     Admissible states exist but the TCE has no minimum: with rigid contacts, a self-stress
-    ``d`` (``A_eq d = 0``, ``d`` admissible) that lowers the energy (``q . d < 0``).
+    ``d`` (``A_eq d = 0``, ``d`` admissible) that lowers the energy (``q . d < 0``,
+    :func:`tce.core.problem.recession_problem`).
 ``numerical``
     Anything else: no number of such an answer is reported.
 
@@ -42,73 +47,26 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
 
-import clarabel
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from .conic import Scaling, cone_rows, cone_violation
+from .clarabel_solver import SOLVER_NAME, ClarabelSolver, Solution, SolverOptions, solve_once
 from .material import Material
-from .model import Model, scene_in_plane
+from .model import InterfaceMap, Model, scene_in_plane
+from .problem import Formulation, phase1_b, phase1_problem, q_scale, recession_problem, tce_b, tce_problem
+from .result import STATUSES, Result
 
-__all__ = ["STATUSES", "SolverOptions", "TCEResult", "TCESolver", "check_settlements", "settlement_vector"]
+__all__ = [
+    "SOLVER_NAME",
+    "STATUSES",
+    "SolverOptions",
+    "TCEResult",
+    "TCESolver",
+    "check_settlements",
+    "settlement_vector",
+]
 
 log = logging.getLogger(__name__)
-
-STATUSES = ("optimal", "infeasible", "unbounded", "numerical")
-SOLVER_NAME = f"clarabel {clarabel.__version__}"
-
-
-@dataclass(frozen=True)
-class SolverOptions:
-    """Tolerances of the solver.
-
-    Parameters
-    ----------
-    tol : float
-        Clarabel's gap and feasibility tolerances (relative, on the scaled problem).
-    residual_tol : float
-        Largest equilibrium residual and contact-law violation of an ``optimal`` answer,
-        relative to the total weight (force rows) and weight times size (moment rows).
-    feas_tol : float
-        Phase-1 residual above which a load is declared infeasible.
-    max_iter : int
-        Clarabel's iteration limit.
-    refine : bool
-        Clarabel's iterative refinement of the KKT solves in the warm solver (retries
-        always refine). Off by default: on ~2,000 load-path solves the statuses were the
-        same, infeasible loads got their certificate in ~15 iterations instead of running
-        to the limit, and solves were 1.5-3x faster; an answer still has to pass
-        ``residual_tol``, so a load within ~1e-8 of lambda_max may be ``optimal``.
-    """
-
-    tol: float = 1e-10
-    residual_tol: float = 1e-9
-    feas_tol: float = 1e-9
-    max_iter: int = 200
-    refine: bool = False
-
-    def clarabel_settings(self, robust: bool = False, tight: bool = False) -> clarabel.DefaultSettings:
-        """Clarabel settings; ``robust`` raises iterations and equilibration for a retry;
-        ``tight`` sets the gap and feasibility tolerances a thousand times below ``feas_tol``
-        (for a phase-1 residual too close to ``feas_tol`` to be trusted)."""
-        s = clarabel.DefaultSettings()
-        s.verbose = False
-        s.presolve_enable = False  # keeps the data layout fixed, so updates are allowed
-        s.chordal_decomposition_enable = False
-        tol = min(self.tol, 1e-3 * self.feas_tol) if tight else self.tol
-        s.tol_gap_abs = s.tol_gap_rel = tol
-        s.tol_feas = tol
-        s.tol_infeas_abs = s.tol_infeas_rel = min(1e-8, 10 * self.tol)
-        s.tol_ktratio = 1e-7
-        s.max_iter = self.max_iter
-        if robust:
-            s.max_iter = 5 * self.max_iter
-            s.equilibrate_max_iter = 50
-            s.static_regularization_constant = 1e-9
-            s.iterative_refinement_max_iter = 50
-            s.max_step_fraction = 0.95
-        return s
 
 
 def check_settlements(names: tuple[str, ...], settlements: Mapping[str, ArrayLike] | None) -> dict[str, NDArray[np.float64]]:
@@ -143,20 +101,23 @@ def settlement_vector(model: Model, settlements: Mapping[str, ArrayLike] | None)
     return U.ravel()
 
 
-@dataclass(frozen=True, eq=False)
-class TCEResult:
-    """Answer of one TCE solve.
+@dataclass(frozen=True, eq=False, kw_only=True)
+class TCEResult(Result):
+    """Answer of one TCE solve (status words: :data:`tce.core.result.STATUSES`).
 
     Attributes
     ----------
-    status : str
-        One of :data:`STATUSES`.
     lam, alpha : float
         Load multiplier and its direction (degrees).
     model : str
-        ``"spatial"`` or ``"planar"``.
+        ``"spatial"`` or ``"planar"``: the model that ran.
+    settlements : (6 ns,) ndarray
+        Stacked support motions (m, rad), support order.
     forces : (nc, dim) ndarray
         Contact forces of the model in their interface frames (kN); NaN unless optimal.
+    support_wrenches : (ns, 6) ndarray
+        ``(Fx, Fy, Fz, Mx, My, Mz)`` each support exerts on the structure, global frame,
+        about the support centroid (kN, kN m); NaN unless optimal.
     tce : float
         Total complementary energy (kN m); NaN unless optimal.
     eq_residual, cone_residual : float
@@ -164,72 +125,56 @@ class TCEResult:
     unique : bool or None
         True with compliance (strictly convex); False for a rigid scene with no support
         motion (every admissible state is a minimiser); None otherwise (unknown).
-    solver : str
-        Solver name and version.
-    solve_time : float
-        Clarabel's own solve time (s), summed over the problems this answer needed.
-    wall_time : float
-        Time of the whole call, from Python (s).
     iterations : int
         Interior-point iterations (main problem).
+    setup_time : float
+        Wall time of the solver set-up and vector updates this answer needed (s);
+        ``solve_time`` is the solve calls alone.
     retry : str
         What decided the status when Clarabel's first answer was not clean ("" if nothing).
-    message : str
-        Clarabel's raw status and notes.
+    interface_map : InterfaceMap
+        The model's arrays that turn ``forces`` into vertex forces and resultants.
     """
 
-    status: str
     lam: float
     alpha: float
-    model_ref: Model = field(repr=False)
+    model: str
     settlements: NDArray[np.float64] = field(repr=False)
     forces: NDArray[np.float64] = field(repr=False)
+    support_wrenches: NDArray[np.float64] = field(repr=False)
     tce: float = float("nan")
     eq_residual: float = float("nan")
     cone_residual: float = float("nan")
     unique: bool | None = None
-    solver: str = SOLVER_NAME
-    solve_time: float = 0.0
-    wall_time: float = 0.0
     iterations: int = 0
+    setup_time: float = 0.0
     retry: str = ""
-    message: str = ""
+    interface_map: InterfaceMap = field(repr=False)
 
     @property
-    def model(self) -> str:
-        return self.model_ref.kind
-
-    @property
-    def ok(self) -> bool:
-        """True when the status is ``optimal``."""
-        return self.status == "optimal"
+    def interfaces(self) -> tuple[int, ...]:
+        """Assembly index of each interface slot of :attr:`resultants` and friends."""
+        return self.interface_map.interfaces
 
     @cached_property
     def vertex_forces(self) -> NDArray[np.float64]:
         """Force at every 3D interface vertex, ``(fn, ft1, ft2)`` in its interface frame (kN)."""
-        return (self.model_ref.lift @ self.forces.ravel()).reshape(-1, 3)
-
-    @cached_property
-    def support_wrenches(self) -> NDArray[np.float64]:
-        """``(n_supports, 6)``: ``(Fx, Fy, Fz, Mx, My, Mz)`` each support exerts on the structure,
-        global frame, about the support centroid (kN, kN m)."""
-        return (self.model_ref.B_sup @ self.forces.ravel()).reshape(-1, 6)
+        return (self.interface_map.lift @ self.forces.ravel()).reshape(-1, 3)
 
     @cached_property
     def _resultants(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         from .resultants import interface_resultants
 
-        return interface_resultants(self.model_ref, self.vertex_forces)
+        return interface_resultants(self.interface_map, self.vertex_forces)
 
     @property
     def resultants(self) -> NDArray[np.float64]:
-        """Resultant force of each interface in ``model.interfaces`` order, global frame (kN),
-        acting on block B."""
+        """Resultant force of each interface slot, global frame (kN), acting on block B."""
         return self._resultants[0]
 
     @property
     def pressure_points(self) -> NDArray[np.float64]:
-        """Pressure point of each interface (m): where the normal forces' resultant meets the plane."""
+        """Pressure point of each interface slot (m): where the normal forces' resultant meets the plane."""
         return self._resultants[1]
 
     @property
@@ -255,48 +200,26 @@ class TCESolver:
         self.model = model
         self.material = material
         self.options = options or SolverOptions()
-        self.scaling = Scaling.of(model)
-        W, rows = self.scaling.force, self.scaling.rows(model)
-        self._row_div = rows
-        self._A_eq_hat = sp.csc_matrix(sp.diags(W / rows) @ model.A_eq)
-        self._cones = cone_rows(model, material.friction)
-        n = model.n_vars
-        self._A = sp.vstack([self._A_eq_hat, -self._cones.M]).tocsc()
-        self._b = np.zeros(self._A.shape[0])
-        self._cone_list = self._cones.cones(leading_zero=model.A_eq.shape[0])
-        if material.rigid:
-            self._D = None
-            self._P = sp.csc_matrix((n, n))
-            self._obj_scale = 1.0
-        else:
-            self._D = model.compliance(material.normal_stiffness, material.shear_stiffness)
-            P = W**2 * self._D
-            self._obj_scale = float(P.max())
-            self._P = sp.csc_matrix(sp.diags(P / self._obj_scale))
-        self._solver: clarabel.DefaultSolver | None = None
-        self._feas: clarabel.DefaultSolver | None = None
+        self.formulation = Formulation(model, material)
+        self.scaling = self.formulation.scaling
+        self._warm: ClarabelSolver | None = None
+        self._warm_q: NDArray[np.float64] | None = None
+        self._q_last: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+        self._feas: ClarabelSolver | None = None
         self._recession_cache: dict[bytes, tuple[float, float, NDArray[np.float64]]] = {}
 
     # ------------------------------------------------------------ problem vectors
-    def _rhs(self, lam: float, alpha: float) -> NDArray[np.float64]:
+    def rhs(self, lam: float, alpha: float) -> NDArray[np.float64]:
         """Physical right-hand side ``b_dead + lam * b_lat(alpha)`` (kN, kN m)."""
         return self.model.b_dead + lam * self.model.b_lateral(alpha)
 
     def _q(self, U: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Scaled linear objective: ``-(B_sup' U) W / obj_scale`` (normalised when rigid).
-
-        The last one is kept: a load path re-solves with the same ``U`` and then returns
-        the same array, which :meth:`_main` recognises to update only ``b``.
-        """
-        last = getattr(self, "_q_last", None)
+        """Scaled linear objective for support motions ``U``; the last one is kept, so a load
+        path (same ``U``) gets the same array back and the warm solver updates only ``b``."""
+        last = self._q_last
         if last is not None and np.array_equal(last[0], U):
             return last[1]
-        q = -(self.model.B_sup.T @ U) * self.scaling.force
-        if self._D is None:
-            m = np.abs(q).max(initial=0.0)
-            q = q / m if m > 0 else q
-        else:
-            q = q / self._obj_scale
+        q = self.formulation.q(U)
         q.flags.writeable = False
         self._q_last = (np.array(U, dtype=float), q)
         return q
@@ -312,100 +235,53 @@ class TCESolver:
                 )
 
     # ------------------------------------------------------------ clarabel calls
-    def _main(self, q: NDArray[np.float64], b: NDArray[np.float64]) -> clarabel.DefaultSolution:
-        """The warm solver: built on the first call, then only its vectors are updated
-        (iterative refinement as ``options.refine`` says)."""
-        if self._solver is None:
-            settings = self.options.clarabel_settings()
-            settings.iterative_refinement_enable = self.options.refine
-            self._solver = clarabel.DefaultSolver(self._P, q, self._A, b, self._cone_list, settings)
-            self._q_main = q
-        elif q is self._q_main:
-            self._solver.update(b=b)
+    def _main(self, U: NDArray[np.float64], rhs: NDArray[np.float64]) -> Solution:
+        """The warm solver: set up on the first call, then only its vectors are updated
+        (``b`` alone while ``U`` is unchanged; iterative refinement as ``options.refine``)."""
+        f, q = self.formulation, self._q(U)
+        if q_scale(q) != 1.0:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
+            return solve_once(tce_problem(f, rhs, U), self.options.settings(refine=self.options.refine))
+        if self._warm is None:
+            self._warm = ClarabelSolver(tce_problem(f, rhs, U), self.options.settings(refine=self.options.refine))
+        elif q is self._warm_q:
+            self._warm.update(b=tce_b(f, rhs))
         else:
-            self._solver.update(q=q, b=b)
-            self._q_main = q
-        return self._solver.solve()
-
-    def _fresh(self, q: NDArray[np.float64], b: NDArray[np.float64], robust: bool) -> clarabel.DefaultSolution:
-        """Solve the main problem with a new solver (equilibrated for this ``q`` and ``b``)."""
-        s = clarabel.DefaultSolver(
-            self._P, q, self._A, b, self._cone_list, self.options.clarabel_settings(robust=robust)
-        )
-        return s.solve()
-
-    def _phase1_rows(self) -> NDArray[np.float64]:
-        """Per-row divisor of the phase-1 problem: each block's own weight (force rows) and
-        weight times size (moment rows), so that a small overload of a light block shows."""
-        a = self.model.assembly
-        free = list(a.free_indices)
-        w = a.weights[free]
-        size = np.array([a.blocks[i].shape.size for i in free])
-        r = self.model.rows_per_block
-        per_block = np.repeat(w, r)
-        return np.where(self.model.row_is_moment, per_block * np.repeat(size, r), per_block)
+            self._warm.update(q=q, b=tce_b(f, rhs))
+        self._warm_q = q
+        return self._warm.solve()
 
     def phase1(self, lam: float, alpha: float) -> tuple[float, float, str]:
         """Smallest equilibrium residual reachable by admissible forces.
 
-        Solves ``min r  s.t.  -r <= (A_eq F + b_dead + lam b_lat)_i / w_i <= r, F admissible``
-        with ``w_i`` the weight (times size, for moment rows) of the row's block: always
-        feasible and bounded. Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol``
-        means the load is carried. A residual that is undecided (NaN) or lies within
-        ``PHASE1_BAND`` times ``feas_tol`` is decided again with tight tolerances
-        (:meth:`SolverOptions.clarabel_settings`); the status then ends with ``tight: ...``.
+        Solves :func:`tce.core.problem.phase1_problem` (always feasible and bounded).
+        Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol`` means the load is
+        carried. A residual that is undecided (NaN) or lies within ``PHASE1_BAND`` times
+        ``feas_tol`` is decided again with tight tolerances
+        (:meth:`SolverOptions.settings`); the status then ends with ``tight: ...``.
         """
-        div = self._phase1_rows()
-        b_eq = -self._rhs(lam, alpha) / div
-        m, n = self.model.A_eq.shape
-        zeros = np.zeros(self._cones.n_nonneg + 3 * self._cones.n_soc)
-        b = np.concatenate([np.zeros(self._cones.n_zero), b_eq, -b_eq, zeros])
+        f, rhs = self.formulation, self.rhs(lam, alpha)
         if self._feas is None:
-            A_hat = sp.diags(self.scaling.force / div) @ self.model.A_eq
-            one = np.ones((m, 1))
-            col = lambda rows: sp.csr_matrix((rows, 1))  # noqa: E731
-            A = sp.vstack(
-                [
-                    sp.hstack([-self._cones.zero, col(self._cones.n_zero)]),
-                    sp.hstack([A_hat, -one]),
-                    sp.hstack([-A_hat, -one]),
-                    sp.hstack([-self._cones.nonneg, col(self._cones.n_nonneg)]),
-                    sp.hstack([-self._cones.soc, col(3 * self._cones.n_soc)]),
-                ]
-            ).tocsc()
-            cones: list = []
-            if self._cones.n_zero:
-                cones.append(clarabel.ZeroConeT(self._cones.n_zero))
-            cones.append(clarabel.NonnegativeConeT(2 * m + self._cones.n_nonneg))
-            cones += [clarabel.SecondOrderConeT(3)] * self._cones.n_soc
-            q = np.zeros(n + 1)
-            q[-1] = 1.0
-            self._feas_data = (sp.csc_matrix((n + 1, n + 1)), q, A, cones)
-            self._feas = clarabel.DefaultSolver(*self._feas_data[:3], b, cones, self.options.clarabel_settings())
+            self._feas = ClarabelSolver(phase1_problem(f, rhs), self.options.settings())
         else:
-            self._feas.update(b=b)
+            self._feas.update(b=phase1_b(f, rhs))
         sol = self._feas.solve()
-        r = float(sol.x[-1]) if str(sol.status) in ("Solved", "AlmostSolved") else float("nan")
-        t, status = float(sol.solve_time), str(sol.status)
+        r = float(sol.x[-1]) if sol.solved else float("nan")
+        t, status = sol.solve_time, sol.status
         if not r <= self.options.feas_tol and not r > self.PHASE1_BAND * self.options.feas_tol:
             # undecided, or too close to feas_tol for the default tolerances: decide again
             # with tight ones (a fresh solver, so also a fresh equilibration)
-            P, q, A, cones = self._feas_data
-            sol = clarabel.DefaultSolver(P, q, A, b, cones, self.options.clarabel_settings(tight=True)).solve()
-            t += float(sol.solve_time)
-            if str(sol.status) in ("Solved", "AlmostSolved"):
+            sol = solve_once(phase1_problem(f, rhs), self.options.settings(tight=True))
+            t += sol.solve_time
+            if sol.solved:
                 r = float(np.nanmin([r, float(sol.x[-1])]))  # each is reached by some admissible state
             status = f"{status}, tight: {sol.status}"
         return r, t, status
 
     def recession(self, U: NDArray[np.float64]) -> tuple[float, float]:
-        """Steepest descent of the rigid TCE along self-stresses.
-
-        Solves ``min q . d  s.t.  A_eq d = 0, d admissible, -1 <= d <= 1`` with ``q`` the
-        normalised linear objective for support motions ``U``. A negative value means the
-        TCE is unbounded below (when feasible). Returns ``(value, solve_time)``; cached
-        per ``U`` (the check does not depend on the load).
-        """
+        """Steepest descent of the rigid TCE along self-stresses
+        (:func:`tce.core.problem.recession_problem`). A negative value means the TCE is
+        unbounded below (when feasible). Returns ``(value, solve_time)``; cached per ``U``
+        (the check does not depend on the load)."""
         val, t, _ = self._recession(U)
         return val, t
 
@@ -416,22 +292,12 @@ class TCESolver:
 
     def _recession(self, U: NDArray[np.float64]) -> tuple[float, float, NDArray[np.float64]]:
         key = np.asarray(U, dtype=float).tobytes()
-        if key in self._recession_cache:
-            return self._recession_cache[key]
-        q = self._q(U)
-        m, n = self._A_eq_hat.shape
-        I = sp.identity(n, format="csr")
-        A = sp.vstack([self._A_eq_hat, -self._cones.zero, I, -I, -self._cones.nonneg, -self._cones.soc]).tocsc()
-        b = np.concatenate([np.zeros(m + self._cones.n_zero), np.ones(2 * n), np.zeros(self._cones.n_nonneg + 3 * self._cones.n_soc)])
-        cones: list = [clarabel.ZeroConeT(m + self._cones.n_zero), clarabel.NonnegativeConeT(2 * n + self._cones.n_nonneg)]
-        cones += [clarabel.SecondOrderConeT(3)] * self._cones.n_soc
-        sol = clarabel.DefaultSolver(sp.csc_matrix((n, n)), q, A, b, cones, self.options.clarabel_settings()).solve()
-        solved = str(sol.status) in ("Solved", "AlmostSolved")
-        val = float(sol.obj_val) if solved else float("nan")
-        d = np.asarray(sol.x) if solved else np.full(n, np.nan)
-        out = (val, float(sol.solve_time), d)
-        self._recession_cache[key] = out
-        return out
+        if key not in self._recession_cache:
+            sol = solve_once(recession_problem(self.formulation, np.asarray(U, dtype=float)), self.options.settings())
+            val = sol.objective if sol.solved else float("nan")
+            d = sol.x if sol.solved else np.full(self.model.n_vars, np.nan)
+            self._recession_cache[key] = (val, sol.solve_time, d)
+        return self._recession_cache[key]
 
     # ------------------------------------------------------------ main entry
     def solve(
@@ -442,7 +308,14 @@ class TCESolver:
     ) -> TCEResult:
         """Minimise the TCE for load multiplier ``lam`` in direction ``alpha`` (degrees) with
         support motions ``settlements`` (``{support: [ux, uy, uz, rx, ry, rz]}`` in m and rad,
-        or the stacked vector). Returns a :class:`TCEResult`; never raises on solver trouble."""
+        or the stacked vector). Returns a :class:`TCEResult`; never raises on solver trouble.
+
+        Raises
+        ------
+        ValueError
+            A non-finite ``lam`` or ``alpha``, an unknown support or a bad motion vector, or
+            a scene out of a planar model's plane.
+        """
         t0 = time.perf_counter()
         if not np.isfinite(lam) or not np.isfinite(alpha):
             raise ValueError(f"lam and alpha must be finite numbers, got lam={lam!r}, alpha={alpha!r}")
@@ -451,36 +324,41 @@ class TCESolver:
         else:
             U = settlement_vector(self.model, settlements)
         self._check_scene(alpha, U)
-        b_eq = -self._rhs(lam, alpha) / self._row_div
-        b = self._b.copy()
-        b[: len(b_eq)] = b_eq
-        q = self._q(U)
-        sol = self._main(q, b)
-        raw = str(sol.status)
-        stime = float(sol.solve_time)
-        notes = [f"clarabel: {raw}"]
-        status, retry, x = "numerical", "", None
+        return self.solve_scene(lam, alpha, U, t0)
 
-        if raw in ("Solved", "AlmostSolved"):
-            x = np.asarray(sol.x)
-            if self._passes(x, lam, alpha):
+    def solve_scene(self, lam: float, alpha: float, U: NDArray[np.float64], t0: float | None = None) -> TCEResult:
+        """:meth:`solve` for a scene already checked: finite ``lam`` and ``alpha``, ``U`` the
+        stacked motions (m, rad) of a scene this model can carry (the hot path of a load
+        path; :class:`tce.core.analysis.Analysis` checks each scene once)."""
+        t0 = time.perf_counter() if t0 is None else t0
+        rhs = self.rhs(lam, alpha)
+        sol = self._main(U, rhs)
+        stime, setup = sol.solve_time, sol.setup_time
+        notes = [f"clarabel: {sol.status}"]
+        status, retry, F, res = "numerical", "", None, None
+
+        if sol.solved:
+            F = self.formulation.forces(sol.x)
+            res = self.formulation.residuals(F, rhs)
+            if self._passes(res):
                 status = "optimal"
             else:
                 notes.append("residual check failed")
-        elif raw == "PrimalInfeasible":
+        elif sol.status == "PrimalInfeasible":
             status = "infeasible"
-        if status == "numerical" and raw != "PrimalInfeasible":
+        if status == "numerical" and sol.status != "PrimalInfeasible":
             # Clarabel's verdict is not clean (or claims unboundedness): decide feasibility first.
             r, t, fstat = self.phase1(lam, alpha)
             stime += t
             notes.append(f"phase-1 residual {r:.3g} ({fstat})")
+            rigid = self.formulation.D is None
             if not np.isfinite(r):
                 retry = "phase-1 failed"
             elif r > self.options.feas_tol:
                 status, retry = "infeasible", "phase-1 (tight)" if "tight" in fstat else "phase-1"
-            elif raw == "DualInfeasible" and self._D is None:
+            elif sol.status == "DualInfeasible" and rigid:
                 status, retry = "unbounded", ""
-            elif self._D is None and np.any(U):
+            elif rigid and np.any(U):
                 val, t = self.recession(U)
                 stime += t
                 notes.append(f"recession {val:.3g}")
@@ -492,35 +370,24 @@ class TCESolver:
             for name, robust in (("rescaled", False), ("robust settings", True)):
                 if status != "numerical":
                     break
-                sol2 = self._fresh(q, b, robust)
-                stime += float(sol2.solve_time)
+                sol2 = solve_once(tce_problem(self.formulation, rhs, U), self.options.settings(robust=robust))
+                stime += sol2.solve_time
+                setup += sol2.setup_time
                 notes.append(f"{name} retry: {sol2.status}")
-                if str(sol2.status) in ("Solved", "AlmostSolved") and self._passes(np.asarray(sol2.x), lam, alpha):
-                    status, retry, x = "optimal", name, np.asarray(sol2.x)
+                if sol2.solved:
+                    F2 = self.formulation.forces(sol2.x)
+                    res = self.formulation.residuals(F2, rhs)
+                    if self._passes(res):
+                        status, retry, F = "optimal", name, F2
         if status != "optimal":
-            x = None
-        return self._result(status, lam, alpha, U, x, stime, time.perf_counter() - t0, int(sol.iterations), retry, "; ".join(notes))
+            F = res = None
+        return self._result(status, lam, alpha, U, F, res, stime, setup, time.perf_counter() - t0,
+                            sol.iterations, retry, "; ".join(notes))
 
     # ------------------------------------------------------------ checks and results
-    def _residuals(self, x: NDArray[np.float64], lam: float, alpha: float) -> tuple[float, float]:
-        """Relative equilibrium residual and contact-law violation of the scaled answer ``x``
-        (the last one is kept: :meth:`_passes` and :meth:`_result` ask for the same ``x``)."""
-        last = getattr(self, "_res_last", None)
-        if last is not None and last[0] is x and last[1] == (lam, alpha):
-            return last[2]
-        W = self.scaling.force
-        F = x * W
-        eq = (self.model.A_eq @ F + self._rhs(lam, alpha)) / self._row_div
-        cone = cone_violation(self.model, self.material.friction, F) / W
-        out = (float(np.abs(eq).max(initial=0.0)), cone)
-        self._res_last = (x, (lam, alpha), out)
-        return out
-
-    def _passes(self, x: NDArray[np.float64], lam: float, alpha: float) -> bool:
-        if not np.all(np.isfinite(x)):
-            return False
-        eq, cone = self._residuals(x, lam, alpha)
-        return eq <= self.options.residual_tol and cone <= self.options.residual_tol
+    def _passes(self, res: tuple[float, float]) -> bool:
+        tol = self.options.residual_tol
+        return res[0] <= tol and res[1] <= tol
 
     def _result(
         self,
@@ -528,25 +395,27 @@ class TCESolver:
         lam: float,
         alpha: float,
         U: NDArray[np.float64],
-        x: NDArray[np.float64] | None,
+        F: NDArray[np.float64] | None,
+        res: tuple[float, float] | None,
         solve_time: float,
+        setup_time: float,
         wall: float,
         iterations: int,
         retry: str,
         message: str,
     ) -> TCEResult:
         model = self.model
-        if x is None:
+        if F is None or res is None:
             forces = np.full((model.n_contacts, model.dim), np.nan)
+            wrenches = np.full((len(model.assembly.support_indices), 6), np.nan)
             tce = eq = cone = float("nan")
         else:
-            F = x * self.scaling.force
             forces = F.reshape(model.n_contacts, model.dim)
-            eq, cone = self._residuals(x, lam, alpha)
-            tce = -float((model.B_sup @ F) @ U)
-            if self._D is not None:
-                tce += 0.5 * float(F @ (self._D * F))
-        if self._D is not None:
+            wrench = model.B_sup @ F
+            wrenches = wrench.reshape(-1, 6)
+            eq, cone = res
+            tce = self.formulation.energy(F, U, wrench)
+        if self.formulation.D is not None:
             unique: bool | None = True
         elif not np.any(U):
             unique = False
@@ -556,18 +425,21 @@ class TCESolver:
             log.debug("solve at lam=%g alpha=%g: %s decided by %s (%s)", lam, alpha, status, retry, message)
         return TCEResult(
             status=status,
+            message=message,
+            solve_time=solve_time,
+            wall_time=wall,
             lam=float(lam),
             alpha=float(alpha),
-            model_ref=model,
+            model=model.kind,
             settlements=U,
             forces=forces,
+            support_wrenches=wrenches,
             tce=tce,
             eq_residual=eq,
             cone_residual=cone,
             unique=unique,
-            solve_time=solve_time,
-            wall_time=wall,
             iterations=iterations,
+            setup_time=setup_time,
             retry=retry,
-            message=message,
+            interface_map=model.interface_map,
         )

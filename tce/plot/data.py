@@ -65,7 +65,8 @@ __all__ = [
 Target = float | str  # a load multiplier or "max"
 
 #: swept coordinates that may lie along ``scenario``, in the order studies expand them, with units
-SWEPT = {"alpha": "degree", "friction": "–", "magnitude": "× the settlements", "inner_radius": "m", "thickness": "m",
+SWEPT = {"alpha": "degree", "friction": "–", "cohesion": "kN/m²", "tensile_strength": "kN/m²",
+         "compressive_strength": "kN/m²", "magnitude": "× the settlements", "inner_radius": "m", "thickness": "m",
          "depth": "m", "radius": "m"}
 #: figure kinds drawn by default (``base`` is asked for by name)
 DEFAULT_KINDS = tuple(k for k in PLOT_KINDS if k != "base")
@@ -299,13 +300,19 @@ def _notes(ds: xr.Dataset, scenario: str, step: int) -> str:
 
 
 def outcome_note(ds: xr.Dataset, scenario: str) -> str:
-    """What a reader must know about a scenario whose outcome is not ``limit`` ("" if it is)."""
+    """What a reader must know about a scenario whose outcome is not ``limit`` ("" if it is).
+
+    A ``no_limit`` outcome carries its explanation (``no_limit_reason``, from
+    :func:`tce.analysis.diagnose.no_limit_reason`) when the dataset has one.
+    """
     outcome = text(ds, "outcome", scenario, "limit")
     if outcome not in _OUTCOMES:
         return outcome
     lam = value(ds, "lam", scenario).astype(float)
     cap = float(np.nanmax(lam)) if np.isfinite(lam).any() else float("nan")
-    return _OUTCOMES[outcome].format(cap=cap)
+    note = _OUTCOMES[outcome].format(cap=cap)
+    why = text(ds, "no_limit_reason", scenario) if outcome == "no_limit" else ""
+    return f"{note}: {why}" if why else note
 
 
 def unique_note(ds: xr.Dataset, scenario: str) -> str:

@@ -12,6 +12,8 @@ given):
 ``base.png``            pressure points on the support interfaces (``base``)
 ``mechanism.png``       collapse mechanism, ``mechanism_2.png`` ... for other mechanisms (``mechanism``)
 ``summary.png``         lambda_max against the swept parameters (``summary``; sweeps only)
+``bracket.png``         lambda_max against a swept material parameter with the non-associative
+                        bracket (``bracket``; non-associative materials; :mod:`tce.plot.materials`)
 ``view.html``           the interactive 3D view (``view``; :mod:`tce.plot.view`)
 
 The number of figures does not grow with the number of scenarios beyond those the
@@ -25,6 +27,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 from .data import PlotSpec, assembly, chain_interfaces, mechanism_groups, plot_spec, state_pages, swept_parameters
@@ -69,6 +72,14 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
             else:
                 skipped.append("summary (nothing swept)")
             continue
+        if kind == "bracket":
+            from .materials import SWEPT
+
+            if "lambda_nonassoc" in ds and any(p in ds.coords and len(np.unique(ds[p].values)) > 1 for p in SWEPT):
+                tasks.append(Task(name("bracket"), kind, ()))
+            else:
+                skipped.append("bracket (no non-associative material swept: the summary has lambda_max)")
+            continue
         if not names:
             skipped.append(f"{kind} (no scenario drawn: name them in [plots] scenarios)")
             continue
@@ -98,9 +109,10 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
 
 
 def _builders() -> dict[str, Callable]:
-    from . import figures, view
+    from . import figures, materials, view
 
     return {
+        "bracket": materials.bracket_figure,
         "thrust": figures.thrust_curves,
         "states": figures.states_figure,
         "thrust_lines": figures.thrust_lines,
@@ -129,7 +141,7 @@ def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
 
 def _subset(ds: xr.Dataset, task: Task) -> xr.Dataset:
     """The part of ``ds`` a task reads (what a worker process receives)."""
-    if task.kind == "summary":
+    if task.kind in ("summary", "bracket"):
         return ds.drop_vars([k for k, v in ds.data_vars.items() if "step" in v.dims or "interface" in v.dims])
     names = {a for arg in task.args for a in arg if isinstance(a, str)}
     names |= {a[0] for arg in task.args for a in arg if isinstance(a, tuple)}

@@ -12,6 +12,7 @@ steps sorted by lambda as in ``docs/results.md``; the file on disk is not change
 
 from __future__ import annotations
 
+import json
 import logging
 import tomllib
 from collections.abc import Mapping, Sequence
@@ -23,7 +24,7 @@ import xarray as xr
 from ..core.analysis import Analysis
 from ..study.results import steps_dataset
 from ..study.runner import missing_lambdas
-from ..study.schema import Scenario, Study, StudyFile, build_material, build_structure
+from ..study.schema import GEOMETRY_SWEEPS, Study, StudyFile, build_material
 from .data import assembly, optimal_steps, scenarios, value
 
 __all__ = ["missing_states", "solve_states"]
@@ -46,12 +47,18 @@ def missing_states(ds: xr.Dataset, names: Sequence[str], lams: Sequence[float]) 
     return out
 
 
-def _study_scenarios(ds: xr.Dataset) -> dict[str, Scenario]:
+def _study(ds: xr.Dataset) -> Study:
+    """The study stored in ``ds``, with the stored assembly standing for its structure (a
+    block file's relative path would not resolve from here; a geometry sweep's other
+    structures are rebuilt from their generators)."""
     text = str(ds.attrs.get("study", ""))
     if not text:
         raise ValueError("the dataset holds no study text ('study' attr): states cannot be solved again")
     spec = StudyFile.model_validate(tomllib.loads(text))
-    return {sc.name: sc for sc in Study(Path("<results>"), text, spec).scenarios()}
+    seed = {}
+    if not any(getattr(spec.sweep, k) for k in GEOMETRY_SWEEPS):
+        seed[json.dumps(spec.structure.model_dump(), sort_keys=True)] = assembly(ds)
+    return Study(Path("<results>"), text, spec, _assemblies=seed)
 
 
 def solve_states(ds: xr.Dataset, todo: Mapping[str, Sequence[float]]) -> xr.Dataset:
@@ -79,18 +86,17 @@ def solve_states(ds: xr.Dataset, todo: Mapping[str, Sequence[float]]) -> xr.Data
     todo = {s: list(v) for s, v in todo.items() if v}
     if not todo:
         return ds
-    study = _study_scenarios(ds)
-    first = next(iter(study.values()))
+    study = _study(ds)
+    scenarios_ = {sc.name: sc for sc in study.scenarios()}
     analyses: dict[str, Analysis] = {}
     parts = []
     n_itf = ds.sizes["interface"]
     for s, lams in todo.items():
-        if s not in study:
+        if s not in scenarios_:
             raise ValueError(f"scenario {s!r} is not in the study text of the dataset")
-        sc = study[s]
+        sc = scenarios_[s]
         if sc.group not in analyses:
-            asm = assembly(ds) if sc.structure == first.structure else build_structure(sc.structure)
-            analyses[sc.group] = Analysis(asm, build_material(sc.material))
+            analyses[sc.group] = Analysis(study.assembly(sc.structure), build_material(sc.material))
         results = [analyses[sc.group].solve(lam, sc.alpha, sc.settlements) for lam in lams]
         log.info("solved %s at lambda = %s for the figures", s, ", ".join(f"{x:g}" for x in lams))
         parts.append(steps_dataset(s, results, n_itf))

@@ -41,8 +41,15 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     and adds a 300-scenario sweep of the paper's arch (10 frictions x 5 settlement
     magnitudes x 6 settlement cases). The targets compare the cold wall times as a ratio.
 
+``hot_path``
+    The load path's inner solve (:meth:`tce.core.analysis.Analysis.path`: scene checked
+    once, warm solver, ``b`` updated) against Clarabel's own ``update(b) + solve()`` on
+    identical data, interleaved call by call in one loop so that both see the same machine;
+    the ratio of the medians is in ``note``.
+
 Every row has ``time_s`` (median end-to-end seconds, from Python), ``solver_time_s``
-(the solver's own reported time), ``ratio`` (``time_s`` over the Clarabel-direct 3D
+(wall time inside the solver's solve calls as tce records it; for cvxpy rows, the wall
+time of ``Problem.solve``), ``ratio`` (``time_s`` over the Clarabel-direct 3D
 per-solve row), ``error`` with ``error_of`` saying of what, and ``residual`` (largest
 equilibrium residual relative to the total weight, or weight times size for moments).
 """
@@ -188,6 +195,44 @@ def _per_solve(quick: bool) -> list[dict[str, Any]]:
             add("cvxpy built per solve", name,
                 lambda i, s=name: CvxTCE(model, mat).solve(LAMS[i % len(LAMS)], 0.0, SETTLEMENT, solver=s),
                 reps["rebuilt"], lambda r: r.support_wrenches)
+    return rows
+
+
+# ---------------------------------------------------------------- hot path
+def _hot_path(quick: bool) -> list[dict[str, Any]]:
+    """tce's load-path solve against Clarabel's own update + solve, interleaved (module doc)."""
+    from ..core.analysis import Analysis
+    from ..core.problem import tce_b
+
+    arch = semicircular_arch().validate()
+    rows: list[dict[str, Any]] = []
+    reps = 150 if quick else 1000
+    for kind in ("spatial", "planar"):
+        an = Analysis(arch, Material(friction=FRICTION), model=kind)
+        solve = an.path(0.0, SETTLEMENT)
+        solve(LAMS[0])
+        solver = an.solver(kind)
+        raw = solver._warm._solver  # the very Clarabel object tce's solve drives
+        data = [tce_b(solver.formulation, solver.rhs(lam, 0.0)) for lam in LAMS]
+        t_tce, t_raw, statuses = [], [], set()
+        for i in range(reps):
+            lam = LAMS[i % len(LAMS)]
+            t0 = time.perf_counter()
+            statuses.add(solve(lam).status)
+            t1 = time.perf_counter()
+            raw.update(b=data[i % len(LAMS)])
+            raw.solve()
+            t2 = time.perf_counter()
+            t_tce.append(t1 - t0)
+            t_raw.append(t2 - t1)
+        m_tce, m_raw = statistics.median(t_tce), statistics.median(t_raw)
+        label = "3D SOCP" if kind == "spatial" else "planar LP"
+        common = dict(solver="CLARABEL", model=kind, n_blocks=len(arch.blocks), n_solves=reps)
+        rows.append(_row("hot_path", f"arch 16 blocks, {label}", "tce load-path solve (Analysis.path)",
+                         time_s=m_tce, time_min_s=min(t_tce), note=f"{m_tce / m_raw:.3f}x raw; statuses {sorted(statuses)}",
+                         **common))
+        rows.append(_row("hot_path", f"arch 16 blocks, {label}", "clarabel update(b) + solve (raw)",
+                         time_s=m_raw, time_min_s=min(t_raw), **common))
     return rows
 
 
@@ -519,9 +564,6 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
         if s3 is not None:
             out.append((f"3D SOCP arch solve <= 1.0 ms end to end ({tag})", f"{s3.time_s * 1e3:.3f} ms",
                         s3.time_s <= 1.0e-3))
-            r = s3.time_s / s3.solver_time_s
-            out.append((f"3D end to end within 1.3x of Clarabel's own solve time ({tag})",
-                        f"{r:.2f}x ({s3.time_s * 1e3:.3f} / {s3.solver_time_s * 1e3:.3f} ms)", r <= 1.3))
         if s2 is not None:
             out.append((f"planar LP arch solve <= 0.3 ms ({tag})", f"{s2.time_s * 1e3:.3f} ms", s2.time_s <= 0.3e-3))
     for model, d in (("spatial", d3), ("planar", d2)):
@@ -532,6 +574,14 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
                     f"{rb.time_s / d.time_s:.0f}x", rb.time_s / d.time_s >= 10))
         out.append((f"{model}: direct faster than parametrised cvxpy (CLARABEL)",
                     f"{pr.time_s / d.time_s:.1f}x", pr.time_s > d.time_s))
+    hot = df[df.section == "hot_path"]
+    for model in ("spatial", "planar"):
+        h = hot[hot.model == model]
+        mine, raw = h[h.method.str.startswith("tce")], h[h.method.str.startswith("clarabel")]
+        if len(mine) and len(raw):
+            r = float(mine.time_s.iloc[0] / raw.time_s.iloc[0])
+            out.append((f"{model}: load-path solve <= 1.15x Clarabel's own update + solve (same run, interleaved)",
+                        f"{r:.3f}x ({mine.time_s.iloc[0] * 1e3:.3f} / {raw.time_s.iloc[0] * 1e3:.3f} ms)", r <= 1.15))
     for case, g in df[df.section == "plotting"].groupby("case", sort=False):
         cold = {m.split(" (")[0]: t for m, t in zip(g.method, g.time_s) if "cold" in m}
         if len(cold) == 2:
@@ -614,6 +664,7 @@ def _machine() -> str:
 
 SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "per_solve": _per_solve,
+    "hot_path": _hot_path,
     "limit": _limit_rows,
     "load_path": _load_path,
     "discretisation": _discretisation,

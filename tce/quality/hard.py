@@ -141,8 +141,10 @@ def _right(u: Sequence[float]) -> dict[str, list[float]]:
 
 
 def _thrust(r: TCEResult) -> float:
-    """Thrust H / W: the +x component of the right support's reaction on the arch."""
-    return float(r.support_wrenches[r.model_ref.assembly.support_names.index("right"), 0] / r.model_ref.assembly.total_weight)
+    """Thrust H / W: the +x component of the right support's reaction on the arch (the last
+    support of an arch) over the weight the supports carry (the sum of their vertical reactions)."""
+    w = r.support_wrenches
+    return float(w[-1, 0] / w[:, 2].sum())
 
 
 @lru_cache(maxsize=None)

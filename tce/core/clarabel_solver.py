@@ -1,0 +1,192 @@
+"""The one place tce calls Clarabel: settings, setup, warm updates and honest timing.
+
+Clarabel (Goulart and Chen, "Clarabel: an interior-point solver for conic programs with
+quadratic objectives", 2024) solves a :class:`tce.core.problem.ConicProblem`. A
+:class:`ClarabelSolver` is set up once per problem structure; a new load or support motion
+only changes ``q`` and ``b`` (:meth:`ClarabelSolver.update`), which keeps the symbolic
+factorisation (presolve is off so that the data layout never changes).
+
+Times are wall-clock times measured here around the calls (``time.perf_counter``):
+``solve_time`` is the ``solve()`` call alone and ``setup_time`` the set-up or update that
+preceded it. Clarabel's own ``solve_time`` is not used: it includes its set-up, so it
+overstates a warm solve several times.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import clarabel
+import numpy as np
+from numpy.typing import NDArray
+
+from .problem import ConicProblem
+
+__all__ = ["SOLVED", "SOLVER_NAME", "ClarabelSolver", "Solution", "SolverOptions", "solve_once"]
+
+SOLVER_NAME = f"clarabel {clarabel.__version__}"
+#: Clarabel statuses whose iterate is worth checking
+SOLVED = ("Solved", "AlmostSolved")
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Tolerances and settings of the Clarabel solves.
+
+    Parameters
+    ----------
+    tol : float
+        Clarabel's gap and feasibility tolerances (relative, on the scaled problem).
+    residual_tol : float
+        Largest equilibrium residual and contact-law violation of an ``optimal`` answer,
+        relative to the total weight (force rows) and weight times size (moment rows).
+    feas_tol : float
+        Phase-1 residual above which a load is declared infeasible.
+    max_iter : int
+        Clarabel's iteration limit.
+    refine : bool
+        Clarabel's iterative refinement of the KKT solves in the warm TCE solver (retries
+        always refine). Off by default: on ~2,000 load-path solves the statuses were the
+        same, infeasible loads got their certificate in ~15 iterations instead of running
+        to the limit, and solves were 1.5-3x faster; an answer still has to pass
+        ``residual_tol``, so a load within ~1e-8 of lambda_max may be ``optimal``.
+    """
+
+    tol: float = 1e-10
+    residual_tol: float = 1e-9
+    feas_tol: float = 1e-9
+    max_iter: int = 200
+    refine: bool = False
+
+    def settings(self, robust: bool = False, tight: bool = False, refine: bool = True) -> clarabel.DefaultSettings:
+        """Clarabel settings.
+
+        Parameters
+        ----------
+        robust : bool
+            More iterations, equilibration and refinement, shorter steps (a retry).
+        tight : bool
+            Gap and feasibility tolerances a thousand times below ``feas_tol`` (for a
+            phase-1 residual too close to ``feas_tol`` to be trusted).
+        refine : bool
+            Iterative refinement of the KKT solves (the warm solver passes ``self.refine``).
+        """
+        s = clarabel.DefaultSettings()
+        s.verbose = False
+        s.presolve_enable = False  # keeps the data layout fixed, so updates are allowed
+        s.chordal_decomposition_enable = False
+        tol = min(self.tol, 1e-3 * self.feas_tol) if tight else self.tol
+        s.tol_gap_abs = s.tol_gap_rel = tol
+        s.tol_feas = tol
+        s.tol_infeas_abs = s.tol_infeas_rel = min(1e-8, 10 * self.tol)
+        s.tol_ktratio = 1e-7
+        s.max_iter = self.max_iter
+        s.iterative_refinement_enable = refine or robust
+        if robust:
+            s.max_iter = 5 * self.max_iter
+            s.equilibrate_max_iter = 50
+            s.static_regularization_constant = 1e-9
+            s.iterative_refinement_max_iter = 50
+            s.max_step_fraction = 0.95
+        return s
+
+
+@dataclass(frozen=True, eq=False)
+class Solution:
+    """What one Clarabel solve returned.
+
+    Attributes
+    ----------
+    status : str
+        Clarabel's status (``Solved``, ``AlmostSolved``, ``PrimalInfeasible``,
+        ``DualInfeasible``, ``MaxIterations``, ...).
+    x, z, s : ndarray
+        Primal unknowns (n,), dual multipliers (m,) and slacks (m,) of the problem
+        (converted from Clarabel's on first use).
+    objective : float
+        Primal objective value.
+    iterations : int
+        Interior-point iterations.
+    solve_time : float
+        Wall time of the ``solve()`` call (s).
+    setup_time : float
+        Wall time of the set-up or updates that preceded it (s).
+    """
+
+    status: str
+    raw: object = field(repr=False)
+    solve_time: float
+    setup_time: float
+
+    @property
+    def solved(self) -> bool:
+        """True when Clarabel reports a (possibly reduced-accuracy) solution."""
+        return self.status in SOLVED
+
+    @cached_property
+    def x(self) -> NDArray[np.float64]:
+        return np.asarray(self.raw.x)
+
+    @cached_property
+    def z(self) -> NDArray[np.float64]:
+        return np.asarray(self.raw.z)
+
+    @cached_property
+    def s(self) -> NDArray[np.float64]:
+        return np.asarray(self.raw.s)
+
+    @property
+    def objective(self) -> float:
+        return float(self.raw.obj_val)
+
+    @property
+    def iterations(self) -> int:
+        return int(self.raw.iterations)
+
+
+def _cones(problem: ConicProblem) -> list:
+    kinds = {"zero": clarabel.ZeroConeT, "nonneg": clarabel.NonnegativeConeT, "soc": clarabel.SecondOrderConeT}
+    return [kinds[k](d) for k, d in problem.cones]
+
+
+class ClarabelSolver:
+    """A Clarabel solver set up for one problem; later solves may change ``q`` and ``b``.
+
+    Parameters
+    ----------
+    problem : ConicProblem
+    settings : clarabel.DefaultSettings
+        From :meth:`SolverOptions.settings`.
+    """
+
+    def __init__(self, problem: ConicProblem, settings: clarabel.DefaultSettings) -> None:
+        t0 = time.perf_counter()
+        self.problem = problem
+        self._solver = clarabel.DefaultSolver(problem.P, problem.q, problem.A, problem.b, _cones(problem), settings)
+        self._setup = time.perf_counter() - t0
+
+    def update(self, q: NDArray[np.float64] | None = None, b: NDArray[np.float64] | None = None) -> None:
+        """Replace ``q`` and/or ``b`` (same shapes); the matrices and cones stay."""
+        t0 = time.perf_counter()
+        if q is not None and b is not None:
+            self._solver.update(q=q, b=b)
+        elif q is not None:
+            self._solver.update(q=q)
+        elif b is not None:
+            self._solver.update(b=b)
+        self._setup += time.perf_counter() - t0
+
+    def solve(self) -> Solution:
+        """Solve the current data; the set-up time reported is what accrued since the last solve."""
+        t0 = time.perf_counter()
+        sol = self._solver.solve()
+        t = time.perf_counter() - t0
+        setup, self._setup = self._setup, 0.0
+        return Solution(str(sol.status), sol, t, setup)
+
+
+def solve_once(problem: ConicProblem, settings: clarabel.DefaultSettings) -> Solution:
+    """Set up a solver for ``problem`` and solve it once."""
+    return ClarabelSolver(problem, settings).solve()
