@@ -359,10 +359,10 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
                         markevery=(0.03 * (j % 2), 0.1), gid=f"reaction:{comp}:{s}:{sup}", **style(s, j))
                 if len(g) > 1:
                     same.append([keys[i] for i in g])
-            for v in lmax:
+            for k, v in enumerate(lmax):  # labels of neighbouring limits alternate in height
                 ax.axvline(v, color="#555555", linestyle=":", linewidth=1.0, gid="lambda_max")
-                ax.text(v, 0.5, f" λmax = {v:.3f}", transform=ax.get_xaxis_transform(), ha="left", va="center",
-                        rotation=90, fontsize=FONT - 1, color="#333333")
+                ax.text(v, 0.72 - 0.44 * (k % 2), f" λmax = {v:.3f}", transform=ax.get_xaxis_transform(), ha="left",
+                        va="center", rotation=90, fontsize=FONT - 1, color="#333333")
             _min_span(ax, allv)
             ax.grid(True, linewidth=0.3, alpha=0.6)
             ax.set_xlim(0.0, xmax)
