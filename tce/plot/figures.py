@@ -131,8 +131,8 @@ class _Grid:
             for ax in row:
                 ax.tick_params(labelsize=FONT - 0.5, length=2.5, pad=1.5)
                 ax.ticklabel_format(useOffset=False)
-                ax.xaxis.set_major_locator(MaxNLocator(6))
-                ax.yaxis.set_major_locator(MaxNLocator(6))
+                ax.xaxis.set_major_locator(MaxNLocator(5))
+                ax.yaxis.set_major_locator(MaxNLocator(5))
 
 
 def _legend_rows(labels: Sequence[str], width: float) -> tuple[int, int]:
@@ -336,7 +336,7 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
     w = 3.4
     width = 0.8 + ncols * w + (ncols - 1) * 0.85 + 0.2
     below = _legend_height([h.get_label() for h in handles], width) + 0.16 * len(notes)
-    grid = _Grid(nrows, ncols, w, 2.3, left=0.8, wspace=0.85, hspace=1.05, top=0.8, bottom=0.45, below=below)
+    grid = _Grid(nrows, ncols, w, 2.3, left=0.8, wspace=0.85, hspace=0.8, top=0.8, bottom=0.45, below=below)
     lmax = sorted({round(float(value(ds, "lambda_max", s)), 9) for s in names
                    if math.isfinite(float(value(ds, "lambda_max", s)))})
     xmax = 1.08 * max([*lmax, *(float(np.max(v)) for v in lams.values() if v.size)], default=1.0)
@@ -367,8 +367,10 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
             ax.grid(True, linewidth=0.3, alpha=0.6)
             ax.set_xlim(0.0, xmax)
             ax.set_ylabel(frame.labels[comp], fontsize=FONT)
-            if square or r == len(facets) - 1:
+            if (c >= 2) if square else r == len(facets) - 1:
                 ax.set_xlabel("load multiplier λ (–)", fontsize=FONT)
+            else:  # the panels below share this λ axis and name it
+                ax.tick_params(labelbottom=False)
             title = facet
             if same:
                 title += ("\n" if title else "") + _wrap("coincide: " + _coincide(same, len(members) == 1), w)

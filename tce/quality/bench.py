@@ -37,8 +37,8 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     wall time of solving and writing (``run_study(plots=False)``, worker start included)
     and of drawing every figure and the view (``write_plots``, matplotlib's import
     included), with their CPU times in ``note`` (``--quick``: one run, the workers' CPU
-    counted with the solving); the full run repeats both with warm workers and imports
-    and adds a 300-scenario sweep of the paper's arch (10 frictions x 5 settlement
+    counted with the solving); the full run repeats both in the same process (imports
+    warm) and adds a 300-scenario sweep of the paper's arch (10 frictions x 5 settlement
     magnitudes x 6 settlement cases). The targets compare the cold wall times as a ratio.
 
 ``hot_path``
@@ -537,9 +537,9 @@ def _plotting(quick: bool) -> list[dict[str, Any]]:
             if warm:
                 solve = statistics.median(r["solve"] for r in warm)
                 plot = statistics.median(r["plot"] for r in warm)
-                rows.append(_row("plotting", name, "solve + write (warm workers and imports)", time_s=solve,
+                rows.append(_row("plotting", name, "solve + write (same process again: imports warm)", time_s=solve,
                                  note=what, **common))
-                rows.append(_row("plotting", name, "figures + view (warm workers and imports)", time_s=plot,
+                rows.append(_row("plotting", name, "figures + view (same process again: imports warm)", time_s=plot,
                                  note=f"{what}; plot / (solve + write) = {plot / solve:.2f} (wall)", **common))
     finally:
         if tmp is not None:
