@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike
 
 from ..core.analysis import Analysis
 from ..core.limit import Mechanism
+from ..core.loads import LoadPattern, as_pattern
 from ..core.result import Result
 from ..core.solve import TCEResult
 from ..structures.assembly import Assembly
@@ -97,11 +98,14 @@ class Diagnosis(Result):
 def diagnose(
     analysis: Analysis,
     lam: float = 0.0,
-    alpha: float = 0.0,
+    alpha: float | None = None,
     settlements: Mapping[str, ArrayLike] | None = None,
+    loads: LoadPattern | None = None,
 ) -> Diagnosis:
-    """Solve one scene and explain its status (see module docstring)."""
+    """Solve one scene (multiplier ``lam`` of the pattern ``loads``, or of the lateral pattern
+    in direction ``alpha``) and explain its status (see module docstring)."""
     t0 = time.perf_counter()
+    pattern = as_pattern(alpha, loads)
     solved: list[Result] = []
 
     def done(status: str, summary: str, binding: list | None = None, mechanism: Mechanism | None = None) -> Diagnosis:
@@ -110,7 +114,7 @@ def diagnose(
             solve_time=sum(r.solve_time for r in solved), wall_time=time.perf_counter() - t0,
         )
 
-    result = analysis.solve(lam, alpha, settlements)
+    result = analysis.solve(lam, settlements=settlements, loads=pattern)
     solved.append(result)
     mu = analysis.material.friction
     a = analysis.assembly
@@ -118,10 +122,10 @@ def diagnose(
         bind = binding_interfaces(result, a, mu)
         return done("optimal", f"admissible at lambda = {lam:g}; {len(bind)} interface limit(s) reached", bind)
     if result.status == "infeasible":
-        lim = analysis.limit(alpha)
+        lim = analysis.limit(loads=pattern)
         solved.append(lim)
         if lim.status == "optimal" and lam > lim.lambda_max:
-            at = analysis.solve(lim.lambda_max * (1 - 1e-9), alpha, settlements)
+            at = analysis.solve(lim.lambda_max * (1 - 1e-9), settlements=settlements, loads=pattern)
             solved.append(at)
             bind = binding_interfaces(at, a, mu, tol=1e-5)
             slots = analysis.model(lim.model).interfaces
@@ -132,8 +136,9 @@ def diagnose(
             )
             return done(
                 "infeasible",
-                f"lambda = {lam:g} exceeds lambda_max = {lim.lambda_max:.6g} in direction {alpha:g} deg; "
-                f"the collapse mechanism: {what}",
+                f"lambda = {lam:g} exceeds lambda_max = {lim.lambda_max:.6g} "
+                + (f"in direction {pattern.alpha:g} deg" if pattern.default else "of the load pattern's live part")
+                + f"; the collapse mechanism: {what}",
                 bind,
                 lim.mechanism,
             )
@@ -145,7 +150,7 @@ def diagnose(
             lim.mechanism,
         )
     if result.status == "unbounded":
-        kind = analysis.model_kind(alpha, settlements)
+        kind = analysis.model_kind(settlements=settlements, loads=pattern)
         solver = analysis.solver(kind)
         d = solver.recession_direction(result.settlements)
         model = solver.model
