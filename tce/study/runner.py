@@ -93,11 +93,11 @@ def solve_scenario(sc: Scenario) -> xr.Dataset:
     analysis = _cold(_analysis(sc.group))
     lp = load_path(
         analysis,
-        alpha=sc.alpha,
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
         atol=sc.loads["tolerance"],
         lam_cap=sc.loads["lambda_cap"],
+        loads=sc.loads_pattern,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     return scenario_dataset(sc, lp, analysis)
