@@ -65,10 +65,12 @@ def test_load_x_sweep_expands_and_moves_the_live_load() -> None:
     assert len(keys) == 8  # the position is part of what determines the answer
 
 
-def test_default_loads_keep_the_scenario_key() -> None:
-    plain = parse_study(STUDY.split("[[loads.point]]")[0].replace("lateral = false", ""))
-    (sc,) = plain.scenarios()
-    assert json.loads(sc.key) == [sc.group, sc.settlements, sc.alpha, sc.loads]
+def test_the_loads_are_part_of_the_scenario_key() -> None:
+    plain = STUDY.split("[[loads.point]]")[0].replace("lateral = false", "") + "[scenarios.none]\n"
+    (default,) = parse_study(plain).scenarios()
+    (written,) = parse_study(plain.replace("[loads]", "[loads]\nlateral = true")).scenarios()
+    (loaded,) = parse_study(plain + "[[loads.point]]\nblock = 'v06'\nforce = [0.0, 0.0, -1.0]\n").scenarios()
+    assert default.key == written.key != loaded.key
 
 
 @pytest.fixture(scope="module")

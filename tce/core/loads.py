@@ -45,6 +45,7 @@ import shapely
 from numpy.typing import ArrayLike, NDArray
 
 from ..structures.assembly import Assembly
+from ..structures.params import did_you_mean
 from .model import EZ, Model, Plane, lateral_direction, motions_in_plane
 
 __all__ = [
@@ -535,8 +536,9 @@ def _point(assembly: Assembly, load: PointLoad) -> tuple[int, NDArray[np.float64
             )
         return i, p
     if load.block not in assembly.index:
+        free = [assembly.names[i] for i in assembly.free_indices]
         raise LoadError("block", f"{load.block!r} is not a block of the structure",
-                        f"use one of the free blocks {[assembly.names[i] for i in assembly.free_indices]}")
+                        f"use one of the free blocks {free}{did_you_mean(load.block, free)}")
     i = assembly.index[load.block]
     b = assembly.blocks[i]
     if b.support:
