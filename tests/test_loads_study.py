@@ -96,6 +96,8 @@ def test_sweep_dataset(sweep) -> None:
     # over the springing the load goes straight into the support: no limit, no number
     over = ds.sel(scenario="none/load_x=-1.1")
     assert str(over["outcome"].values) == "no_limit" and math.isnan(float(over["lambda_max"].values))
+    why = str(over["no_limit_reason"].values)
+    assert why.startswith("no finite collapse load for the live loads") and "v01|v02 and left|v01" in why
     at = ds.sel(scenario="none/load_x=-0.3")
     assert str(at["outcome"].values) == "limit" and str(at["model"].values) == "planar"
     # the settlement does not change the capacity of a rigid Heyman arch

@@ -197,7 +197,9 @@ def explain_no_limit(
     names = list(dict.fromkeys(f"{a.names[a.interfaces[k].a]}|{a.names[a.interfaces[k].b]}" for k in carried))
     direct = {i.a if i.b in sup else i.b for i in (a.interfaces[k] for k in carried) if (i.a in sup) != (i.b in sup)}
     bearing = [a.names[i] for i in a.free_indices if i in direct]
-    held = [a.names[i] for i in a.free_indices if i not in direct]
+    # the blocks the ray passes the load through (all of them for the lateral pattern)
+    involved = {b for k in carried for b in (a.interfaces[k].a, a.interfaces[k].b)}
+    held = [a.names[i] for i in a.free_indices if i not in direct and i in involved]
     supports = [a.names[i] for i in a.support_indices if any(i in (a.interfaces[k].a, a.interfaces[k].b) for k in carried)]
     listed = _names(names[:NAMED] + ([f"{len(names) - NAMED} more"] if len(names) > NAMED else []))
     s_sup = f"support{'s' if len(supports) > 1 else ''} {_names(supports)}"

@@ -56,7 +56,7 @@ from numpy.typing import NDArray
 from ..core.analysis import Analysis
 from ..core.conic import cone_rows, cone_violation
 from ..core.limit import LimitResult, LimitSolver, Mechanism
-from ..core.loads import LoadPattern, as_pattern, check_in_plane, load_vectors
+from ..core.loads import LoadPattern, as_pattern, scene_vectors
 from ..core.material import Material
 from ..core.model import Model
 from ..core.result import Result
@@ -190,9 +190,7 @@ class NonAssocSolver:
         """The bracket for lateral loads in direction ``alpha`` (degrees), or for the live
         loads of the pattern ``loads``; ``start`` is the associative answer when the caller
         has it (:meth:`tce.core.analysis.Analysis.limit`)."""
-        pattern = as_pattern(alpha, loads)
-        check_in_plane(self.model, pattern)
-        b_fixed, b_live = load_vectors(self.model, pattern)
+        pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
         return self.solve_loads(b_fixed, b_live, pattern.direction, start)
 
     def solve_loads(

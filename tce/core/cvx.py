@@ -24,7 +24,7 @@ import cvxpy as cp
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
+from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import Model
 from .result import Result
@@ -118,9 +118,8 @@ class CvxTCE:
             Loads that cannot be applied, a bad settlement, or a scene out of a planar model's plane.
         """
         t0 = time.perf_counter()
-        pattern = as_pattern(alpha, loads)
-        check_in_plane(self.model, pattern, check_settlements(self.model.assembly.support_names, settlements))
-        b_fixed, b_live = load_vectors(self.model, pattern)
+        sett = check_settlements(self.model.assembly.support_names, settlements)
+        _, b_fixed, b_live = scene_vectors(self.model, alpha, loads, sett)
         self.rhs.value = b_fixed + lam * b_live
         self.U.value = settlement_vector(self.model, settlements)
         t1 = time.perf_counter()

@@ -37,7 +37,7 @@ from numpy.typing import NDArray
 
 from .clarabel_solver import SolverOptions, solve_once
 from .conic import ConeRows, law_violation
-from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
+from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import EZ, Model
 from .problem import Formulation, lateral_ray_problem, limit_problem
@@ -207,9 +207,7 @@ class LimitSolver:
         ValueError
             A pattern that cannot be applied, or that leaves a planar model's plane.
         """
-        pattern = as_pattern(alpha, loads)
-        check_in_plane(self.model, pattern)
-        b_fixed, b_live = load_vectors(self.model, pattern)
+        pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
         return self.solve_loads(b_fixed, b_live, pattern.direction, pattern)
 
     def solve_loads(
@@ -318,7 +316,7 @@ class LimitSolver:
         """
         model, f = self.model, self.formulation
         allowed = np.ones(model.n_contacts, dtype=bool) if contacts is None else np.asarray(contacts, dtype=bool)
-        b_live = load_vectors(model, as_pattern(alpha, loads))[1]
+        b_live = scene_vectors(model, alpha, loads)[2]
         sol = solve_once(lateral_ray_problem(f, b_live, allowed), self.options.settings())
         if not sol.solved:
             return None

@@ -58,6 +58,7 @@ __all__ = [
     "check_in_plane",
     "load_vectors",
     "resolve",
+    "scene_vectors",
     "top_surface",
 ]
 
@@ -634,3 +635,17 @@ def check_in_plane(model: Model, pattern: LoadPattern, settlements: Mapping[str,
         raise ValueError(
             "this scene has loads or support motions out of the model's plane: solve it with the spatial model"
         )
+
+
+def scene_vectors(
+    model: Model,
+    alpha: float | None = None,
+    loads: LoadPattern | None = None,
+    settlements: Mapping[str, ArrayLike] | None = None,
+) -> tuple[LoadPattern, NDArray[np.float64], NDArray[np.float64]]:
+    """The pattern of a call that takes ``alpha`` or ``loads`` (:func:`as_pattern`), checked
+    against ``model``'s plane with the support motions (:func:`check_in_plane`), and its
+    ``(b_fixed, b_live)`` (:func:`load_vectors`)."""
+    pattern = as_pattern(alpha, loads)
+    check_in_plane(model, pattern, settlements)
+    return (pattern, *load_vectors(model, pattern))
