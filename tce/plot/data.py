@@ -217,9 +217,14 @@ def plot_spec(
     if bad:
         raise PlotSpecError("scenarios", f"no scenario named {bad[0]!r}; use one of {names[:8]}"
                             f"{' ...' if len(names) > 8 else ''}")
+    drawn = section.select(names)
+    if section.scenarios is None and "load_x" in ds.coords:  # a load-position sweep: its critical positions
+        from .capacity import critical_scenarios
+
+        drawn = critical_scenarios(ds)
     return PlotSpec(
         steps=tuple(section.steps),
-        scenarios=tuple(section.select(names)),
+        scenarios=tuple(drawn),
         kinds=tuple(section.kinds or DEFAULT_KINDS),
     )
 

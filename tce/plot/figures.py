@@ -60,6 +60,7 @@ from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
 from . import draw
+from .load_arrows import LOAD_COLOUR, declared_loads
 from .data import (
     MAX_COLUMNS,
     SWEPT,
@@ -542,6 +543,13 @@ def _state_panel(ax: Axes, off: NDArray, ds: xr.Dataset, asm: Assembly, art: dra
         c = xy(pp[shown])
         ax.plot(c[:, 0], c[:, 1], linestyle="none", marker="o", markersize=2.2, color=FORCE_COLOUR, zorder=5,
                 gid="pressure_points")
+    loads = declared_loads(ds, st.scenario)
+    if loads is not None and scales.force > 0:  # each arrow ends where its load acts
+        p, f, live = loads
+        f = np.where(live[:, None], st.lam * f, f)
+        keep = np.linalg.norm(f, axis=1) > 0
+        vec = f[keep] * scales.force
+        draw.arrows(ax, xy(p[keep] - vec), xy(p[keep]), LOAD_COLOUR, head, linewidth=1.8, gid="loads")
     if scales.torque > 0:
         sig = shown & np.isfinite(tq) & (np.abs(np.nan_to_num(tq)) > TORQUE_TOL * scales.fmax * asm.size)
         if sig.any():
@@ -578,7 +586,7 @@ def _content_box(art: draw.BlockArt, pad: float) -> tuple[NDArray, NDArray]:
     return art.points.min(axis=0) - pad, art.points.max(axis=0) + pad
 
 
-def _state_handles(scales: _Scales, chain: bool, hinges: bool) -> list:
+def _state_handles(scales: _Scales, chain: bool, hinges: bool, loads: bool = False) -> list:
     h: list = [Patch(facecolor=draw.BLOCK_COLOUR, edgecolor=draw.EDGE_COLOUR, label="block"),
                Patch(facecolor=draw.SUPPORT_COLOUR, edgecolor=draw.EDGE_COLOUR, label="support")]
     if scales.force > 0:
@@ -587,6 +595,8 @@ def _state_handles(scales: _Scales, chain: bool, hinges: bool) -> list:
     if scales.torque > 0:
         h.append(Line2D([], [], color=TORQUE_COLOUR, linewidth=1.0,
                         label=f"torque about the normal (arc radius: 1 kN m = {scales.torque:.3g} m)"))
+    if loads:
+        h.append(Line2D([], [], color=LOAD_COLOUR, linewidth=1.8, label="applied load (live ones × λ), same scale"))
     if chain:
         h.append(Line2D([], [], color=THRUST_LINE_COLOUR, linewidth=0.9, label="line of thrust"))
     if hinges:
@@ -642,7 +652,8 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
     header_lines = max((h.count("\n") + 1 for h in heads.values()), default=0)
     cell_notes = {k: _rest(st.note, common[k[0]] if many else "") for k, st in states.items() if st.step is not None}
     cell_lines = 1 + max((_wrap(n, width).count("\n") + 1 for n in cell_notes.values() if n), default=0)
-    handles = _state_handles(scales, chain is not None, any(t == "max" for t in targets))
+    has_loads = any(declared_loads(ds, s) is not None for s in names)
+    handles = _state_handles(scales, chain is not None, any(t == "max" for t in targets), has_loads)
     below = _legend_height([x.get_label() for x in handles], max(cols * (width + _Sheet.GAP), _Sheet.MIN_WIDTH))
     sheet = _Sheet(rows, cols, lo, hi, width, 0.16 * cell_lines + 0.08, below, camera,
                    header=0.16 * header_lines + 0.05 if grid else 0.0)

@@ -6,6 +6,8 @@
 when there are many (:data:`PARALLEL_AT`). Files (``<tag>`` appended to each stem when
 given):
 
+``capacity.png``        lambda_max against the position of a moving load (``capacity``; load-position
+                        sweeps; :mod:`tce.plot.capacity`)
 ``thrust.png``          forces on the supports against lambda (kind ``thrust``)
 ``states.png``          drawn states, ``states_2.png`` ... for further pages (``states``)
 ``thrust_lines.png``    lines of thrust per drawn state (``thrust_lines``; one line of blocks only)
@@ -72,6 +74,12 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
             else:
                 skipped.append("summary (nothing swept)")
             continue
+        if kind == "capacity":
+            if "load_x" in ds.coords:
+                tasks.append(Task(name("capacity"), kind, ()))
+            else:
+                skipped.append("capacity (no load-position sweep)")
+            continue
         if kind == "bracket":
             from .materials import SWEPT
 
@@ -109,9 +117,10 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
 
 
 def _builders() -> dict[str, Callable]:
-    from . import figures, materials, view
+    from . import capacity, figures, materials, view
 
     return {
+        "capacity": capacity.influence_line,
         "bracket": materials.bracket_figure,
         "thrust": figures.thrust_curves,
         "states": figures.states_figure,
@@ -141,7 +150,7 @@ def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
 
 def _subset(ds: xr.Dataset, task: Task) -> xr.Dataset:
     """The part of ``ds`` a task reads (what a worker process receives)."""
-    if task.kind in ("summary", "bracket"):
+    if task.kind in ("summary", "bracket", "capacity"):
         return ds.drop_vars([k for k, v in ds.data_vars.items() if "step" in v.dims or "interface" in v.dims])
     names = {a for arg in task.args for a in arg if isinstance(a, str)}
     names |= {a[0] for arg in task.args for a in arg if isinstance(a, tuple)}

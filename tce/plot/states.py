@@ -97,7 +97,8 @@ def solve_states(ds: xr.Dataset, todo: Mapping[str, Sequence[float]]) -> xr.Data
         sc = scenarios_[s]
         if sc.group not in analyses:
             analyses[sc.group] = Analysis(study.assembly(sc.structure), build_material(sc.material))
-        results = [analyses[sc.group].solve(lam, sc.alpha, sc.settlements) for lam in lams]
+        solve = analyses[sc.group].path(settlements=sc.settlements, loads=sc.loads_pattern)
+        results = [solve(lam) for lam in lams]
         log.info("solved %s at lambda = %s for the figures", s, ", ".join(f"{x:g}" for x in lams))
         parts.append(steps_dataset(s, results, n_itf))
     return _insert_steps(ds, parts)

@@ -4,7 +4,8 @@
 ``plotly`` package; no network, no CDN) and the figure as data: the blocks (a shaded
 mesh with edges), the interface resultants centred on their pressure points (hover for the
 interface, the force and the torque), the torques about the interface normals (arcs), the
-loads (self-weight and the lateral load lambda W at each block centroid), and the
+loads (self-weight and the lateral load lambda W at each block centroid, and the declared
+point and distributed loads, live ones times lambda), and the
 collapse mechanism (displaced edges and hinge lines, shown with its check box). A
 scenario selector and a slider over the solved (optimal) steps of the scenario choose the
 state; the caption gives lambda, the status and what a reader must know (non-unique
@@ -30,6 +31,7 @@ from ..core.model import lateral_direction
 from . import draw
 from .data import NOT_UNIQUE, assembly, hinge_segments, optimal_steps, outcome_note, scenarios, value
 from .figures import ARROW_FRACTION, MECHANISM_FRACTION, TORQUE_FRACTION, TORQUE_TOL
+from .load_arrows import declared_loads
 
 __all__ = ["plotly_js", "view_html"]
 
@@ -140,17 +142,26 @@ def _split(rows: NDArray[np.float64], counts: NDArray[np.int64], per: int) -> li
 
 def _states(pp: NDArray, res: NDArray, tq: NDArray, lam: NDArray, itf_names: list[str], normals: NDArray,
             centres: NDArray, weights: NDArray, alpha: float, force: float, torque: float, tol: float,
-            head: float) -> list[dict]:
+            head: float, declared: tuple[NDArray, NDArray, NDArray] | None = None) -> list[dict]:
     """Dynamic traces of the steps ``(k, ...)`` of one scenario: resultants, pressure points,
     torques, lateral loads (computed for all steps at once, then cut per step)."""
     ok = np.all(np.isfinite(pp), axis=2) & np.all(np.isfinite(res), axis=2)
     vec = res[ok] * force
     arrows = _split(_arrow_polylines(pp[ok] - 0.5 * vec, pp[ok] + 0.5 * vec, head),
                     ok.sum(axis=1), 15)
-    lateral = lam[:, None, None] * weights[None, :, None] * lateral_direction(alpha)[None, None, :] * force
-    live = np.broadcast_to((lam > 0)[:, None], lateral.shape[:2]) & (force > 0)
+    # loads at each step: the lateral lambda W at the block centroids (when the pattern has a
+    # lateral part), then the declared loads (live ones x lambda), each ending where it acts
+    direction = lateral_direction(alpha) if np.isfinite(alpha) else np.zeros(3)
+    lateral = lam[:, None, None] * weights[None, :, None] * direction[None, None, :] * force
     starts = np.broadcast_to(centres, lateral.shape)
-    loads = _split(_arrow_polylines(starts[live], (starts + lateral)[live], head), live.sum(axis=1), 15)
+    ends = starts + lateral
+    if declared is not None:
+        p, f, flag = declared
+        f_k = np.where(flag[None, :, None], lam[:, None, None] * f[None], f[None]) * force
+        starts = np.concatenate([starts, np.broadcast_to(p, f_k.shape) - f_k], axis=1)
+        ends = np.concatenate([ends, np.broadcast_to(p, f_k.shape)], axis=1)
+    live = (np.linalg.norm(ends - starts, axis=2) > 0) & (force > 0)
+    loads = _split(_arrow_polylines(starts[live], ends[live], head), live.sum(axis=1), 15)
     sig = ok & np.isfinite(tq) & (np.abs(np.nan_to_num(tq)) > tol)
     norm = np.linalg.norm(np.nan_to_num(res), axis=2)
     out = []
@@ -209,7 +220,7 @@ def view_data(ds: xr.Dataset, names: Sequence[str] | None = None) -> dict:
         tol = TORQUE_TOL * fmax * asm.size
         outcome = outcome_note(ds, s)
         steps = _states(pp[ok], res[ok], tq[ok], lam[ok], itf_names, normals, centres, weights, alpha, force, torque,
-                        tol, head)
+                        tol, head, declared_loads(ds, s))
         for st, k in zip(steps, ok):
             st["note"] = "; ".join(n for n in (outcome, NOT_UNIQUE if unique[k] == 0.0 else "") if n)
         lmax = float(value(ds, "lambda_max", s))
@@ -258,7 +269,7 @@ const traces = [
   {{type: "scatter3d", mode: "markers", name: "pressure point", marker: {{size: 3, color: "#c0141e"}},
     hoverinfo: "text", text: [], x: [], y: [], z: []}},
   line("torque about the normal", "#000000", 3, true),
-  line("lateral load λ W", "#0072B2", 4, true),
+  line("live loads (lateral λ W, applied loads)", "#0072B2", 4, true),
   Object.assign(line("self-weight W", "#009E73", 3, true), D.dead),
   line("collapse mechanism (exaggerated)", "#555555", 2, true),
   line("hinge", "#0072B2", 9, true),

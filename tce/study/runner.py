@@ -177,16 +177,16 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     analysis = _cold(_analysis(sc, assembly))
     lp = load_path(
         analysis,
-        alpha=sc.alpha,
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
         atol=sc.loads["tolerance"],
         lam_cap=sc.loads["lambda_cap"],
+        loads=sc.loads_pattern,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     bracket = None
     if analysis.material.flow == "non-associative":
-        bracket = nonassociative_limit(analysis, sc.alpha)
+        bracket = nonassociative_limit(analysis, loads=sc.loads_pattern)
     return scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
 
 
@@ -222,7 +222,8 @@ def with_drawn_states(analysis: Analysis, lp: LoadPathResult, lams: Sequence[flo
     if not todo:
         return lp
     t0 = time.perf_counter()
-    extra = [analysis.solve(lam, lp.alpha, lp.settlements) for lam in todo]
+    solve = analysis.path(settlements=lp.settlements, loads=lp.loads)
+    extra = [solve(lam) for lam in todo]
     log.debug("solved the drawn states %s", todo)
     return replace(
         lp,
