@@ -211,16 +211,29 @@ def _bench(args: argparse.Namespace) -> int:
     return bench_command(args)
 
 
+def _without_dask() -> None:
+    """Keep xarray from importing dask in this program and its workers (:mod:`tce.study.jobs`)."""
+    import os
+
+    from .jobs import NO_DASK, block_dask_import
+
+    os.environ[NO_DASK] = "1"
+    block_dask_import()
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tce`` command; returns the exit code.
 
     Parameters
     ----------
     argv : sequence of str, optional
-        Arguments without the program name (default: ``sys.argv[1:]``).
+        Arguments without the program name (default: ``sys.argv[1:]``, the ``tce``
+        program, which then keeps dask from being imported unless ``--backend dask``).
     """
     args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
     _setup_logging(args.verbose, args.quiet)
+    if argv is None and getattr(args, "backend", None) != "dask":
+        _without_dask()
     commands = {"run": _run, "show": _show, "plot": _plot, "check": _check, "bench": _bench}
     try:
         return commands[args.command](args)

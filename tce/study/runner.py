@@ -19,7 +19,6 @@ from __future__ import annotations
 import contextlib
 import json
 import logging
-import os
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -31,6 +30,7 @@ import xarray as xr
 
 from ..core.analysis import Analysis
 from ..analysis.loadpath import load_path
+from .jobs import choose_jobs
 from .results import load_finished, merge_scenarios, scenario_dataset, scenario_path, write_atomic
 from .schema import Scenario, Study, build_material, build_structure
 
@@ -184,8 +184,10 @@ def run_study(
     out : path
         Results root: the study writes into ``out/<study name>/``.
     jobs : int, optional
-        Parallel workers (default: all cores). With ``backend="dask"`` and no
-        ``scheduler``, the size of the local cluster started for the run.
+        Parallel workers. Default: in-process when the study's estimated work is below
+        what starting workers costs, all cores otherwise (:func:`tce.study.jobs.choose_jobs`,
+        its reason logged at info). With ``backend="dask"`` and no ``scheduler``, the size
+        of the local cluster started for the run (default: all cores).
     backend : {"loky", "dask"}
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:port``).
@@ -203,20 +205,25 @@ def run_study(
     RunError
         The backend cannot start.
     """
-    jobs = jobs or os.cpu_count() or 1
-    if jobs < 1:
+    if jobs is not None and jobs < 1:
         raise RunError(f"jobs must be >= 1, got {jobs}")
     directory = Path(out) / study.name
     scenarios = study.scenarios()
     parts = load_finished(directory / "scenarios", scenarios)
     todo = [sc for sc in scenarios if sc.name not in parts]
+    if todo:
+        choice = choose_jobs(_grouped(todo), jobs, _analysis, backend)
+        log.info("%s", choice.reason)
+        jobs = choice.jobs
+    jobs = jobs or 1
     if parts:
         log.info(
             "resuming %s: %d of %d scenarios already solved, solving the %d missing",
             study.name, len(parts), len(scenarios), len(todo),
         )
     else:
-        log.info("running %s: %d scenarios on %d %s worker(s)", study.name, len(todo), jobs, backend)
+        where = "in-process" if jobs == 1 and backend == "loky" else f"on {jobs} {backend} worker(s)"
+        log.info("running %s: %d scenarios %s", study.name, len(todo), where)
     report = RunReport(directory / "results.nc", reused=list(parts))
     if todo:
         solved = _solve_missing(todo, directory / "scenarios", jobs, backend, scheduler, progress)
