@@ -10,6 +10,7 @@ value for a semicircular arch under self-weight is ``t/R = 0.1075``).
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -56,6 +57,7 @@ def minimum_thickness(
     material: Material | None = None,
     tol: float = 1e-6,
     reference: float = 1.0,
+    progress: Callable[[int, int], None] | None = None,
 ) -> ThicknessResult:
     """Bisect the thinnest ``t`` in ``[lo, hi]`` for which ``build(t)`` stands under self-weight.
 
@@ -71,6 +73,10 @@ def minimum_thickness(
         Relative width of the final bracket, ``(hi - lo) / hi``.
     reference : float
         Length that ``ratio`` divides by (m).
+    progress : callable, optional
+        ``progress(solves done, solves expected)`` after each solve (the expected count is
+        an upper bound until the last call, where both are equal); e.g. a
+        :class:`tce.study.progress.Progress`.
 
     Raises
     ------
@@ -85,12 +91,17 @@ def minimum_thickness(
     n = undecided = 0
     solve_time = 0.0
 
+    # solves: the two ends, then one per halving of the bracket down to tol * lo (an upper bound)
+    expected = 2 + max(0, math.ceil(math.log2((hi - lo) / (tol * lo))))
+
     def stands(t: float) -> bool:
         nonlocal n, undecided, solve_time
         n += 1
         r = Analysis(build(t), material).solve(0.0)
         undecided += r.status == "numerical"
         solve_time += r.solve_time
+        if progress is not None:
+            progress(n, max(expected, n))
         return r.status == "optimal"
 
     if not stands(hi):
@@ -103,6 +114,8 @@ def minimum_thickness(
             hi = mid
         else:
             lo = mid
+    if progress is not None:
+        progress(n, n)
     return ThicknessResult(
         status="optimal", message=f"bracket [{lo:.9g}, {hi:.9g}] m after {n} solves ({undecided} undecided)",
         solve_time=solve_time, wall_time=time.perf_counter() - t0,
@@ -116,10 +129,12 @@ def arch_minimum_thickness(
     depth: float = 0.25,
     material: Material | None = None,
     tol: float = 1e-6,
+    progress: Callable[[int, int], None] | None = None,
 ) -> ThicknessResult:
     """Minimum thickness of a semicircular arch with fixed centreline radius (m).
 
-    The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``.
+    The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``;
+    ``progress`` as in :func:`minimum_thickness`.
     """
     check_positive(centre_radius=centre_radius, depth=depth)
     n = check_whole(voussoirs, "voussoirs")
@@ -128,5 +143,5 @@ def arch_minimum_thickness(
         return semicircular_arch(centre_radius - t / 2, t, depth, n)
 
     return minimum_thickness(
-        build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius
+        build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius, progress=progress
     )

@@ -72,6 +72,7 @@ from ..core.material import Material
 from ..core.model import Model, build_model
 from ..core.pyramid import pyramid_lambda_max
 from ..core.solve import SolverOptions, TCESolver
+from ..study.progress import Progress, track
 
 __all__ = ["run_bench", "bench_command", "add_bench_arguments", "evaluate_targets", "growth_exponent"]
 
@@ -314,7 +315,8 @@ def _discretisation(quick: bool) -> list[dict[str, Any]]:
                  residual=_eq_residual(model, res[-1].forces, res[-1].lambda_max, 90.0))
         )
         if arch_minimum_thickness is not None and (n == 16 or not quick):
-            th = arch_minimum_thickness(1.0, n, tol=1e-5)
+            with Progress(0, f"minimum thickness, {n} voussoirs", unit="solve") as bar:
+                th = arch_minimum_thickness(1.0, n, tol=1e-5, progress=bar)
             rows.append(
                 _row("discretisation", f"arch {n} voussoirs", "minimum thickness (bisection 1e-5)",
                      solver="CLARABEL", model="planar", n_blocks=n + 2, n_solves=th.n_solves, time_s=th.wall_time,
@@ -577,7 +579,7 @@ def run_bench(out_dir: Path = Path("results/bench"), quick: bool = False,
     if unknown:
         raise ValueError(f"unknown bench sections {sorted(unknown)}; choose from {list(SECTIONS)}")
     rows: list[dict[str, Any]] = []
-    for name in names:
+    for name in track(names, "bench", unit="section"):
         rows += SECTIONS[name](quick)
     df = pd.DataFrame(rows, columns=COLUMNS)
     base = df[(df.section == "per_solve") & (df.model == "spatial") & df.method.str.startswith("clarabel-direct (warm")]

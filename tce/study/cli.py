@@ -123,22 +123,27 @@ def _open_results(path: Path):
 
 
 class _Bar:
-    """tqdm progress of scenarios and load steps (silent when stderr is not a terminal)."""
+    """Progress of a run's scenarios (:class:`tce.study.progress.Progress`): a bar on a
+    terminal, one-line progress in the log otherwise."""
 
-    def __init__(self) -> None:
+    def __init__(self, desc: str) -> None:
+        self.desc = desc
         self.bar = None
 
     def __call__(self, done: int, total: int, steps: int) -> None:
-        from tqdm import tqdm
+        from .progress import Progress
 
         if self.bar is None:
-            self.bar = tqdm(total=total, unit="scenario", disable=not sys.stderr.isatty(), file=sys.stderr)
-        self.bar.set_postfix_str(f"{steps} steps")
-        self.bar.update(done - self.bar.n)
+            self.bar = Progress(total, self.desc, unit="scenario")
+        self.bar.note(f"{steps} load steps")
+        self.bar.set_done(done)
+        if done >= total:
+            self.close()  # solving is over: what follows (figures) reports itself
 
     def close(self) -> None:
         if self.bar is not None:
             self.bar.close()
+            self.bar = None
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -155,7 +160,7 @@ def _run(args: argparse.Namespace) -> int:
         raise UsageError(str(exc)) from None
     if args.fresh:
         shutil.rmtree(args.out / study.name / "scenarios", ignore_errors=True)
-    bar = _Bar()
+    bar = _Bar(study.name)
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,

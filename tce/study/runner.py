@@ -192,7 +192,8 @@ def run_study(
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:port``).
     progress : callable, optional
-        ``progress(done, total, steps)`` after each scenario solved.
+        ``progress(done, total, steps)`` before the first scenario (``done = 0``) and after
+        each scenario solved.
     plots : bool
         Write the figures after the results.
 
@@ -226,6 +227,8 @@ def run_study(
         log.info("running %s: %d scenarios %s", study.name, len(todo), where)
     report = RunReport(directory / "results.nc", reused=list(parts))
     if todo:
+        if progress is not None:
+            progress(0, len(todo), 0)  # the bar shows (and ticks) from the start
         solved = _solve_missing(todo, directory / "scenarios", jobs, backend, scheduler, progress)
         parts.update(solved)
         report.solved = [sc.name for sc in todo]
