@@ -65,11 +65,13 @@ def test_run_logs_its_choice(tmp_path, caplog):
     assert any(r.message.startswith("in-process: the study's work") for r in caplog.records)
 
 
-def test_tce_program_does_not_import_dask(tmp_path):
+@pytest.mark.parametrize("jobs", [[], ["--jobs", "2"]], ids=["default", "two workers"])
+def test_tce_program_does_not_import_dask(tmp_path, jobs):
+    # the program, in-process or with workers (which inherit TCE_NO_DASK), runs without dask
     code = (
         "import sys\n"
         "from tce.study.cli import main\n"
-        f"sys.argv = ['tce', 'run', {str(STUDIES / 'fig9_outofplane.toml')!r}, '--out', {str(tmp_path)!r}, '--no-plots']\n"
+        f"sys.argv = ['tce', 'run', {str(STUDIES / 'fig9_outofplane.toml')!r}, '--out', {str(tmp_path)!r}, '--no-plots', *{jobs!r}]\n"
         "rc = main()\n"
         "print(rc, sys.modules.get('dask', 'absent'))\n"
     )

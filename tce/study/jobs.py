@@ -24,7 +24,8 @@ Dask: xarray imports dask, when it is installed, the first time it makes a Datas
 project's machine. The ``tce`` program sets ``TCE_NO_DASK=1`` unless ``--backend dask`` is
 chosen; :func:`block_dask_import` (called when this module is imported with that variable
 set, in the program and in its loky workers, which inherit the environment) makes that import
-fail fast, which xarray takes as "dask not installed".
+fail fast, which xarray takes as "dask not installed". xarray remembers whether dask is
+installed from its own import on, so :mod:`tce.study` imports this module first.
 """
 
 from __future__ import annotations
@@ -36,9 +37,11 @@ import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from ..core.analysis import Analysis
-from .schema import Scenario
+if TYPE_CHECKING:  # imported lazily: this module must load before anything imports xarray
+    from ..core.analysis import Analysis
+    from .schema import Scenario
 
 __all__ = ["LARGE_MODEL", "WORKER_START_S", "JobsChoice", "block_dask_import", "choose_jobs", "estimate_work"]
 
