@@ -44,24 +44,48 @@ def assembly(name: str) -> Assembly:
     return builders[name]()
 
 
+def geometry_arrays(a: Assembly) -> dict[str, np.ndarray]:
+    """Block and interface measures of ``a``, computed one object at a time."""
+    return {
+        "volume": np.array([b.volume for b in a.blocks]),
+        "centroid": a.centroids,
+        "face_normals": np.vstack([b.shape.face_normals for b in a.blocks]),
+        "size": np.array([b.shape.size for b in a.blocks]),
+        "asm_size": np.asarray(a.size),
+        "itf_ab": np.array([[i.a, i.b] for i in a.interfaces]),
+        "itf_normal": np.array([i.normal for i in a.interfaces]),
+        "itf_frame": np.array([i.frame for i in a.interfaces]),
+        "itf_area": np.array([i.area for i in a.interfaces]),
+        "itf_centroid": np.array([i.centroid for i in a.interfaces]),
+        "itf_points": np.vstack([i.points for i in a.interfaces]),
+        "itf_npts": np.array([len(i.points) for i in a.interfaces]),
+        "itf_tributary": np.concatenate([i.tributary for i in a.interfaces]),
+    }
+
+
+#: dense arrays of a model compared one to one
+MODEL_ARRAYS = ("contact_interface", "contact_points", "contact_area", "tangents", "b_dead", "b_lat",
+                "vertex_interface", "vertex_points", "interfaces")
+#: sparse operators of a model, stored as COO (row, col, data, shape) without explicit zeros
+MODEL_OPERATORS = ("A_eq", "B_sup", "lift")
+
+
+def canonical(M: sp.spmatrix) -> sp.coo_matrix:
+    """``M`` with duplicates summed, explicit zeros dropped and entries in row order."""
+    C = sp.coo_matrix(M)
+    C.sum_duplicates()
+    C = C.tocsr()
+    C.sort_indices()
+    C.eliminate_zeros()
+    return C.tocoo()
+
+
 def record(path: str | Path) -> None:
     """Write the reference arrays of every case to ``path`` (npz)."""
     out: dict[str, np.ndarray] = {}
 
     def put(key: str, val) -> None:
         out[key] = np.asarray(val)
-
-    def put_sparse(key: str, M) -> None:
-        C = sp.coo_matrix(M)
-        C.sum_duplicates()
-        C = C.tocsr()
-        C.sort_indices()
-        C.eliminate_zeros()
-        C = C.tocoo()
-        put(key + ".row", C.row)
-        put(key + ".col", C.col)
-        put(key + ".data", C.data)
-        put(key + ".shape", C.shape)
 
     def mech(prefix: str, m, alpha: float) -> None:
         r = LimitSolver(m, Material(friction=0.8)).solve(alpha)
@@ -81,29 +105,19 @@ def record(path: str | Path) -> None:
 
     for name in CASES:
         a = assembly(name).validate()
-        put(f"{name}/volume", [b.volume for b in a.blocks])
-        put(f"{name}/centroid", a.centroids)
-        put(f"{name}/face_normals", np.vstack([b.shape.face_normals for b in a.blocks]))
-        put(f"{name}/size", [b.shape.size for b in a.blocks])
-        put(f"{name}/asm_size", a.size)
-        put(f"{name}/itf_ab", [[i.a, i.b] for i in a.interfaces])
-        put(f"{name}/itf_normal", np.array([i.normal for i in a.interfaces]))
-        put(f"{name}/itf_frame", np.array([i.frame for i in a.interfaces]))
-        put(f"{name}/itf_area", [i.area for i in a.interfaces])
-        put(f"{name}/itf_centroid", np.array([i.centroid for i in a.interfaces]))
-        put(f"{name}/itf_points", np.vstack([i.points for i in a.interfaces]))
-        put(f"{name}/itf_npts", [len(i.points) for i in a.interfaces])
-        put(f"{name}/itf_tributary", np.concatenate([i.tributary for i in a.interfaces]))
+        for k, v in geometry_arrays(a).items():
+            put(f"{name}/{k}", v)
         planar = find_plane(a) is not None
         for kind in ("spatial", "planar") if planar else ("spatial",):
             m = build_model(a, kind)
             key = f"{name}/{kind}"
             put(f"{key}/kind", m.kind)
-            for k in ("contact_interface", "contact_points", "contact_area", "tangents", "b_dead", "b_lat",
-                      "vertex_interface", "vertex_points", "interfaces"):
+            for k in MODEL_ARRAYS:
                 put(f"{key}/{k}", getattr(m, k))
-            for k in ("A_eq", "B_sup", "lift"):
-                put_sparse(f"{key}/{k}", getattr(m, k))
+            for k in MODEL_OPERATORS:
+                C = canonical(getattr(m, k))
+                for part, val in (("row", C.row), ("col", C.col), ("data", C.data), ("shape", C.shape)):
+                    put(f"{key}/{k}.{part}", val)
             put(f"{key}/compliance", m.compliance(1e6, 4e5))
             if m.plane is not None:
                 put(f"{key}/plane_m", m.plane.m)
