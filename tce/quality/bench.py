@@ -361,9 +361,20 @@ def scaling_case(structure: str, size: int, friction: float = FRICTION) -> dict[
     res = LimitSolver(model, Material(friction=friction)).solve(90.0 if structure == "arch" else 0.0)
     c3, t3 = time.process_time(), time.perf_counter()
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # kB on Linux
-    return dict(n_blocks=len(a.blocks), n_vars=model.n_vars, status=res.status, lambda_max=res.lambda_max,
-                t_assembly=t1 - t0, t_model=t2 - t1, t_build=t2 - t0, t_solve=t3 - t2, t_clarabel=res.solve_time,
-                cpu_build=c2 - c0, cpu_solve=c3 - c2, iterations=res.iterations, peak_mem_mb=rss)
+    out = dict(n_blocks=len(a.blocks), n_vars=model.n_vars, status=res.status, lambda_max=res.lambda_max,
+               t_assembly=t1 - t0, t_model=t2 - t1, t_build=t2 - t0, t_solve=t3 - t2, t_clarabel=res.solve_time,
+               cpu_build=c2 - c0, cpu_solve=c3 - c2, iterations=res.iterations, peak_mem_mb=rss)
+    if structure == "dome":
+        # prototype of the large dome's settings: the same limit problem without iterative refinement
+        from ..core.clarabel_solver import SolverOptions as Options, solve_once
+        from ..core.problem import Formulation, limit_problem
+
+        f = Formulation(model, Material(friction=friction))
+        c4 = time.process_time()
+        sol = solve_once(limit_problem(f, model.b_dead, model.b_lateral(0.0)), Options(tol=1e-10, max_iter=500).settings(refine=False))
+        out.update(cpu_solve_norefine=time.process_time() - c4, t_solve_norefine=sol.solve_time + sol.setup_time,
+                   lambda_norefine=float(sol.x[-1]) if sol.solved else float("nan"), iterations_norefine=sol.iterations)
+    return out
 
 
 def _subprocess_case(structure: str, size: int, timeout: float) -> dict[str, Any] | None:
@@ -401,8 +412,8 @@ def _scaling(quick: bool) -> list[dict[str, Any]]:
             if not runs[n]:
                 rows.append(_row("scaling", f"{structure} size {n}", "build + lambda_max (direct, 3D)", note="failed or timed out"))
                 continue
-            med = {k: statistics.median(r[k] for r in runs[n]) for k in ("t_build", "t_solve", "t_clarabel", "cpu_build",
-                                                                        "cpu_solve", "peak_mem_mb")}
+            med = {k: statistics.median(r[k] for r in runs[n]) for k in runs[n][0]
+                   if k.startswith(("t_", "cpu_", "peak_"))}
             r = runs[n][-1]
             got.append((r["n_blocks"], med))
             rows.append(
@@ -412,6 +423,15 @@ def _scaling(quick: bool) -> list[dict[str, Any]]:
                      note=f"{r['status']}, {r['n_vars']} unknowns, {r['iterations']} it; build/solve "
                           f"{med['t_build'] / med['t_solve']:.3f} (cpu {med['cpu_build']:.2f} / {med['cpu_solve']:.2f} s)")
             )
+            if "t_solve_norefine" in med:
+                rows.append(
+                    _row("scaling", f"{structure} {r['n_blocks']} blocks", "lambda_max, no iterative refinement (prototype)",
+                         solver="CLARABEL", model="spatial", n_blocks=r["n_blocks"], n_solves=len(runs[n]),
+                         time_s=med["t_solve_norefine"], error=abs(r["lambda_norefine"] - r["lambda_max"]),
+                         error_of="lambda_max vs default settings",
+                         note=f"{r['iterations_norefine']} it; cpu {med['cpu_solve_norefine']:.2f} s, "
+                              f"{med['cpu_solve_norefine'] / med['cpu_solve']:.2f}x the default's")
+                )
         blocks = [b for b, _ in got]
         e_solve = growth_exponent(blocks, [m["t_solve"] for _, m in got])
         e_build = growth_exponent(blocks, [m["t_build"] for _, m in got])
