@@ -98,7 +98,7 @@ def arch_from_joints(
     # normal in the x-z plane, perpendicular to the joint, pointing left -> right
     t = je - ji
     normal = np.column_stack([t[:, 1], np.zeros(n + 1), -t[:, 0]])
-    centroids = FaceTable.of(shapes).centroid
+    centroids = FaceTable.uniform(np.concatenate([front, back], axis=1), shapes[0].faces).centroid  # either orientation
     flip = np.einsum("ij,ij->i", normal, centroids[1:] - centroids[:-1]) < 0
     normal[flip] *= -1.0
     interfaces = [Interface(k, k + 1, pts[k], normal[k]) for k in range(n + 1)]

@@ -364,6 +364,27 @@ class FaceTable:
         fstart = np.concatenate([[0], np.cumsum([len(c) for c in counts])])
         return cls(points, vstart.astype(np.int64), loop, start, fstart.astype(np.int64))
 
+    @classmethod
+    def uniform(cls, vertices: ArrayLike, faces: Sequence[Sequence[int]]) -> FaceTable:
+        """The table of ``n`` polyhedra that share one face list, from their vertices alone.
+
+        Parameters
+        ----------
+        vertices : (n, k, 3) array_like
+            Vertices of each polyhedron (m).
+        faces : sequence of sequences of int
+            Their common face list (indices into ``0..k-1``).
+        """
+        v = np.asarray(vertices, dtype=float)
+        n, k = v.shape[:2]
+        fl = _checked_faces(faces, k)
+        lp = np.fromiter((i for f in fl for i in f), dtype=np.int64)
+        counts = np.fromiter((len(f) for f in fl), dtype=np.int64, count=len(fl))
+        loop = (lp[None, :] + (np.arange(n) * k)[:, None]).ravel()
+        start = np.concatenate([[0], np.cumsum(np.tile(counts, n))]).astype(np.int64)
+        return cls(v.reshape(-1, 3), np.arange(n + 1, dtype=np.int64) * k, loop, start,
+                   np.arange(n + 1, dtype=np.int64) * len(fl))
+
     def __len__(self) -> int:
         return len(self.face_start) - 1
 
@@ -565,9 +586,8 @@ def oriented_polyhedra(vertices: ArrayLike, faces: Sequence[Sequence[int]]) -> l
         raise GeometryError(f"vertices must be an (n, k, 3) array, got shape {v.shape}")
     fw = _checked_faces(faces, v.shape[1])
     bw = tuple(f[::-1] for f in fw)
-    shapes = [Polyhedron(p, fw) for p in v]
-    vol = FaceTable.of(shapes).volume
-    return [s if vol_s >= 0 else Polyhedron(s.vertices, bw) for s, vol_s in zip(shapes, vol)]
+    vol = FaceTable.uniform(v, fw).volume
+    return [Polyhedron(p, fw if vol_p >= 0 else bw) for p, vol_p in zip(v, vol)]
 
 
 def prisms(bottom: ArrayLike, top: ArrayLike) -> list[Polyhedron]:
