@@ -58,7 +58,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("study", type=Path, metavar="STUDY.toml", help="study file (TOML)")
     run.add_argument("--out", type=Path, default=Path("results"), metavar="DIR", help="results root (default: results)")
-    run.add_argument("--jobs", type=_jobs, default=None, metavar="N", help="parallel workers (default: all cores)")
+    run.add_argument("--jobs", type=_jobs, default=None, metavar="N", help="parallel workers (default: in-process when the study is smaller than starting workers costs, else all cores)")
     run.add_argument(
         "--backend", choices=("loky", "dask"), default="loky",
         help="loky: processes on this machine (default); dask: a Dask distributed cluster",
