@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -143,21 +144,23 @@ def test_assembly_level_errors_name_file_and_blocks(tmp_path):
 # ---------------------------------------------------------------- the compas_cra samples
 # README table: supports by node key, friction and unit weight from the sample scripts
 # (Heyman, mu = None, when the script gives none; unit weight 20 kN/m^3 when none is given).
+# Every sample loads with the loader's default options: only the supports (not in the files)
+# and the unit weights are given.
 SAMPLES = {
     "cubes": dict(supports=[0], mu=0.84, uw=None, pairs={("0", "1"), ("1", "2")}, n=2),
     "type-b": dict(supports=[0, 1], mu=None, uw=None, pairs={("0", "1"), ("0", "2"), ("1", "2")}, n=3),
     "shelf": dict(supports=[0], mu=0.9, uw=1.0, n=19),
     "bridge": dict(supports=[0, 1], mu=0.9, uw={**{str(k): 3.51 for k in range(11, 16)},
                                                 **{str(k): 1.0 for k in range(11)}}, n=37),
-    "curve-3-blocks": dict(supports=[0], mu=None, uw=1.0, pairs={("0", "1"), ("1", "2")},
-                           kw=dict(nonplanar="triangulate", tol=1e-2, angle_tol=0.2, min_area=1e-6,
-                                   check_overlap=False)),
+    "curve-3-blocks": dict(supports=[0], mu=None, uw=1.0, pairs={("0", "1"), ("1", "2")}, n=40),
 }
 
 
+@lru_cache(maxsize=None)
 def _load_sample(name):
     c = SAMPLES[name]
-    return load_assembly(DATA / f"{name}.json", supports=c["supports"], unit_weight=c["uw"], **c.get("kw", {}))
+    uw = c["uw"]
+    return load_assembly(DATA / f"{name}.json", supports=c["supports"], unit_weight=uw)
 
 
 @pytest.mark.parametrize("name", sorted(SAMPLES))
@@ -165,31 +168,110 @@ def test_sample_loads_and_stands(name):
     c = SAMPLES[name]
     asm = _load_sample(name)
     assert asm.meta["format"] == "compas-json"
+    assert asm.meta["interfaces"] == ("from file" if name == "curve-3-blocks" else "detected")
     pairs = {(asm.names[i.a], asm.names[i.b]) for i in asm.interfaces}
     if "pairs" in c:
         assert pairs == c["pairs"]
-    if "n" in c:
-        assert len(asm.interfaces) == c["n"]
+    assert len(asm.interfaces) == c["n"]
     res = TCESolver(build_model(asm, "spatial"), Material(friction=c["mu"])).solve(0.0)
     assert res.status == "optimal"
     assert res.support_wrenches[:, 2].sum() == pytest.approx(asm.total_weight, rel=1e-7)
 
 
-def test_curved_sample_contact_area_matches_the_stored_interfaces():
+def _stored_interfaces(raw):
+    """The curved sample's stored interfaces: (u, v, points, frame z axis), read here directly."""
+    out = []
+    for u, row in raw["data"]["graph"]["data"]["edge"].items():
+        for v, data in row.items():
+            for item in data["interfaces"]:
+                fr = item["data"]["frame"]["data"]
+                out.append((u, v, np.array(item["data"]["points"]), np.cross(fr["xaxis"], fr["yaxis"])))
+    return out
+
+
+def test_curved_sample_uses_its_stored_interfaces():
+    """The 40 stored strips (20 per curved contact) become the interfaces, unchanged, with the
+    normal from the block of lower index into the other one (the frames' z axes point from
+    edge key u into v, here from the upper block into the lower one)."""
     asm = _load_sample("curve-3-blocks")
-    raw = json.loads((DATA / "curve-3-blocks.json").read_text())
-    edges = raw["data"]["graph"]["data"]["edge"]
-    for a, row in edges.items():
-        for b, data in row.items():
-            stored = sum(polygon_area(np.array(i["data"]["points"])) for i in data["interfaces"])
-            key = tuple(sorted((a, b)))
-            found = sum(i.area for i in asm.interfaces if (asm.names[i.a], asm.names[i.b]) == key)
-            assert found == pytest.approx(stored, rel=0.03)
+    stored = _stored_interfaces(json.loads((DATA / "curve-3-blocks.json").read_text()))
+    assert len(asm.interfaces) == len(stored) == 40
+    for itf, (u, v, pts, z) in zip(asm.interfaces, stored):
+        assert (asm.names[itf.a], asm.names[itf.b]) == tuple(sorted((u, v)))
+        assert np.allclose(itf.points, pts[::-1] if u > v else pts, atol=1e-12)
+        assert np.allclose(itf.normal, (-z if u > v else z) / np.linalg.norm(z), atol=1e-12)
+        assert itf.normal @ (asm.blocks[itf.b].centroid - asm.blocks[itf.a].centroid) > 0
 
 
-def test_curved_sample_is_reported_non_planar_by_default():
+def test_curved_sample_detection_fallback_matches_the_stored_contact_area():
+    """Detection is still there: with loose tolerances it finds the curved contacts between the
+    differently meshed facets, over the stored interfaces' area within 3 %."""
+    asm = load_assembly(DATA / "curve-3-blocks.json", supports=[0], detect=True, tol=1e-2, angle_tol=0.2,
+                        min_area=1e-6, check_overlap=False)
+    assert asm.meta["interfaces"] == "detected"
+    stored = _stored_interfaces(json.loads((DATA / "curve-3-blocks.json").read_text()))
+    for key in {tuple(sorted((u, v))) for u, v, _, _ in stored}:
+        area = sum(polygon_area(p) for u, v, p, _ in stored if tuple(sorted((u, v))) == key)
+        found = sum(i.area for i in asm.interfaces if (asm.names[i.a], asm.names[i.b]) == key)
+        assert found == pytest.approx(area, rel=0.03)
+
+
+def test_curved_sample_faces_are_non_planar():
+    """Its quads are warped (COMPAS meshes): split into triangles by default for COMPAS files,
+    reported when asked to."""
+    assert _load_sample("curve-3-blocks").meta["faces_triangulated"] > 0
     with pytest.raises(GeometryError, match=r"curve-3-blocks.json: block '0'.*not planar"):
-        load_assembly(DATA / "curve-3-blocks.json", supports=[0])
+        load_assembly(DATA / "curve-3-blocks.json", supports=[0], nonplanar="error")
+
+
+def _compas_doc(edge_interfaces):
+    """A COMPAS assembly of two unit cubes (node 0 under node 1) with stored interfaces on edge 1 -> 0."""
+    def mesh(lo, hi):
+        b = box(lo, hi)
+        return {"dtype": "compas.datastructures/Mesh", "data": {
+            "vertex": {str(k): dict(zip("xyz", v)) for k, v in enumerate(b.vertices.tolist())},
+            "face": {str(k): list(f) for k, f in enumerate(b.faces)}}}
+    nodes = {"0": {"block": mesh([0, 0, 0], [1, 1, 1])}, "1": {"block": mesh([0, 0, 1], [1, 1, 2])}}
+    edges = {"0": {}, "1": {"0": {"interfaces": edge_interfaces}}}
+    return {"dtype": "compas_assembly.datastructures/Assembly",
+            "data": {"graph": {"dtype": "compas.datastructures/Graph", "data": {"node": nodes, "edge": edges}}}}
+
+
+def _stored(points, zaxis=(0.0, 0.0, -1.0)):
+    x = np.cross(zaxis, [0.0, 1.0, 0.0]) if abs(zaxis[1]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    y = np.cross(zaxis, x)
+    frame = {"dtype": "compas.geometry/Frame", "data": {"point": points[0], "xaxis": x.tolist(), "yaxis": y.tolist()}}
+    return {"dtype": "compas_assembly.datastructures/Interface", "data": {"points": points, "frame": frame}}
+
+
+SQUARE = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [1.0, 1.0, 1.0], [0.0, 1.0, 1.0]]
+
+
+def test_compas_stored_interface_is_used(tmp_path):
+    half = [[0.0, 0.0, 1.0], [0.5, 0.0, 1.0], [0.5, 1.0, 1.0], [0.0, 1.0, 1.0]]
+    asm = load_assembly(_write(tmp_path, _compas_doc([_stored(half)])), supports=[0])
+    (itf,) = asm.interfaces
+    assert (itf.a, itf.b) == (0, 1) and np.allclose(itf.normal, [0, 0, 1])
+    assert itf.area == pytest.approx(0.5)  # the stored polygon, not the detected full square
+    assert asm.meta["interfaces"] == "from file"
+    assert len(load_assembly(_write(tmp_path, _compas_doc([_stored(half)])), supports=[0], detect=True).interfaces) == 1
+    assert load_assembly(_write(tmp_path, _compas_doc([_stored(half)])), supports=[0], detect=True).interfaces[0].area == 1.0
+
+
+@pytest.mark.parametrize(
+    "item, words",
+    [
+        (_stored([[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [1.0, 1.0, 1.02], [0.0, 1.0, 1.0]]), "not planar"),
+        (_stored([[p[0], p[1], 0.0] for p in SQUARE]), "does not lie on block '1'"),
+        (_stored([[p[0] + 3.0, p[1], 1.0] for p in SQUARE]), "does not lie on block '0'"),
+        (_stored(SQUARE, zaxis=(0.0, 0.6, -0.8)), "plane of its frame"),
+        (_stored(SQUARE[:2]), "at least 3"),
+        ({"data": {"frame": None}}, "no 'points'"),
+    ],
+)
+def test_compas_stored_interface_errors_name_the_interface(tmp_path, item, words):
+    with pytest.raises(AssemblyError, match=rf"a.json: .*interface 0 of edge 1-0.*{words}"):
+        load_assembly(_write(tmp_path, _compas_doc([item])), supports=[0])
 
 
 def test_bundled_data_has_licence_and_readme():

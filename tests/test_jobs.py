@@ -13,15 +13,23 @@ from tce.core.material import Material
 from tce.structures.arch import semicircular_arch
 from tce.study import jobs as jobs_module
 from tce.study.jobs import LARGE_MODEL, choose_jobs, estimate_work
-from tce.study.runner import _analysis, run_study
+from tce.study.runner import _analysis as _runner_analysis, run_study
 from tce.study.schema import load_study
 
 STUDIES = Path(__file__).resolve().parents[1] / "studies"
 
 
+FIG8 = load_study(STUDIES / "fig7_8_inplane.toml")
+
+
+def _analysis(sc):
+    """The runner's analysis of a scenario (as run_study builds it)."""
+    return _runner_analysis(sc, FIG8.assembly(sc.structure))
+
+
 @pytest.fixture(scope="module")
 def fig8():
-    return load_study(STUDIES / "fig7_8_inplane.toml").scenarios()
+    return FIG8.scenarios()
 
 
 def test_jobs_asked_for_are_used(fig8):
@@ -52,10 +60,10 @@ def test_work_above_worker_start_up_goes_parallel(fig8, monkeypatch):
 
 def test_large_model_is_large_work_without_a_solve(fig8):
     big = Analysis(semicircular_arch(voussoirs=LARGE_MODEL // 4 + 10), Material(0.8))  # planar: 4 unknowns a joint
-    work, how = estimate_work(fig8, lambda group: big)
+    work, how = estimate_work(fig8, lambda sc: big)
     assert work == float("inf") and "unknowns" in how
     assert not big._solvers and not big._limits  # nothing was solved
-    assert choose_jobs(fig8, None, lambda group: big, cpus=2).jobs == 2
+    assert choose_jobs(fig8, None, lambda sc: big, cpus=2).jobs == 2
 
 
 def test_run_logs_its_choice(tmp_path, caplog):

@@ -26,3 +26,27 @@ def test_fig10_dome_limit_does_not_depend_on_the_settlement(tmp_path):
     lam = ds.lambda_max.values
     assert np.all(np.isfinite(lam)) and lam[0] == pytest.approx(lam[1], rel=1e-9)
     assert set(ds.outcome.values) == {"limit"}
+
+
+def test_groin_vault_study_limit_is_the_same_along_x_and_y(tmp_path):
+    """The square groin vault maps onto itself by a quarter turn: the load paths along x and y
+    meet the same lambda_max, and (rigid blocks) the piers' spreading does not change it."""
+    ds = xr.load_dataset(run_study(load_study(STUDIES / "groin_vault.toml"), out=tmp_path, jobs=1, plots=False).results)
+    assert set(ds.outcome.values) == {"limit"}
+    lam = ds.lambda_max.values
+    assert np.ptp(lam) <= 1e-9 * lam.max()
+    assert np.all(np.abs(ds.lambda_gap.values) <= 1e-4)  # the study's bisection tolerance
+
+
+def test_barrel_vault_study_structure_has_finite_limits_both_ways():
+    from tce.analysis import Analysis
+    from tce.study.schema import build_material, build_structure
+
+    (sc, *_) = load_study(STUDIES / "barrel_vault.toml").scenarios()
+    an = Analysis(build_structure(sc.structure), build_material(sc.material))
+    # an odd number of courses: the running bond is symmetric about x = 0 and about y = 0
+    assert load_study(STUDIES / "barrel_vault.toml").spec.structure.courses % 2 == 1
+    for alpha in (0.0, 90.0):
+        lim, back = an.limit(alpha), an.limit(alpha + 180.0)
+        assert lim.status == "optimal" and lim.certificate_gap < 1e-6
+        assert back.lambda_max == pytest.approx(lim.lambda_max, rel=1e-6)

@@ -112,7 +112,7 @@ def test_interrupted_sweep_resumes(study, reference, tmp_path, monkeypatch) -> N
 
     solved: list[str] = []
     solve = runner.solve_scenario
-    monkeypatch.setattr(runner, "solve_scenario", lambda sc: solved.append(sc.name) or solve(sc))
+    monkeypatch.setattr(runner, "solve_scenario", lambda sc, asm: solved.append(sc.name) or solve(sc, asm))
     report = runner.run_study(study, tmp_path, jobs=1, plots=False)
     assert len(report.reused) == 3 and len(report.solved) == 5 and sorted(solved) == sorted(report.solved)
     xr.testing.assert_identical(answer(report.results), reference)

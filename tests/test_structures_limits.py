@@ -58,6 +58,20 @@ def test_sample_stands_and_its_limits(name):
             assert lim.certificate_gap < 1e-6
 
 
+def test_curved_sample_with_friction_has_a_finite_limit():
+    """With its stored interfaces (planar strips along the curved contacts) and Coulomb friction
+    0.84, the curved sample has a finite lambda_max in every direction: the upper blocks slide or
+    rock on the curved seats. Measured with tce at the commit that added stored interfaces:
+    lambda_max(0) = 0.151037, lambda_max(90) = 0.502530, lambda_max(180) = 1.372894."""
+    an = Analysis(_load_sample("curve-3-blocks"), Material(friction=0.84), model="spatial")
+    assert an.solve(0.0).status == "optimal"
+    for alpha, expected in ((0.0, 0.15103730021735354), (90.0, 0.5025301956182282), (180.0, 1.3728939196743408)):
+        lim = an.limit(alpha)
+        assert lim.status == "optimal" and np.isfinite(lim.lambda_max)
+        assert lim.certificate_gap < 1e-6
+        assert lim.lambda_max == pytest.approx(expected, rel=1e-4)
+
+
 # ---------------------------------------------------------------- hemispherical dome
 R = 5.0
 

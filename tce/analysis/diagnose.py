@@ -12,6 +12,15 @@ solves a scene and explains a non-``optimal`` answer:
 ``unbounded``
     the support motion is incompatible with the material: the interfaces that carry the
     self-stress along which the TCE decreases without end (Heyman joints asked to slide).
+
+No finite limit (:func:`explain_no_limit`, :func:`no_limit_reason`): when the load path
+reaches ``lambda_cap`` (outcome ``no_limit``) or the direct limit is unbounded, the reason
+in words. An unbounded direct limit has a certificate: a force state ``F`` with
+``A_eq F + b_lat = 0`` that is admissible, i.e. a way to carry the lateral load with no
+self-weight (:meth:`tce.core.limit.LimitSolver.lateral_ray`); any multiple of it can be added
+to any admissible state, so no load collapses the structure. The interfaces it loads are the
+ones responsible. If the contacts of the free blocks with the supports can carry it alone,
+the lateral load goes straight into a support; otherwise the blocks lock against each other.
 """
 
 from __future__ import annotations
@@ -24,12 +33,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..core.analysis import Analysis
-from ..core.limit import Mechanism
+from ..core.limit import LimitSolver, Mechanism
 from ..core.result import Result
 from ..core.solve import TCEResult
 from ..structures.assembly import Assembly
+from .loadpath import LoadPathResult
 
-__all__ = ["Diagnosis", "binding_interfaces", "diagnose"]
+__all__ = ["Diagnosis", "NoLimit", "binding_interfaces", "diagnose", "explain_no_limit", "no_limit_reason"]
+
+#: interfaces named in a no-limit message before "and k more"
+NAMED = 6
 
 
 def _on_boundary(point: np.ndarray, polygon: np.ndarray, tol: float) -> bool:
@@ -83,15 +96,140 @@ class Diagnosis(Result):
     binding : list of (str, str)
         ``(interface "A|B", "hinge" | "sliding" | "self-stress")``.
     mechanism : Mechanism or None
+    no_limit : NoLimit or None
+        Why the scene's direction has no finite collapse load, when it has none.
     """
 
     binding: list[tuple[str, str]] = field(default_factory=list)
     mechanism: Mechanism | None = None
+    no_limit: NoLimit | None = None
+
 
     @property
     def summary(self) -> str:
         """The explanation: the :attr:`message`."""
         return self.message
+
+
+@dataclass(frozen=True)
+class NoLimit:
+    """Why a direction has no finite collapse load.
+
+    Attributes
+    ----------
+    reason : str
+        ``into_support`` (the free blocks' contacts with the supports carry the lateral load
+        without limit), ``locked`` (the blocks lock against each other and the supports),
+        ``beyond_cap`` (the direct limit is finite but above the largest load tried),
+        ``finite`` (there is a finite limit) or ``undecided`` (the direct limit analysis did
+        not answer).
+    summary : str
+        The explanation in words.
+    interfaces : list of str
+        ``"A|B"`` of the interfaces that carry the lateral load without limit, most loaded first.
+    blocks : list of str
+        Free blocks that pass their lateral load straight into a support.
+    """
+
+    reason: str
+    summary: str
+    interfaces: list[str] = field(default_factory=list)
+    blocks: list[str] = field(default_factory=list)
+
+
+def _names(items: list[str]) -> str:
+    """``a``, ``a and b``, ``a, b and c``."""
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def explain_no_limit(analysis: Analysis, alpha: float = 0.0, reached: float | None = None) -> NoLimit:
+    """Why lateral loads in direction ``alpha`` (degrees) find no collapse (module docstring).
+
+    Parameters
+    ----------
+    analysis : Analysis
+    alpha : float
+    reached : float, optional
+        The largest multiplier a load path found admissible (for the message when the
+        direct limit is finite).
+
+    Returns
+    -------
+    NoLimit
+    """
+    lim = analysis.limit(alpha)
+    if lim.status == "optimal":
+        lmax = f"lambda_max = {lim.lambda_max:.6g} in direction {alpha:g} deg"
+        if reached is not None and lim.lambda_max > reached:
+            return NoLimit("beyond_cap", f"the direct limit {lmax} lies beyond the largest load tried "
+                           f"(lambda = {reached:g}); raise [loads] lambda_cap")
+        below = "" if reached is None else f", below the largest load found admissible (lambda = {reached:g})"
+        return NoLimit("finite", f"there is a finite limit: {lmax}{below}")
+    if lim.status != "unbounded":
+        return NoLimit(
+            "undecided",
+            f"no collapse found, and the direct limit analysis in direction {alpha:g} deg is {lim.status} ({lim.message})",
+        )
+    a = analysis.assembly
+    model = analysis.model(lim.model)
+    solver = LimitSolver(model, analysis.material)
+    sup = set(a.support_indices)
+    touches = np.array([a.interfaces[k].a in sup or a.interfaces[k].b in sup for k in model.contact_interface], bool)
+    ray = solver.lateral_ray(alpha, touches)
+    reason = "into_support" if ray is not None else "locked"
+    if ray is None:
+        ray = solver.lateral_ray(alpha)
+    if ray is None:
+        return NoLimit("undecided", f"the direct limit in direction {alpha:g} deg is unbounded, but no force state "
+                       "carrying the lateral load alone was found")
+    load = np.zeros(len(a.interfaces))
+    np.add.at(load, model.contact_interface, np.linalg.norm(ray, axis=1))
+    carried = [int(k) for k in np.argsort(-load, kind="stable") if load[k] > 1e-6 * load.max()]
+    names = list(dict.fromkeys(f"{a.names[a.interfaces[k].a]}|{a.names[a.interfaces[k].b]}" for k in carried))
+    direct = {i.a if i.b in sup else i.b for i in (a.interfaces[k] for k in carried) if (i.a in sup) != (i.b in sup)}
+    bearing = [a.names[i] for i in a.free_indices if i in direct]
+    held = [a.names[i] for i in a.free_indices if i not in direct]
+    supports = [a.names[i] for i in a.support_indices if any(i in (a.interfaces[k].a, a.interfaces[k].b) for k in carried)]
+    listed = _names(names[:NAMED] + ([f"{len(names) - NAMED} more"] if len(names) > NAMED else []))
+    s_sup = f"support{'s' if len(supports) > 1 else ''} {_names(supports)}"
+    heyman = " (the contacts have no friction limit: Heyman material)" if analysis.material.friction is None else ""
+    if reason == "into_support":
+        summary = (
+            f"no finite collapse load in direction {alpha:g} deg: the lateral load goes straight into the {s_sup}: "
+            f"{'block' if len(bearing) == 1 else 'blocks'} {_names(bearing)} "
+            f"{'bears' if len(bearing) == 1 else 'bear'} on {'it' if len(supports) == 1 else 'them'} through "
+            f"{listed}, which carry any multiple of it under rigid contacts{heyman}"
+        )
+    else:
+        who = (
+            f"{'block' if len(bearing) == 1 else 'blocks'} {_names(bearing)} "
+            f"{'bears' if len(bearing) == 1 else 'bear'} on the {s_sup}"
+        ) if bearing else ""
+        if held:
+            who += (" and " if who else "") + (
+                f"{'block' if len(held) == 1 else 'blocks'} {_names(held)} "
+                f"{'is' if len(held) == 1 else 'are'} held between {'its' if len(held) == 1 else 'their'} neighbours"
+            )
+        summary = (
+            f"no finite collapse load in direction {alpha:g} deg: the blocks lock under rigid contacts: {who}, "
+            f"so any multiple of the lateral load is carried through {listed}; no collapse mechanism exists{heyman}"
+        )
+    return NoLimit(reason, summary, names, bearing)
+
+
+def no_limit_reason(analysis: Analysis, lp: LoadPathResult) -> str:
+    """The explanation of a load path whose outcome is ``no_limit`` ("" for any other outcome).
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The analysis that ran the load path.
+    lp : LoadPathResult
+    """
+    if lp.outcome != "no_limit":
+        return ""
+    reached = max((r.lam for r in lp.steps if r.ok), default=None)
+    return explain_no_limit(analysis, lp.alpha, reached).summary
 
 
 def diagnose(
@@ -104,9 +242,12 @@ def diagnose(
     t0 = time.perf_counter()
     solved: list[Result] = []
 
-    def done(status: str, summary: str, binding: list | None = None, mechanism: Mechanism | None = None) -> Diagnosis:
+    def done(
+        status: str, summary: str, binding: list | None = None, mechanism: Mechanism | None = None,
+        no_limit: NoLimit | None = None,
+    ) -> Diagnosis:
         return Diagnosis(
-            status=status, message=summary, binding=list(binding or []), mechanism=mechanism,
+            status=status, message=summary, binding=list(binding or []), mechanism=mechanism, no_limit=no_limit,
             solve_time=sum(r.solve_time for r in solved), wall_time=time.perf_counter() - t0,
         )
 
@@ -116,7 +257,11 @@ def diagnose(
     a = analysis.assembly
     if result.status == "optimal":
         bind = binding_interfaces(result, a, mu)
-        return done("optimal", f"admissible at lambda = {lam:g}; {len(bind)} interface limit(s) reached", bind)
+        summary = f"admissible at lambda = {lam:g}; {len(bind)} interface limit(s) reached"
+        if analysis.limit(alpha).status == "unbounded":
+            why = explain_no_limit(analysis, alpha)
+            return done("optimal", f"{summary}; {why.summary}", bind, no_limit=why)
+        return done("optimal", summary, bind)
     if result.status == "infeasible":
         lim = analysis.limit(alpha)
         solved.append(lim)

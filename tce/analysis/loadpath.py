@@ -5,9 +5,11 @@ analysis' material, :func:`load_path` solves the TCE at ``lam = 0, step, 2 step,
 until the first step whose status is not ``optimal`` (``numerical`` steps are kept,
 reported and stepped over: they are never taken as the limit). When that step is
 ``infeasible``, it narrows the bracket between the last ``optimal`` and the first
-``infeasible`` multiplier until ``hi - lo <= max(atol, rtol * hi)``; ``lambda_max`` is the
-last ``optimal`` multiplier (a safe lower bound). Every run also reports the direct
-lambda_max (:mod:`tce.limit`) and the gap, so the answer is checked each time.
+``infeasible`` multiplier until ``hi - lo <= max(atol, rtol * hi)`` or until no float lies
+between them (so any tolerance ends); ``lambda_max`` is the last ``optimal`` multiplier (a
+safe lower bound). A path never takes more than :data:`MAX_INCREMENTS` increments. Every run
+also reports the direct lambda_max (:mod:`tce.limit`) and the gap, so the answer is checked
+each time.
 
 Narrowing (``bracket``): ``"direct"`` (default) first solves the two ends of a bracket
 narrower than the tolerance around the direct lambda_max (:func:`_confirm_direct`): an
@@ -33,7 +35,10 @@ from ..core.limit import LimitResult
 from ..core.result import Result
 from ..core.solve import TCEResult
 
-__all__ = ["LoadPathResult", "load_path"]
+__all__ = ["MAX_INCREMENTS", "LoadPathResult", "load_path"]
+
+#: Most load increments a path may take (``lam_cap / step``): about a minute of solves.
+MAX_INCREMENTS = 100_000
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -46,7 +51,10 @@ class LoadPathResult(Result):
         How the path ended (also :attr:`outcome`): ``limit`` (bisected to an infeasible
         load), ``unbounded`` (a step is unbounded: the support motion is incompatible with
         the material), ``infeasible`` (no admissible state at lambda = 0), ``no_limit``
-        (still admissible at ``lam_cap``), ``numerical`` (the bracket could not be decided).
+        (still admissible at ``lam_cap``), ``numerical`` (undecided: the bracket, the
+        steps before the first infeasible one, or the last steps up to ``lam_cap`` could
+        not be decided, or no optimal step lies within the tolerance of the first
+        inadmissible one).
     alpha : float
         Direction of the lateral loads (degrees).
     settlements : dict
@@ -136,6 +144,15 @@ def _confirm_direct(
     return lo, hi
 
 
+def _first_inadmissible(lo: float | None, steps: list[TCEResult]) -> str:
+    """Outcome when an increment is infeasible: ``limit`` above an admissible step;
+    ``infeasible`` only when every step before it was decided too (at lambda = 0, nothing
+    stands); ``numerical`` when undecided steps came first (the structure may stand)."""
+    if lo is not None:
+        return "limit"
+    return "numerical" if any(s.status == "numerical" for s in steps) else "infeasible"
+
+
 def load_path(
     analysis: Analysis,
     alpha: float = 0.0,
@@ -160,7 +177,8 @@ def load_path(
     atol, rtol : float
         Bisection stops when ``hi - lo <= max(atol, rtol * hi)``; at least one > 0.
     lam_cap : float
-        Largest multiplier tried before the path gives up (``outcome = "no_limit"``).
+        Largest multiplier tried before the path gives up (``outcome = "no_limit"``);
+        ``lam_cap / step`` may not exceed :data:`MAX_INCREMENTS`.
     bracket : {"direct", "bisection"}
         How the last increment is narrowed (module docstring): first a bracket around the
         direct lambda_max, or bisection alone.
@@ -175,6 +193,11 @@ def load_path(
         raise ValueError(f"tolerances must be >= 0 and not both 0, got atol={atol!r}, rtol={rtol!r}")
     if bracket not in ("direct", "bisection"):
         raise ValueError(f"bracket must be 'direct' or 'bisection', got {bracket!r}")
+    if not lam_cap / step <= MAX_INCREMENTS:
+        raise ValueError(
+            f"lam_cap / step = {lam_cap / step:.3g} load increments, more than {MAX_INCREMENTS}: "
+            "use a larger step or a smaller lam_cap"
+        )
     t0 = time.perf_counter()
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in (settlements or {}).items()}
     steps: list[TCEResult] = []
@@ -196,12 +219,14 @@ def load_path(
             lo = lam
         elif r.status == "infeasible":
             hi = lam
-            outcome = "limit" if lo is not None else "infeasible"
+            outcome = _first_inadmissible(lo, steps)
             break
         elif r.status == "unbounded":
             outcome = "unbounded"
             break
         k += 1
+    if outcome == "no_limit" and not steps[-1].ok:
+        outcome = "numerical"  # the last steps up to lam_cap are undecided: not known to stand
     if outcome == "limit":
         assert lo is not None and hi is not None
         if bracket == "direct":
@@ -209,6 +234,8 @@ def load_path(
         lo_bracket = lo  # admissible end of the bracket; `lo` stays the last optimal step
         while hi - lo_bracket > max(atol, rtol * abs(hi)):
             mid = 0.5 * (lo_bracket + hi)
+            if not lo_bracket < mid < hi:
+                break  # the bracket is two neighbouring floats: no multiplier lies between them
             r = run(mid)
             direct = analysis.limit(alpha).lambda_max
             if r.status == "optimal":
@@ -225,6 +252,10 @@ def load_path(
             else:
                 outcome = "numerical"
                 break
+        if outcome == "limit" and hi - lo > max(atol, rtol * abs(hi), math.ulp(hi)):
+            # the bracket closed on undecided steps: no optimal step lies within the
+            # tolerance of the limit, so the last optimal one is not the answer
+            outcome = "numerical"
     lam_max = lo if outcome == "limit" and lo is not None else float("nan")
     return LoadPathResult(
         status=outcome,

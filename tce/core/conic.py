@@ -9,12 +9,27 @@ total weight of the free blocks, :class:`Scaling`); equilibrium force rows are d
 ``W`` and moment rows by ``W L`` (``L`` the assembly size). Answers are therefore
 independent of the units a user picks (``docs/conventions.md``).
 
-Contact laws (per contact, ``fn`` first; ``h = 0`` for all of them):
+Contact laws of the paper's dry joint (per contact, ``fn`` first; ``h = 0`` for all of them):
 
 - spatial, mu > 0: ``(mu fn, ft1, ft2)`` in a second-order cone;
 - planar, mu > 0: ``mu fn - ft >= 0`` and ``mu fn + ft >= 0``;
 - mu = 0: tangential components fixed to zero, ``fn >= 0``;
 - mu None (Heyman): ``fn >= 0`` only.
+
+Beyond it (:class:`tce.core.material.Material`, ``docs/materials.md``), with ``A`` the
+contact's tributary area (m^2) and ``g = c A`` (kN) its shear capacity at zero normal force,
+the offsets ``h`` carry the strengths:
+
+- cohesion: ``(mu fn + g, ft1, ft2)`` in the cone (planar ``mu fn + g -+ ft >= 0``), and
+  ``fn + t A >= 0`` as its own row (the shifted cone no longer implies it); with mu = 0 and
+  ``g > 0`` the cone is ``(g, ft1, ft2)``: a purely cohesive (Tresca) joint;
+- tensile strength: ``fn + t A >= 0``;
+- compressive strength: ``fc A - fn >= 0``.
+
+Every bound is linear in the area, so a planar contact (the vertices projecting onto one
+end of an interface's trace, :mod:`tce.core.model`) gets the bounds of the summed area and
+the planar model stays exact: the proportional lift of a planar state meets every vertex's
+bound, and summing the vertex bounds of a spatial state gives the planar ones.
 """
 
 from __future__ import annotations
@@ -41,7 +56,7 @@ class ConeRows:
     n_zero, n_nonneg, n_soc : int
         Rows in the zero cone, rows in the nonnegative cone, number of 3D second-order cones.
     h : (n_rows,) ndarray or None
-        Offset of each row (kN); None is zero (every law of :func:`cone_rows`).
+        Offset of each row (kN); None is zero (the paper's laws in :func:`cone_rows`).
     """
 
     M: sp.csr_matrix
@@ -72,47 +87,139 @@ class ConeRows:
         return self.M[self.n_zero + self.n_nonneg :]
 
 
-def cone_rows(model: Model, friction: float | None) -> ConeRows:
-    """The contact law of ``model`` for friction ``friction`` as cone rows (see module doc)."""
+def _strength_terms(
+    model: Model,
+    cohesion: float,
+    compressive_strength: float | None,
+    shear_capacity: NDArray[np.float64] | None,
+) -> NDArray[np.float64]:
+    """Shear capacity at zero normal force of every contact, ``c A + shear_capacity`` (kN);
+    checks that the contacts have an area where a compressive strength needs one."""
+    area = np.asarray(model.contact_area, dtype=float)
+    if compressive_strength is not None and np.any(area <= 0):
+        bad = int(np.count_nonzero(area <= 0))
+        raise ValueError(
+            f"compressive_strength needs a tributary area at every contact: {bad} contact(s) have none "
+            "(interfaces given by fewer than 3 points)"
+        )
+    g = float(cohesion) * area
+    if shear_capacity is not None:
+        extra = np.asarray(shear_capacity, dtype=float)
+        if extra.shape != (model.n_contacts,) or not np.all(np.isfinite(extra)) or np.any(extra < 0):
+            raise ValueError(f"shear_capacity must be {model.n_contacts} finite numbers >= 0 (kN)")
+        g = g + extra
+    return g
+
+
+def cone_rows(
+    model: Model,
+    friction: float | None,
+    *,
+    cohesion: float = 0.0,
+    tensile_strength: float = 0.0,
+    compressive_strength: float | None = None,
+    shear_capacity: NDArray[np.float64] | None = None,
+) -> ConeRows:
+    """The contact law of ``model`` as cone rows (see module doc).
+
+    Parameters
+    ----------
+    model : Model
+    friction : float or None
+        mu >= 0, or None for unlimited friction (Heyman).
+    cohesion, tensile_strength : float
+        ``c`` and ``t`` (kN/m^2), times each contact's tributary area
+        (:attr:`tce.core.model.Model.contact_area`).
+    compressive_strength : float or None
+        ``fc`` (kN/m^2): ``fn <= fc A`` per contact; None: unlimited.
+    shear_capacity : (nc,) array, optional
+        Shear capacity (kN) added to ``c A`` at each contact: the friction capacity fixed
+        from earlier normal forces in the non-associative scheme
+        (:mod:`tce.analysis.nonassoc`, with ``friction = 0``).
+
+    Returns
+    -------
+    ConeRows
+        The paper's laws (no cohesion, tension or crushing) give exactly the rows listed in
+        the module docstring with ``h = None``.
+    """
     nc, dim = model.n_contacts, model.dim
     idx = np.arange(nc) * dim
     n = model.n_vars
+    area = np.asarray(model.contact_area, dtype=float)
+    g = _strength_terms(model, cohesion, compressive_strength, shear_capacity)
 
     def sel(cols: NDArray[np.int64], vals: float | NDArray[np.float64] = 1.0) -> sp.csr_matrix:
         data = np.broadcast_to(np.asarray(vals, dtype=float), cols.shape)
         return sp.csr_matrix((data, (np.arange(len(cols)), cols)), shape=(len(cols), n))
 
-    if friction is None:
-        return ConeRows(sel(idx), 0, nc, 0)
-    mu = float(friction)
-    if mu == 0.0:
-        tang = (idx[:, None] + np.arange(1, dim)[None, :]).ravel()
-        return ConeRows(sp.vstack([sel(tang), sel(idx)]).tocsr(), len(tang), nc, 0)
-    if dim == 2:
-        plus = sel(idx, mu) + sel(idx + 1, 1.0)
-        minus = sel(idx, mu) - sel(idx + 1, 1.0)
-        rows = sp.vstack([minus, plus]).tocsr()
-        return ConeRows(rows, 0, 2 * nc, 0)
-    # interleave (mu fn, ft1, ft2) per contact
-    cols = (idx[:, None] + np.arange(3)[None, :]).ravel()
-    vals = np.tile([mu, 1.0, 1.0], nc)
-    return ConeRows(sel(cols, vals), 0, 0, nc)
+    zero: list[sp.csr_matrix] = []
+    nonneg: list[tuple[sp.csr_matrix, NDArray[np.float64]]] = []
+    soc: tuple[sp.csr_matrix, NDArray[np.float64]] | None = None
+    mu = None if friction is None else float(friction)
+    extended = cohesion > 0 or tensile_strength > 0 or shear_capacity is not None
+    # normal force: fn + t A >= 0 (implied by the cone for plain Coulomb with mu > 0)
+    if mu is None or mu == 0.0 or extended:
+        nonneg.append((sel(idx), float(tensile_strength) * area))
+    if compressive_strength is not None:
+        nonneg.append((sel(idx, -1.0), float(compressive_strength) * area))
+    if mu is not None:
+        free = g > 0 if mu == 0.0 else np.ones(nc, dtype=bool)  # contacts whose tangential force may be nonzero
+        locked = idx[~free]
+        zero.append(sel((locked[:, None] + np.arange(1, dim)[None, :]).ravel()))
+        c = idx[free]
+        if dim == 2:
+            cap = sel(c, mu) if mu > 0 else sp.csr_matrix((len(c), n))
+            nonneg.append((cap - sel(c + 1), g[free]))
+            nonneg.append((cap + sel(c + 1), g[free]))
+        else:
+            # interleave (mu fn + g, ft1, ft2) per contact
+            k = len(c)
+            rows = np.repeat(np.arange(k) * 3, 3) + np.tile(np.arange(3), k)
+            cols = (c[:, None] + np.arange(3)[None, :]).ravel()
+            vals = np.tile([mu, 1.0, 1.0], k)
+            M = sp.csr_matrix((vals, (rows, cols)), shape=(3 * k, n))
+            M.eliminate_zeros()
+            h = np.zeros(3 * k)
+            h[0::3] = g[free]
+            soc = (M, h)
+    blocks = zero + [m for m, _ in nonneg] + ([soc[0]] if soc else [])
+    M = sp.vstack(blocks).tocsr() if blocks else sp.csr_matrix((0, n))
+    n_zero = sum(z.shape[0] for z in zero)
+    n_nonneg = sum(m.shape[0] for m, _ in nonneg)
+    h = np.concatenate([np.zeros(n_zero)] + [v for _, v in nonneg] + ([soc[1]] if soc else []))
+    return ConeRows(M, n_zero, n_nonneg, 0 if soc is None else soc[0].shape[0] // 3, h if np.any(h) else None)
 
 
-def cone_violation(model: Model, friction: float | None, forces: NDArray[np.float64]) -> float:
-    """Largest violation of the contact law by ``forces`` ((nc, dim), same units as forces).
+def cone_violation(
+    model: Model,
+    friction: float | None,
+    forces: NDArray[np.float64],
+    *,
+    cohesion: float = 0.0,
+    tensile_strength: float = 0.0,
+    compressive_strength: float | None = None,
+    shear_capacity: NDArray[np.float64] | None = None,
+) -> float:
+    """Largest violation of the contact law by ``forces`` ((nc, dim), kN), in kN.
 
-    The violation of a contact is ``max(0, -fn)`` for Heyman and ``max(0, ||ft|| - mu fn,
-    -fn)`` with friction; with ``mu = 0`` it is ``max(|ft|, -fn)``.
+    Per contact with area ``A`` and ``g = c A + shear_capacity``: ``max(0, -(fn + t A))``,
+    ``max(0, fn - fc A)`` with a compressive strength, and ``||ft|| - mu fn - g`` with
+    friction (``||ft|| - g`` for ``mu = 0``); nothing more for Heyman. For the paper's law
+    this is ``max(0, -fn, ||ft|| - mu fn)`` as before.
     """
     f = np.asarray(forces).reshape(model.n_contacts, model.dim)
     if not len(f):
         return 0.0
+    area = np.asarray(model.contact_area, dtype=float)
+    g = _strength_terms(model, cohesion, compressive_strength, shear_capacity)
     fn = f[:, 0]
-    worst = max(0.0, -float(fn.min()))
+    worst = max(0.0, -float((fn + tensile_strength * area).min()))
+    if compressive_strength is not None:
+        worst = max(worst, float((fn - compressive_strength * area).max()))
     if friction is not None:
         ft = np.abs(f[:, 1]) if model.dim == 2 else np.sqrt(f[:, 1] ** 2 + f[:, 2] ** 2)
-        worst = max(worst, float((ft - float(friction) * fn).max()))
+        worst = max(worst, float((ft - float(friction) * fn - g).max()))
     return worst
 
 

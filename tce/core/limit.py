@@ -10,8 +10,10 @@ Its dual is the kinematic (upper-bound) problem. The multipliers ``z`` of the eq
 rows, divided by the row scaling, are the virtual velocities ``v`` of the free blocks
 (translation and rotation about each centroid; supports are fixed), normalised so that the
 lateral load does unit power: ``v . b_lat = 1``. The mechanism's virtual work then gives
-``lam_kin = -v . b_dead``, which equals ``lam_max`` at the optimum (strong duality): the
-certificate reported with every answer. Relative velocities at the contacts,
+``lam_kin = -v . b_dead + h . y / W`` (the second term, zero for the paper's laws, is what
+the offsets of the contact law dissipate: cohesion, tensile and compressive strength, with
+``y`` the multipliers of the law's rows), which equals ``lam_max`` at the optimum (strong
+duality): the certificate reported with every answer. Relative velocities at the contacts,
 ``A_eq' v``, lie in the dual cone (opening ``>= mu`` times sliding, associated flow).
 This is the lower-bound (static) theorem of limit analysis for rigid blocks with
 associated Coulomb friction (Heyman, *The stone skeleton*, 1966, for the no-tension,
@@ -25,16 +27,16 @@ interface is that of block B with respect to block A (positive normal part = ope
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from .clarabel_solver import SolverOptions, solve_once
-from .conic import ConeRows
+from .conic import ConeRows, law_violation
 from .material import Material
 from .model import EZ, Model, lateral_direction
-from .problem import Formulation, limit_problem
+from .problem import Formulation, lateral_ray_problem, limit_problem
 from .result import Result
 
 __all__ = ["LimitResult", "LimitSolver", "Mechanism", "mechanism_from_velocities"]
@@ -232,7 +234,9 @@ class LimitSolver:
             return LimitResult(status="numerical", forces=empty, message=f"clarabel: {sol.status}; residual {eq:.3g}",
                                wall_time=time.perf_counter() - t0, **common)
         v = sol.z[:m] / f.row_div  # virtual velocities per equilibrium row, v . b_live = 1
-        lam_kin = float(-(v @ b_fixed) / (v @ b_live))
+        # power of the fixed loads plus what the law's offsets dissipate (cohesion, tension,
+        # crushing: h . y with y the law rows' multipliers; zero for the paper's laws)
+        lam_kin = float((-(v @ b_fixed) + f.law_h @ sol.z[m:]) / (v @ b_live))
         gap = abs(lam_kin - lam) / max(abs(lam), 1e-12)
         rel = model.A_eq.T @ v  # relative contact velocities (B w.r.t. A), model variables
         mech = mechanism_from_velocities(model, _block_velocities(model, v))
@@ -244,10 +248,15 @@ class LimitSolver:
 
     def _dual_cone_violation(self, rel: NDArray[np.float64]) -> float:
         """Violation of ``dn >= mu ||dt||`` (tangential free of constraint for mu = 0; no sliding
-        for Heyman), relative to the largest relative velocity."""
+        for Heyman), relative to the largest relative velocity. With a compressive strength
+        a contact may also close (crushing at ``fn = fc A``): ``dn`` is then free.
+        Cohesion and tensile strength shift the law without changing its recession cone,
+        so they leave the flow rule as it is."""
         d = rel.reshape(self.model.n_contacts, self.model.dim)
         scale = max(np.abs(d).max(initial=0.0), 1e-300)
         dn, dt = d[:, 0], np.linalg.norm(d[:, 1:], axis=1)
+        if self.material.compressive_strength is not None:
+            dn = np.full_like(dn, np.inf)
         mu = self.material.friction
         if mu is None:
             viol = np.maximum(-dn, dt)
@@ -256,3 +265,50 @@ class LimitSolver:
         else:
             viol = np.maximum(mu * dt - dn, 0.0)
         return float(viol.max(initial=0.0) / scale)
+
+    # ------------------------------------------------------------------------------------
+    # Certificate of no finite limit (issue 15): the named problem
+    # :func:`tce.core.problem.lateral_ray_problem`.
+    def lateral_ray(self, alpha: float = 0.0, contacts: NDArray[np.bool_] | None = None) -> NDArray[np.float64] | None:
+        """A force state carrying the unit lateral load alone, with the least total contact force.
+
+        Solves, scaled as :meth:`solve`::
+
+            minimise    sum_k ||F_k||
+            subject to  A_eq F + b_lat(alpha) = 0,   F admissible (cones),
+                        F_k = 0 for the contacts not in ``contacts``
+
+        When the direct limit is unbounded, such a state exists: Clarabel's certificate of
+        dual infeasibility of the max-lambda problem is a direction ``(dF, dlam)`` with
+        ``A_eq dF + dlam b_lat = 0``, ``dF`` admissible and ``dlam > 0``, and ``dF / dlam``
+        is one. Adding any multiple of it to an admissible state at ``lam`` gives one at any
+        larger ``lam``: the contacts it loads carry the lateral load without limit. Among all
+        such states this is the one of least total force, which loads few contacts (those
+        that lock), where an interior-point certificate loads all of them.
+
+        Parameters
+        ----------
+        alpha : float
+            Direction of the lateral load (degrees).
+        contacts : (n_contacts,) bool array, optional
+            The contacts allowed to carry force (default: all).
+
+        Returns
+        -------
+        (n_contacts, dim) ndarray or None
+            Contact forces (kN per unit lambda), or None when no such state exists (the limit
+            is finite, or the allowed contacts cannot carry the load) or the solve fails.
+        """
+        model, f = self.model, self.formulation
+        allowed = np.ones(model.n_contacts, dtype=bool) if contacts is None else np.asarray(contacts, dtype=bool)
+        b_live = model.b_lateral(alpha)
+        sol = solve_once(lateral_ray_problem(f, b_live, allowed), self.options.settings())
+        if not sol.solved:
+            return None
+        F = f.forces(sol.x)
+        F.reshape(model.n_contacts, model.dim)[~allowed] = 0.0
+        eq = np.abs((model.A_eq @ F + b_live) / f.row_div).max(initial=0.0)
+        law = law_violation(replace(f.law, h=None), F)  # the homogeneous law: a direction
+        if eq > 1e-7 or law > 1e-7 * f.scaling.force:
+            return None
+        return F.reshape(model.n_contacts, model.dim)

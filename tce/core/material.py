@@ -1,11 +1,39 @@
-"""Interface material: friction and optional stiffness."""
+"""Interface material: friction, cohesion, tensile and compressive strength, flow rule, stiffness.
+
+The contact law of one contact (a vertex of an interface, or a planar contact standing for
+the vertices that project onto it) with tributary area ``A`` (m^2), normal force ``fn``
+(kN, positive in compression) and tangential force ``ft`` (kN)::
+
+    -t A  <=  fn  <=  fc A                    (tension cut-off, crushing)
+    ||ft||  <=  mu fn + c A                   (Mohr-Coulomb; mu = None: no limit)
+
+with ``c`` the cohesion, ``t`` the tensile strength and ``fc`` the compressive strength
+(kN/m^2). The defaults (``c = t = 0``, ``fc`` None) are the paper's dry joint: no tension,
+Coulomb friction, unlimited compressive strength. The rows of this law are built by
+:func:`tce.core.conic.cone_rows`; ``docs/materials.md`` says what each parameter means and
+where the model stops.
+
+What the parameters mean at the ends of the friction range:
+
+- ``friction = 0`` with cohesion: a purely cohesive (Tresca) joint, ``||ft|| <= c A``
+  whatever the normal force;
+- ``friction = None`` (Heyman: unlimited friction) has no sliding limit for cohesion to
+  raise, so a cohesion with it is refused (an option with no effect);
+- with ``friction > 0`` the Mohr-Coulomb cone itself caps tension at ``fn >= -(c/mu) A``
+  (its apex): a tensile strength above ``c / mu`` could never be reached and is refused.
+"""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
-__all__ = ["Material"]
+__all__ = ["FLOWS", "Material"]
+
+#: flow rules of the friction law: ``associative`` (the limit theorems' normality, sliding
+#: with dilatancy) or ``non-associative`` (sliding without opening; :mod:`tce.analysis.nonassoc`)
+FLOWS = ("associative", "non-associative")
 
 
 def _finite(name: str, value: float | None, lower: float, strict: bool) -> None:
@@ -22,32 +50,75 @@ def _finite(name: str, value: float | None, lower: float, strict: bool) -> None:
 
 @dataclass(frozen=True)
 class Material:
-    """Contact law of the interfaces.
+    """Contact law of the interfaces (see module docstring).
 
     Parameters
     ----------
     friction : float or None
-        Coulomb friction coefficient mu >= 0 (``||ft|| <= mu fn`` per contact vertex);
-        ``None`` is a Heyman material with unlimited friction (only ``fn >= 0``).
+        Coulomb friction coefficient mu >= 0 (``||ft|| <= mu fn + c A`` per contact vertex);
+        ``None`` is a Heyman material with unlimited friction.
     normal_stiffness : float or None
         Normal stiffness per unit area (kN/m^3). ``None`` is the rigid case (``D = 0``).
     shear_stiffness : float or None
         Tangential stiffness per unit area (kN/m^3); defaults to ``normal_stiffness``.
         Only meaningful with a normal stiffness.
+    cohesion : float
+        Cohesion ``c`` >= 0 (kN/m^2): shear capacity per unit area at zero normal force.
+        Needs a friction coefficient (not Heyman).
+    tensile_strength : float
+        Tensile strength ``t`` >= 0 (kN/m^2): ``fn >= -t A``. With ``friction > 0`` at most
+        ``cohesion / friction`` (the apex of the Mohr-Coulomb cone).
+    compressive_strength : float or None
+        Compressive strength ``fc`` > 0 (kN/m^2): ``fn <= fc A`` at every contact vertex;
+        ``None`` is unlimited.
+    flow : {"associative", "non-associative"}
+        Flow rule of the friction law. The static problems (TCE, load path, the direct
+        limit) are the same for both; ``non-associative`` adds the iterative estimate of
+        :func:`tce.analysis.nonassoc.nonassociative_limit` wherever a limit is reported.
+
+    Raises
+    ------
+    ValueError
+        A negative, NaN or infinite parameter, an unknown ``flow``, a cohesion with
+        unlimited friction, a tensile strength above ``cohesion / friction``, or a shear
+        stiffness without a normal one. The message names the parameter.
     """
 
     friction: float | None = None
     normal_stiffness: float | None = None
     shear_stiffness: float | None = None
+    cohesion: float = 0.0
+    tensile_strength: float = 0.0
+    compressive_strength: float | None = None
+    flow: str = "associative"
 
     def __post_init__(self) -> None:
         _finite("friction", self.friction, 0.0, strict=False)
         _finite("normal_stiffness", self.normal_stiffness, 0.0, strict=True)
         _finite("shear_stiffness", self.shear_stiffness, 0.0, strict=True)
+        _finite("cohesion", self.cohesion, 0.0, strict=False)
+        _finite("tensile_strength", self.tensile_strength, 0.0, strict=False)
+        _finite("compressive_strength", self.compressive_strength, 0.0, strict=True)
+        if self.flow not in FLOWS:
+            raise ValueError(f"flow must be one of {list(FLOWS)}, got {self.flow!r}")
         if self.shear_stiffness is not None and self.normal_stiffness is None:
             raise ValueError("shear_stiffness needs a normal_stiffness (the rigid case has neither)")
         if self.normal_stiffness is not None and self.shear_stiffness is None:
             object.__setattr__(self, "shear_stiffness", self.normal_stiffness)
+        for name in ("cohesion", "tensile_strength"):
+            object.__setattr__(self, name, float(getattr(self, name)))
+        if self.cohesion > 0 and self.friction is None:
+            raise ValueError(
+                "cohesion needs a friction coefficient: with friction absent (Heyman) sliding is "
+                "never limited, so a cohesion would have no effect"
+            )
+        mu = self.friction
+        if mu is not None and mu > 0 and self.tensile_strength > self.cohesion / mu * (1 + 1e-12):
+            raise ValueError(
+                f"tensile_strength {self.tensile_strength:g} exceeds cohesion / friction = "
+                f"{self.cohesion / mu:g} kN/m^2, the tension at the apex of the Mohr-Coulomb cone: "
+                "lower it or raise the cohesion"
+            )
 
     @property
     def rigid(self) -> bool:
@@ -58,3 +129,18 @@ class Material:
     def heyman(self) -> bool:
         """True when friction is unlimited."""
         return self.friction is None
+
+    @property
+    def strengths(self) -> dict[str, Any]:
+        """``cohesion``, ``tensile_strength`` and ``compressive_strength`` as keyword arguments
+        of :func:`tce.core.conic.cone_rows` and :func:`tce.core.conic.cone_violation`."""
+        return {
+            "cohesion": self.cohesion,
+            "tensile_strength": self.tensile_strength,
+            "compressive_strength": self.compressive_strength,
+        }
+
+    @property
+    def plain(self) -> bool:
+        """True for the paper's dry joint: no cohesion, no tension, unlimited compression."""
+        return self.cohesion == 0 and self.tensile_strength == 0 and self.compressive_strength is None

@@ -62,6 +62,7 @@ from .model import Model
 __all__ = [
     "ConicProblem",
     "Formulation",
+    "lateral_ray_problem",
     "limit_problem",
     "phase1_b",
     "phase1_problem",
@@ -119,8 +120,8 @@ class Formulation:
     ----------
     model : Model
     material : Material
-        Its friction gives the contact law (:func:`tce.core.conic.cone_rows`); its
-        stiffnesses the compliance.
+        Its friction and strengths give the contact law (:func:`tce.core.conic.cone_rows`);
+        its stiffnesses the compliance.
     rows : ConeRows, optional
         Another contact law (e.g. friction pyramids, :mod:`tce.core.pyramid`); default: the
         material's own (:func:`tce.core.conic.cone_rows`).
@@ -146,7 +147,7 @@ class Formulation:
         W = self.scaling.force
         self.row_div = self.scaling.rows(model)
         self.A_eq = sp.csc_matrix(sp.diags(W / self.row_div) @ model.A_eq)
-        self.law = rows if rows is not None else cone_rows(model, material.friction)
+        self.law = rows if rows is not None else cone_rows(model, material.friction, **material.strengths)
         self._own_law = rows is None
         n = model.n_vars
         if material.rigid:
@@ -192,12 +193,13 @@ class Formulation:
         The equilibrium residual is ``max |A_eq F + rhs| / row_div`` (relative to ``W`` and
         ``W L``); the contact-law residual, over ``W``, is
         :func:`tce.core.conic.cone_violation` for the material's own law (``max(-fn,
-        ||ft|| - mu fn)`` per contact, in force units whatever mu) and
+        ||ft|| - mu fn)`` per contact for the paper's law, in force units whatever mu; with
+        the material's cohesion and strengths, the violation of each of its bounds) and
         :func:`tce.core.conic.law_violation` of the rows for another law.
         """
         eq = (self.model.A_eq @ F + rhs) / self.row_div
         if self._own_law:
-            law = cone_violation(self.model, self.material.friction, F)
+            law = cone_violation(self.model, self.material.friction, F, **self.material.strengths)
         else:
             law = law_violation(self.law, F)
         return float(np.abs(eq).max(initial=0.0)), law / self.scaling.force
@@ -238,7 +240,23 @@ def tce_problem(f: Formulation, rhs: NDArray[np.float64], U: NDArray[np.float64]
     A = sp.vstack([f.A_eq, -law.M]).tocsc()
     b = tce_b(f, rhs)
     cones = _cones(("zero", f.A_eq.shape[0] + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
-    return ConicProblem("tce", f.P, f.q(U), A, b, cones)
+    # the objective's scale is free: a q far from order one (a compliance of 1e-18 with a 1 mm
+    # motion puts |q| near 1e15 once P is normalised, and Clarabel then misreads the scene as
+    # infeasible or unbounded) is brought back to one
+    q = f.q(U)
+    s = q_scale(q)
+    return ConicProblem("tce", f.P / s, q / s, A, b, cones)
+
+
+#: Largest ``|q|`` of a TCE objective solved as it is (see :func:`q_scale`): a 1 mm motion with a
+#: stiffness of 1e15 kN/m^3 gives about 1e10; rescaling well-posed scenes below costs accuracy.
+Q_MAX = 1e10
+
+
+def q_scale(q: NDArray[np.float64]) -> float:
+    """Divisor of a TCE objective: ``max |q|`` when it exceeds :data:`Q_MAX`, else 1."""
+    m = float(np.abs(q).max(initial=0.0))
+    return m if m > Q_MAX else 1.0
 
 
 def phase1_b(f: Formulation, rhs: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -312,3 +330,39 @@ def limit_problem(f: Formulation, b_fixed: NDArray[np.float64], b_live: NDArray[
     q[-1] = -1.0
     cones = _cones(("zero", m + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
     return ConicProblem("limit", sp.csc_matrix((n + 1, n + 1)), q, A, b, cones)
+
+
+# ----------------------------------------------------------------------------------------
+# Certificate of no finite limit (issue 15): the least-force state that carries the live
+# load alone, solved by :meth:`tce.core.limit.LimitSolver.lateral_ray`.
+def lateral_ray_problem(f: Formulation, b_live: NDArray[np.float64], allowed: NDArray[np.bool_]) -> ConicProblem:
+    """``min sum_k ||F_k||  s.t.  A_eq F + b_live = 0,  M F in K,  F_k = 0 off ``allowed````.
+
+    The homogeneous contact law (the recession cone of ``M F + h in K``, as in
+    :func:`recession_problem`): the state is a direction along which the live load grows
+    without limit. Unknowns ``(x, t)`` (n + nc), ``t_k >= ||x_k||`` one second-order cone of
+    dimension ``dim + 1`` per contact; rows: ``m_eq`` equalities, the forces fixed to zero
+    on the contacts not allowed and the law's zero rows, its nonnegative rows, its cones,
+    then the norm cones.
+    """
+    law = f.law
+    m, n = f.A_eq.shape
+    nc, dim = f.model.n_contacts, f.model.dim
+    off = (np.flatnonzero(~np.asarray(allowed, dtype=bool))[:, None] * dim + np.arange(dim)).ravel()
+    fixed = sp.csr_matrix((np.ones(len(off)), (np.arange(len(off)), off)), shape=(len(off), n))
+    rows = (np.arange(nc)[:, None] * (dim + 1) + np.arange(1, dim + 1)).ravel()
+    norm_x = sp.csr_matrix((-np.ones(n), (rows, np.arange(n))), shape=(nc * (dim + 1), n))
+    norm_t = sp.csr_matrix((-np.ones(nc), (np.arange(nc) * (dim + 1), np.arange(nc))), shape=(nc * (dim + 1), nc))
+    zeros = lambda k: sp.csr_matrix((k, nc))  # noqa: E731
+    A = sp.vstack(
+        [
+            sp.hstack([f.A_eq, zeros(m)]),
+            sp.hstack([fixed, zeros(len(off))]),
+            sp.hstack([-law.M, zeros(law.n_rows)]),
+            sp.hstack([norm_x, norm_t]),
+        ]
+    ).tocsc()
+    b = np.concatenate([f.b_eq(b_live), np.zeros(A.shape[0] - m)])
+    q = np.concatenate([np.zeros(n), np.ones(nc)])
+    cones = _cones(("zero", m + len(off) + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
+    return ConicProblem("lateral-ray", sp.csc_matrix((n + nc, n + nc)), q, A, b, cones + (("soc", dim + 1),) * nc)

@@ -53,7 +53,7 @@ from numpy.typing import ArrayLike, NDArray
 from .clarabel_solver import SOLVER_NAME, ClarabelSolver, Solution, SolverOptions, solve_once
 from .material import Material
 from .model import InterfaceMap, Model, scene_in_plane
-from .problem import Formulation, phase1_b, phase1_problem, recession_problem, tce_b, tce_problem
+from .problem import Formulation, phase1_b, phase1_problem, q_scale, recession_problem, tce_b, tce_problem
 from .result import STATUSES, Result
 
 __all__ = [
@@ -239,6 +239,8 @@ class TCESolver:
         """The warm solver: set up on the first call, then only its vectors are updated
         (``b`` alone while ``U`` is unchanged; iterative refinement as ``options.refine``)."""
         f, q = self.formulation, self._q(U)
+        if q_scale(q) != 1.0:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
+            return solve_once(tce_problem(f, rhs, U), self.options.settings(refine=self.options.refine))
         if self._warm is None:
             self._warm = ClarabelSolver(tce_problem(f, rhs, U), self.options.settings(refine=self.options.refine))
         elif q is self._warm_q:

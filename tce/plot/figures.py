@@ -29,6 +29,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Literal
@@ -100,6 +101,12 @@ def _value(ds: xr.Dataset, name: str, scenario: str) -> NDArray:
 def _text(ds: xr.Dataset, name: str, scenario: str, default: str = "") -> str:
     """A per-scenario string variable (``default`` when absent)."""
     return str(_value(ds, name, scenario)) if name in ds else default
+
+
+def _no_limit_caption(ds: xr.Dataset, scenario: str, width: int = 80) -> str:
+    """Why the scenario has no finite limit (``no_limit_reason``), wrapped; "" when it has one."""
+    why = _text(ds, "no_limit_reason", scenario)
+    return textwrap.fill(why, width) if why else ""
 
 
 def _lambda_max(ds: xr.Dataset, scenario: str) -> float:
@@ -481,7 +488,9 @@ def assembly_view(
             handles.append(Line2D([], [], color=VERTEX_COLOUR, linewidth=0.7,
                                   label=f"vertex force (1 kN = {_fmt(scale)} m)"))
         where = {"axo": "", "elevation": ", elevation (x-z, m)", "plan": ", plan (x-y, m)"}[view]
-        ax.set_title(f"{scenario}: {_step_label(ds, scenario, step)}{where}", fontsize=10)
+        caption = _no_limit_caption(ds, scenario, 70)
+        ax.set_title(f"{scenario}: {_step_label(ds, scenario, step)}{where}" + (f"\n{caption}" if caption else ""),
+                     fontsize=10 if not caption else 7)
     _equal_3d(ax, np.vstack(pts), asm.size, view)
     ax.view_init(*_camera(asm, view))
     fig.legend(handles=handles, loc="outside upper center", ncols=2, fontsize=7, frameon=False)
@@ -571,7 +580,8 @@ def mechanism_view(
     lmax = _lambda_max(ds, scenario)
     disp = None
     if vel is None:
-        moved, title = verts, f"{scenario}: no collapse mechanism ({_text(ds, 'outcome', scenario, 'none')})"
+        why = _no_limit_caption(ds, scenario, 70) or _text(ds, "outcome", scenario, "none")
+        moved, title = verts, f"{scenario}: no collapse mechanism\n{why}"
     else:
         cen = asm.centroids
         disp = [vel[k, :3] + np.cross(vel[k, 3:], v - cen[k]) for k, v in enumerate(verts)]
@@ -640,6 +650,9 @@ def figure_sheet(ds: xr.Dataset, max_columns: int = 4) -> Figure:
             assembly_view(ds, s, view="plan", fig=panels[1])
         if _mechanism(ds, s, asm) is not None:
             mechanism_view(ds, s, fig=panels[2])
+        elif _no_limit_caption(ds, s):
+            panels[2].text(0.5, 0.5, f"{s}: no finite limit\n\n{_no_limit_caption(ds, s, 60)}",
+                           ha="center", va="center", fontsize=8, wrap=True)
     return fig
 
 
@@ -648,6 +661,7 @@ def write_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
 
     Files: ``thrust.png``; per scenario ``assembly_<s>.png``, ``thrust_line_<s>.png`` (planar
     scenarios only) and ``mechanism_<s>.png`` (when the scenario has a mechanism);
+    ``bracket.png`` when a material parameter is swept (:mod:`tce.plot.materials`);
     ``sheet.png`` and ``sheet.pdf``. ``<s>`` is the scenario name made safe for file names.
 
     Parameters
@@ -682,6 +696,9 @@ def write_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
             save(thrust_line(ds, s, step=_first_and_limit(ds, s)), f"thrust_line_{slug}.png")
         if _mechanism(ds, s, asm) is not None:
             save(mechanism_view(ds, s), f"mechanism_{slug}.png")
+    from .materials import write_material_figures  # imports this module: not at the top
+
+    written += write_material_figures(ds, outdir)
     sheet = figure_sheet(ds)
     save(sheet, "sheet.png")
     save(sheet, "sheet.pdf")

@@ -2,6 +2,6 @@
 
 ``geometry`` polyhedra and polygons (exact volumes and centroids) · ``assembly`` blocks,
 interfaces, supports · ``contacts`` interface detection and overlap checks · ``io`` block
-files (tce JSON, OBJ, COMPAS) · ``arch``, ``dome`` generators · ``params`` argument checks
-shared by the generators.
+files (tce JSON, OBJ, COMPAS, with their stored interfaces) · ``arch``, ``vault``, ``dome``
+generators · ``params`` argument checks shared by the generators.
 """

@@ -20,6 +20,7 @@ from .params import check_positive, check_whole
 
 __all__ = [
     "arch_from_joints",
+    "semicircle_joints",
     "pointed_arch",
     "segmental_arch",
     "semicircular_arch",
@@ -139,11 +140,7 @@ def semicircular_arch(
     check_positive(inner_radius=inner_radius, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs")
     height = thickness if support_height is None else support_height
-    theta = np.linspace(np.pi, 0.0, n + 1)
-    c, s = np.cos(theta), np.sin(theta)
-    c[[0, -1]] = [-1.0, 1.0]
-    s[[0, -1]] = 0.0
-    ro = inner_radius + thickness
+    ji, je = semicircle_joints(inner_radius, inner_radius + thickness, np.linspace(np.pi, 0.0, n + 1))
     meta = dict(
         generator="semicircular_arch",
         inner_radius=float(inner_radius),
@@ -153,16 +150,35 @@ def semicircular_arch(
         unit_weight=float(unit_weight),
         support_height=float(height),
     )
-    return arch_from_joints(
-        np.column_stack([inner_radius * c, inner_radius * s]),
-        np.column_stack([ro * c, ro * s]),
-        depth,
-        unit_weight,
-        height,
-        meta,
-    )
+    return arch_from_joints(ji, je, depth, unit_weight, height, meta)
 
 
+def semicircle_joints(inner_radius: float, outer_radius: float, theta: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Intrados and extrados ends ``(x, z)`` (m) of radial joints of a semicircular ring.
+
+    Parameters
+    ----------
+    inner_radius, outer_radius : float
+        Radii of the intrados and extrados (m), centred at the origin.
+    theta : (k,) array_like
+        Joint angles (rad) from +x towards +z; the springings are ``pi`` (left) and ``0``
+        (right), and the crown ``pi / 2``.
+
+    Returns
+    -------
+    (k, 2) ndarray, (k, 2) ndarray
+        Joint ends on the intrados and on the extrados. Joints at the springings and at the
+        crown are snapped to exactly ``z = 0`` and ``x = 0`` (no round-off of cos and sin),
+        so that mirrored joints are exact mirror images.
+    """
+    t = np.asarray(theta, dtype=float)
+    c, s = np.cos(t), np.sin(t)
+    c[np.isclose(t, np.pi / 2, rtol=0.0, atol=1e-14)] = 0.0
+    for edge, sign in ((0.0, 1.0), (np.pi, -1.0)):
+        at = np.isclose(t, edge, rtol=0.0, atol=1e-14)
+        c[at], s[at] = sign, 0.0
+    cs = np.column_stack([c, s])
+    return inner_radius * cs, outer_radius * cs
 
 
 def _mirror_joints(left: np.ndarray, n: int) -> np.ndarray:

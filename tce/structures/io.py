@@ -33,14 +33,37 @@ compas_assembly and compas_cra)
     ``data.graph.data.node`` maps node keys to ``{"block": {"data": {"vertex": {id: {x, y,
     z}}, "face": {id: [vertex ids]}}}, "is_support": bool}`` (the ``data`` wrappers and the
     ``is_support`` flag are optional; vertices may also be ``[x, y, z]`` lists). Blocks
-    are named after their node keys (``"0"``, ``"1"``, ...) in key order; stored interfaces
-    are ignored and found again from the geometry.
+    are named after their node keys (``"0"``, ``"1"``, ...) in key order. COMPAS meshes may
+    have non-planar faces (COMPAS itself splits them into triangles for volumes), so by
+    default a non-planar face of a COMPAS block is split into a fan of triangles.
+    Interfaces stored on the edges (``data.graph.data.edge[u][v]["interfaces"]``, as
+    compas_assembly and compas_cra write them: each a polygon ``points`` with a ``frame``
+    whose z axis points from block u into block v) are used as they are, after checks.
+
+Stored interfaces (tce or COMPAS)
+    A file's interfaces are used instead of detection (which remains the fallback when the
+    file stores none). Each is checked: at least three points; planar (every point within
+    ``min(tol, 1e-6) L`` of the polygon's plane, ``L`` the larger size of its two blocks),
+    in the plane of its frame when it has one; and lying on the surface of **both** its
+    blocks (every point within ``interface_tol * L`` of a face of each). The tolerance is
+    loose by default (5e-3): curved contacts stored by COMPAS are approximations of two
+    facetted surfaces meshed differently (the bundled ``curve-3-blocks.json`` is off by up to
+    2.7e-3 L). The normal is oriented from block A (the one of lower index) into block B by
+    the faces it lies on. A failed check raises an error naming the file, the interface
+    (``A|B`` and its position) and what is wrong. Since such contacts may overlap slightly,
+    the overlap check then tolerates a depth of ``interface_tol * L`` too.
+
+Limits (:class:`InputLimitError`, naming the limit): a file of at most
+:data:`MAX_FILE_BYTES`, JSON nested at most :data:`MAX_DEPTH` deep (checked before decoding,
+so no input makes the decoder recurse without bound), at most :data:`MAX_BLOCKS` blocks,
+:data:`MAX_BLOCK_VERTICES` vertices per block and :data:`MAX_VERTICES` in all. The path
+must be a regular file (not a folder, a device or a pipe).
 
 Units are SI (m, kN) after loading. Every loaded block is checked (closed, consistently
 oriented, planar faces, positive volume), blocks must not overlap
-(:func:`tce.contacts.check_overlaps`), interfaces are detected
+(:func:`tce.contacts.check_overlaps`), interfaces are read and checked or detected
 (:func:`tce.contacts.detect_interfaces`) and the assembly is validated (a support, no
-loose block). Errors name the file and the block.
+loose block). Errors name the file and the block or interface.
 """
 
 from __future__ import annotations
@@ -48,6 +71,8 @@ from __future__ import annotations
 import json
 import logging
 import math
+import re
+import stat
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -55,17 +80,46 @@ from typing import Any, Literal
 
 import numpy as np
 
+import shapely
+from shapely.geometry import Polygon
+
 from .assembly import Assembly, AssemblyError, Block, Interface
 from .contacts import check_overlaps, detect_interfaces
-from .geometry import GeometryError, Polyhedron, newell_normal
+from .geometry import GeometryError, Polyhedron, frame_from_normal, newell_normal
+from .params import did_you_mean
 
-__all__ = ["load_assembly", "read_compas_json", "read_obj", "read_tce_json", "save_assembly_json"]
+__all__ = [
+    "MAX_BLOCKS",
+    "MAX_BLOCK_VERTICES",
+    "MAX_DEPTH",
+    "MAX_FILE_BYTES",
+    "MAX_VERTICES",
+    "InputLimitError",
+    "load_assembly",
+    "read_compas_json",
+    "read_obj",
+    "read_tce_json",
+    "save_assembly_json",
+]
 
 log = logging.getLogger(__name__)
+
+#: Largest block file read (bytes).
+MAX_FILE_BYTES = 256 * 2**20
+#: Deepest nesting of JSON arrays and objects (a tce file needs 4, a COMPAS file about 8).
+MAX_DEPTH = 64
+#: Most blocks in an assembly (the study runner applies it to generated structures too).
+MAX_BLOCKS = 50_000
+#: Most vertices of one block.
+MAX_BLOCK_VERTICES = 10_000
+#: Most vertices of all blocks together.
+MAX_VERTICES = 2_000_000
 
 DEFAULT_UNIT_WEIGHT = 20.0
 #: Planarity tolerance of faces, relative to the block size: the one Assembly.validate uses.
 PLANAR_TOL = 1e-6
+#: Default distance (relative to the larger block size) of a stored interface from its blocks' faces.
+INTERFACE_TOL = 5e-3
 _LENGTH = {"m": 1.0, "cm": 0.01, "mm": 0.001}
 _FORCE = {"kN": 1.0, "N": 0.001}
 
@@ -93,17 +147,75 @@ class RawAssembly:
     meta: dict = field(default_factory=dict)
 
 
+class InputLimitError(AssemblyError):
+    """A block file beyond one of the module's limits (size, nesting, block or vertex count)."""
+
+
 # ---------------------------------------------------------------------- readers
 def _err(path: Path | str, msg: str) -> AssemblyError:
     return AssemblyError(f"{path}: {msg}")
 
 
+def _check_file(path: Path) -> None:
+    """Refuse what is not a regular file of at most :data:`MAX_FILE_BYTES`."""
+    try:
+        info = path.stat()
+    except FileNotFoundError:
+        raise FileNotFoundError(f"{path}: no such file") from None
+    if not stat.S_ISREG(info.st_mode):
+        raise _err(path, "not a regular file (a folder, device or pipe cannot hold blocks)")
+    if info.st_size > MAX_FILE_BYTES:
+        raise InputLimitError(f"{path}: {info.st_size} bytes, more than MAX_FILE_BYTES = {MAX_FILE_BYTES}")
+
+
+def _read_text(path: Path) -> str:
+    """The text of a regular file of at most :data:`MAX_FILE_BYTES`."""
+    _check_file(path)
+    try:
+        return path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise _err(path, f"not a text file ({exc})") from None
+
+
+_JSON_STRING = re.compile(r'"(?:[^"\\]|\\.)*"')
+
+
+def _load_json(path: Path, text: str) -> Any:
+    """Decode JSON ``text`` after checking, in one linear pass, that it nests at most
+    :data:`MAX_DEPTH` deep (the decoder recurses once per level)."""
+    bare = np.frombuffer(_JSON_STRING.sub("", text).encode("utf-8"), dtype=np.uint8)
+    step = np.isin(bare, (ord("["), ord("{"))).astype(np.int64) - np.isin(bare, (ord("]"), ord("}")))
+    depth = int(np.cumsum(step).max(initial=0))
+    if depth > MAX_DEPTH:
+        raise InputLimitError(f"{path}: JSON nested {depth} deep, more than MAX_DEPTH = {MAX_DEPTH}")
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise _err(path, f"not valid JSON ({exc})") from None
+
+
+def _check_counts(path: Path, blocks: list[RawBlock]) -> None:
+    """Refuse more than :data:`MAX_BLOCKS` blocks or too many vertices, naming the limit."""
+    if len(blocks) > MAX_BLOCKS:
+        raise InputLimitError(f"{path}: {len(blocks)} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
+    for b in blocks:
+        if len(b.vertices) > MAX_BLOCK_VERTICES:
+            raise InputLimitError(
+                f"{path}: block {b.name!r} has {len(b.vertices)} vertices, more than MAX_BLOCK_VERTICES = {MAX_BLOCK_VERTICES}"
+            )
+    total = sum(len(b.vertices) for b in blocks)
+    if total > MAX_VERTICES:
+        raise InputLimitError(f"{path}: {total} vertices, more than MAX_VERTICES = {MAX_VERTICES}")
+
+
 def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
     """Parse a tce JSON assembly (see module docstring)."""
     path = Path(path)
-    d = json.loads(path.read_text()) if data is None else data
+    d = _load_json(path, _read_text(path)) if data is None else data
     if not isinstance(d, Mapping) or not isinstance(d.get("blocks"), list):
         raise _err(path, 'not a tce assembly: expected an object with a "blocks" list')
+    if len(d["blocks"]) > MAX_BLOCKS:
+        raise InputLimitError(f"{path}: {len(d['blocks'])} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
     units = d.get("units") or {}
     if not isinstance(units, Mapping):
         raise _err(path, f'"units" must be an object like {{"length": "m", "force": "kN"}}, got {units!r}')
@@ -112,6 +224,8 @@ def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
         raise _err(path, f"unknown units {units!r}; length one of {list(_LENGTH)}, force one of {list(_FORCE)}")
     blocks = []
     for k, b in enumerate(d["blocks"]):
+        if not isinstance(b, Mapping):
+            raise _err(path, f"blocks[{k}]: a block must be an object with 'vertices' and 'faces', got {b!r:.40}")
         name = str(b.get("name", f"b{k + 1}"))
         try:
             v = np.asarray(b["vertices"], dtype=float)
@@ -137,7 +251,7 @@ def read_obj(path: str | Path) -> RawAssembly:
     path = Path(path)
     verts: list[list[float]] = []
     groups: list[tuple[str, list[list[int]]]] = []
-    for lineno, line in enumerate(path.read_text().splitlines(), 1):
+    for lineno, line in enumerate(_read_text(path).splitlines(), 1):
         tok = line.split("#", 1)[0].split()
         if not tok:
             continue
@@ -183,7 +297,7 @@ def _unwrap(obj: Any) -> Any:
 def read_compas_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
     """Parse a COMPAS assembly JSON file (compas_assembly / compas_cra)."""
     path = Path(path)
-    d = _unwrap(json.loads(path.read_text()) if data is None else data)
+    d = _unwrap(_load_json(path, _read_text(path)) if data is None else data)
     graph = _unwrap(d.get("graph", d)) if isinstance(d, Mapping) else None
     nodes = graph.get("node", graph.get("nodes")) if isinstance(graph, Mapping) else None
     if not isinstance(nodes, Mapping):
@@ -208,7 +322,60 @@ def read_compas_json(path: str | Path, data: Mapping | None = None) -> RawAssemb
         except KeyError as exc:
             raise _err(path, f"block {key!r}: a face refers to vertex {exc} that does not exist") from None
         blocks.append(RawBlock(str(key), np.asarray(rows, dtype=float), faces, bool(node.get("is_support", default_support))))
-    return RawAssembly(blocks)
+    return RawAssembly(blocks, _compas_interfaces(path, graph, [b.name for b in blocks]) or None)
+
+
+def _compas_frame_normal(frame: Any) -> np.ndarray | None:
+    """z axis (``xaxis x yaxis``) of a COMPAS frame ``{point, xaxis, yaxis}`` or ``[point, xaxis, yaxis]``."""
+    frame = _unwrap(frame)
+    if isinstance(frame, Mapping):
+        axes = frame.get("xaxis"), frame.get("yaxis")
+    elif isinstance(frame, (list, tuple)) and len(frame) == 3:
+        axes = frame[1], frame[2]
+    else:
+        return None
+    if axes[0] is None or axes[1] is None:
+        return None
+    return np.cross(np.asarray(axes[0], dtype=float), np.asarray(axes[1], dtype=float))
+
+
+def _compas_interfaces(path: Path, graph: Mapping, order: list[str]) -> list[dict]:
+    """Interfaces stored on the graph's edges, as tce interface items (see :func:`_file_interfaces`).
+
+    An edge ``u -> v`` holds a list ``"interfaces"`` (compas_cra) or one ``"interface"``
+    (compas_assembly); each is ``{"points": [[x, y, z], ...], "frame": {...}}``, its frame's
+    z axis from u into v. Items are given with ``a`` the block of lower index (points and
+    normal reversed when needed) and a ``label`` for messages.
+    """
+    edges = graph.get("edge", graph.get("edges"))
+    if not isinstance(edges, Mapping):
+        return []
+    position = {name: k for k, name in enumerate(order)}
+    out = []
+    for u, row in edges.items():
+        for v, attr in (row or {}).items() if isinstance(row, Mapping) else ():
+            attr = attr or {}
+            stored = attr.get("interfaces")
+            if stored is None and attr.get("interface") is not None:
+                stored = [attr["interface"]]
+            for k, item in enumerate(stored or []):
+                item = _unwrap(item)
+                label = f"interface {k} of edge {u}-{v}"
+                if str(u) not in position or str(v) not in position:
+                    raise _err(path, f"{label}: the edge joins a block that does not exist")
+                if not isinstance(item, Mapping) or "points" not in item:
+                    raise _err(path, f"{label}: no 'points' polygon")
+                try:
+                    pts = np.asarray(item["points"], dtype=float)
+                except (TypeError, ValueError):
+                    raise _err(path, f"{label}: 'points' must be a list of [x, y, z]") from None
+                normal = _compas_frame_normal(item.get("frame"))
+                a, b = str(u), str(v)
+                if position[a] > position[b]:
+                    a, b, pts = b, a, pts[::-1]
+                    normal = None if normal is None else -normal
+                out.append(dict(a=a, b=b, points=pts.tolist(), normal=None if normal is None else normal.tolist(), label=label))
+    return out
 
 
 # ---------------------------------------------------------------------- checks
@@ -231,18 +398,112 @@ def _triangulate_nonplanar(v: np.ndarray, faces: list[list[int]], tol: float, si
     return out, split
 
 
-def _file_interfaces(path: Path, items: list[dict], index: Mapping[str, int], scale: float) -> list[Interface]:
+class _Surface:
+    """The faces of a block, for distances from points to its surface."""
+
+    def __init__(self, shape: Polyhedron) -> None:
+        self.shape = shape
+        self.loops = [shape.vertices[list(f)] for f in shape.faces]
+        self.lo = np.array([q.min(axis=0) for q in self.loops])
+        self.hi = np.array([q.max(axis=0) for q in self.loops])
+        self._planar: dict[int, tuple[np.ndarray, np.ndarray, Polygon]] = {}
+
+    def _face(self, k: int) -> tuple[np.ndarray, np.ndarray, Polygon]:
+        """Frame rows (n, t1, t2), centre and 2D polygon (in the frame) of face ``k``."""
+        if k not in self._planar:
+            frame = frame_from_normal(self.shape.face_normals[k])
+            centre = self.loops[k].mean(axis=0)
+            self._planar[k] = frame, centre, Polygon((self.loops[k] - centre) @ frame[1:].T)
+        return self._planar[k]
+
+    def distance(self, pts: np.ndarray, cutoff: float) -> tuple[np.ndarray, np.ndarray]:
+        """Distance (m) from each point to the surface (inf beyond ``cutoff`` of every face),
+        and the outward normal of the nearest face (NaN when none is within ``cutoff``)."""
+        inside = (pts[:, None, :] >= self.lo[None] - cutoff) & (pts[:, None, :] <= self.hi[None] + cutoff)
+        p, f = np.nonzero(np.all(inside, axis=2))
+        dist = np.full(len(pts), np.inf)
+        normal = np.full((len(pts), 3), np.nan)
+        if not len(p):
+            return dist, normal
+        data = [self._face(int(k)) for k in f]
+        axes = np.array([d[0] for d in data])  # (pairs, 3, 3) rows n, t1, t2
+        off = pts[p] - np.array([d[1] for d in data])
+        uv = np.einsum("kj,kij->ki", off, axes[:, 1:])
+        inplane = shapely.distance(shapely.points(uv), [d[2] for d in data])
+        d = np.hypot(np.einsum("kj,kj->k", off, axes[:, 0]), inplane)
+        order = np.lexsort((d, p))  # per point, the nearest face first
+        first = order[np.r_[True, p[order][1:] != p[order][:-1]]]
+        dist[p[first]] = d[first]
+        normal[p[first]] = axes[first, 0]
+        return dist, normal
+
+
+def _file_interfaces(
+    path: Path, items: list[dict], blocks: list[Block], scale: float, planar_tol: float, interface_tol: float
+) -> list[Interface]:
+    """The interfaces stored in a file, checked against the blocks (module docstring)."""
+    index = {b.name: k for k, b in enumerate(blocks)}
+    surfaces: dict[int, _Surface] = {}
     out = []
     for k, it in enumerate(items):
+        label = it.get("label", f"interface {k}")
         try:
             a, b = index[str(it["a"])], index[str(it["b"])]
             pts = np.asarray(it["points"], dtype=float) * scale
             n = it.get("normal")
         except KeyError as exc:
-            raise _err(path, f"interface {k}: unknown block or missing key {exc}") from None
+            raise _err(path, f"{label}: unknown block or missing key {exc}") from None
+        except (TypeError, ValueError):
+            raise _err(path, f"{label}: 'points' must be a list of [x, y, z]") from None
         if a > b:
-            raise _err(path, f"interface {k}: 'a' must be the block listed first (normal from a into b)")
-        out.append(Interface(a, b, pts, None if n is None else np.asarray(n, dtype=float)))
+            raise _err(path, f"{label}: 'a' must be the block listed first (normal from a into b)")
+        name = f"{label} ({blocks[a].name}|{blocks[b].name})"
+        if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) < 3 or not np.all(np.isfinite(pts)):
+            raise _err(path, f"{name}: needs at least 3 finite points [x, y, z]")
+        size = max(blocks[a].shape.size, blocks[b].shape.size)
+        nv = newell_normal(pts)
+        if np.linalg.norm(nv) <= (1e-9 * size) ** 2:
+            raise _err(path, f"{name}: the polygon has no area")
+        nv = nv / np.linalg.norm(nv)
+        off = np.abs((pts - pts.mean(axis=0)) @ nv).max()
+        if off > planar_tol * size:
+            raise _err(path, f"{name}: not planar (a point lies {off:.3g} m off its plane)")
+        if n is not None:
+            n = np.asarray(n, dtype=float)
+            if n.shape != (3,) or not np.all(np.isfinite(n)) or np.linalg.norm(n) == 0.0:
+                raise _err(path, f"{name}: its normal (frame z axis) must be 3 finite numbers, not all 0")
+            n = n / np.linalg.norm(n)
+            tilt = np.linalg.norm(np.cross(n, nv))
+            if tilt * float(np.ptp(pts, axis=0).max()) > planar_tol * size:
+                raise _err(path, f"{name}: its polygon does not lie in the plane of its frame (normal off by {np.degrees(np.arcsin(min(tilt, 1.0))):.3g} deg)")
+        far = interface_tol * size
+        facing = []
+        for i in (a, b):
+            blk = blocks[i]
+            if i not in surfaces:
+                surfaces[i] = _Surface(blk.shape)
+            surface = surfaces[i]
+            dist, fn = surface.distance(np.vstack([pts, pts.mean(axis=0)]), far)
+            if dist.max() > far:
+                worst = "more than" if not np.isfinite(dist.max()) else f"{dist.max():.3g} m,"
+                raise _err(
+                    path,
+                    f"{name}: does not lie on block {blk.name!r} (a point is {worst} {far:.3g} m off its faces; "
+                    f"interface_tol = {interface_tol:g} of the block size): check the interface's blocks",
+                )
+            facing.append(float(fn[-1] @ nv))
+        # the faces it lies on: A's faces out along +n, B's along -n
+        if facing[0] > 0 > facing[1]:
+            n_ab = nv
+        elif facing[0] < 0 < facing[1]:
+            n_ab = -nv
+        else:
+            raise _err(path, f"{name}: it does not separate its two blocks (their faces there do not face each other)")
+        if n is not None:
+            if n @ n_ab < 0:
+                log.info("%s: %s: the stored normal points from B into A; oriented from A into B", path, name)
+            n_ab = n if n @ n_ab > 0 else -n
+        out.append(Interface(a, b, pts, n_ab))
     return out
 
 
@@ -253,9 +514,10 @@ def load_assembly(
     tol: float = 1e-6,
     min_area: float | None = None,
     angle_tol: float | None = None,
-    nonplanar: Literal["error", "triangulate"] = "error",
+    nonplanar: Literal["error", "triangulate"] | None = None,
     check_overlap: bool = True,
     detect: bool | None = None,
+    interface_tol: float = INTERFACE_TOL,
 ) -> Assembly:
     """Read, check and assemble a block assembly file (see module docstring).
 
@@ -275,16 +537,22 @@ def load_assembly(
         ``min(tol, 1e-6)`` times the block size (what :meth:`Assembly.validate` requires).
     min_area, angle_tol : float, optional
         Passed to :func:`tce.contacts.detect_interfaces`.
-    nonplanar : {"error", "triangulate"}
+    nonplanar : {"error", "triangulate"}, optional
         What to do with a face that is not planar: report it, or split it into triangles
-        (for curved surfaces given as quad meshes). Facets of two curved surfaces meshed
-        differently are not coplanar: finding their contacts then needs a looser ``tol``
-        and ``angle_tol``, and ``check_overlap=False`` if the facetted blocks interpenetrate.
+        (for curved surfaces given as quad meshes). Default: ``"triangulate"`` for COMPAS
+        files (COMPAS meshes may have non-planar faces), ``"error"`` otherwise. Facets of
+        two curved surfaces meshed differently are not coplanar: *detecting* their contacts
+        needs a looser ``tol`` and ``angle_tol``, and ``check_overlap=False`` if the
+        facetted blocks interpenetrate; a file that stores its interfaces needs neither.
     check_overlap : bool
-        Run :func:`tce.contacts.check_overlaps`.
+        Run :func:`tce.contacts.check_overlaps` (at ``max(tol, interface_tol)`` when the
+        file's interfaces are used).
     detect : bool, optional
         Detect the interfaces from the geometry; by default only when the file stores none
-        (a tce JSON file may store them).
+        (tce JSON and COMPAS files may store them).
+    interface_tol : float
+        How far (relative to the larger block size) the points of a stored interface may lie
+        from each of its blocks' faces (module docstring).
 
     Returns
     -------
@@ -299,18 +567,17 @@ def load_assembly(
         When the file does not exist.
     """
     path = Path(path)
-    if nonplanar not in ("error", "triangulate"):
+    if nonplanar not in (None, "error", "triangulate"):
         raise ValueError(f"nonplanar must be 'error' or 'triangulate', got {nonplanar!r}")
     if not (math.isfinite(tol) and tol > 0):
         raise ValueError(f"tol must be a finite number > 0, got {tol!r}")
+    if not (math.isfinite(interface_tol) and interface_tol > 0):
+        raise ValueError(f"interface_tol must be a finite number > 0, got {interface_tol!r}")
     ext = path.suffix.lower()
     if ext == ".obj":
         raw, fmt = read_obj(path), "obj"
     elif ext == ".json":
-        try:
-            data = json.loads(path.read_text())
-        except json.JSONDecodeError as exc:
-            raise _err(path, f"not valid JSON ({exc})") from None
+        data = _load_json(path, _read_text(path))
         if isinstance(data, Mapping) and isinstance(data.get("blocks"), list):
             raw, fmt = read_tce_json(path, data), "tce-json"
         else:
@@ -319,6 +586,9 @@ def load_assembly(
         raise _err(path, f"unknown file type {ext!r}: expected .json or .obj")
     if not raw.blocks:
         raise _err(path, "the file holds no blocks")
+    if nonplanar is None:
+        nonplanar = "triangulate" if fmt == "compas-json" else "error"
+    _check_counts(path, raw.blocks)
 
     names = [b.name for b in raw.blocks]
     if len(set(names)) != len(names):
@@ -327,7 +597,7 @@ def load_assembly(
     uw_map = dict(unit_weight) if isinstance(unit_weight, Mapping) else {}
     unknown = [n for n in uw_map if str(n) not in names]
     if unknown:
-        raise _err(path, f"unit_weight given for unknown block(s) {unknown}")
+        raise _err(path, f"unit_weight given for unknown block(s) {unknown}{did_you_mean(unknown[0], names)}")
     uw_map = {str(k): float(v) for k, v in uw_map.items()}
     uw_all = None if isinstance(unit_weight, Mapping) or unit_weight is None else float(unit_weight)
 
@@ -335,7 +605,11 @@ def load_assembly(
     if support_set is not None:
         missing = sorted(support_set - set(names))
         if missing:
-            raise _err(path, f"support block(s) {missing} not found; blocks are {names}")
+            raise _err(
+                path,
+                f"support block(s) {missing} not found{did_you_mean(missing[0], names)}; blocks are {names[:20]}"
+                + (f" and {len(names) - 20} more" if len(names) > 20 else ""),
+            )
 
     # units: the file's lengths and unit weights are converted to m and kN/m^3 here
     ls, fs = raw.length, raw.force
@@ -369,17 +643,17 @@ def load_assembly(
     if split_total:
         log.info("%s: split %d non-planar faces into triangles", path, split_total)
 
-    if check_overlap:
-        try:
-            check_overlaps(blocks, tol)
-        except AssemblyError as exc:
-            raise _err(path, str(exc)) from None
     if detect is None:
         detect = not raw.interfaces
+    if check_overlap:
+        try:
+            check_overlaps(blocks, tol if detect else max(tol, interface_tol))
+        except AssemblyError as exc:
+            raise _err(path, str(exc)) from None
     if detect:
         interfaces = detect_interfaces(blocks, tol=tol, min_area=min_area, angle_tol=angle_tol)
     else:
-        interfaces = _file_interfaces(path, raw.interfaces or [], {b.name: k for k, b in enumerate(blocks)}, ls)
+        interfaces = _file_interfaces(path, raw.interfaces or [], blocks, ls, min(tol, PLANAR_TOL), interface_tol)
     meta = dict(raw.meta)
     meta.update(
         source=str(path),
@@ -388,6 +662,8 @@ def load_assembly(
         nonplanar=nonplanar,
         interfaces="detected" if detect else "from file",
     )
+    if not detect:
+        meta["interface_tol"] = interface_tol
     if split_total:
         meta["faces_triangulated"] = split_total
     asm = Assembly(tuple(blocks), tuple(interfaces), meta)

@@ -6,9 +6,11 @@ at the key (``docs/studies.md``).
 
 from __future__ import annotations
 
+import difflib
 import math
+from collections.abc import Iterable, Sequence
 
-__all__ = ["check_positive", "check_whole"]
+__all__ = ["check_choice", "check_positive", "check_whole", "did_you_mean"]
 
 
 def check_positive(**params: float) -> None:
@@ -31,3 +33,16 @@ def check_whole(value: int, name: str, minimum: int = 1) -> int:
     if not ok:
         raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
     return int(value)
+
+
+def check_choice(value: str, name: str, options: Sequence[str]) -> str:
+    """``value``; ``ValueError`` naming ``name`` and the options unless it is one of ``options``."""
+    if value not in options:
+        raise ValueError(f"{name} must be one of {list(options)}, got {value!r}")
+    return value
+
+
+def did_you_mean(word: str, choices: Iterable[str]) -> str:
+    """``" (did you mean 'x'?)"`` for the choice closest to a misspelt ``word``, else ``""``."""
+    close = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""

@@ -5,8 +5,12 @@
 ``tce show RESULTS.nc``  one line per scenario: limit, outcome, model, cost.
 ``tce plot RESULTS.nc``  the figures of a results file.
 
-Exit codes: 0 success, 1 failure while running, 2 bad input (a message on stderr, no
-traceback, nothing written), 130 interrupted (finished scenarios are kept).
+Exit codes (``tce run``): 0 success; 2 bad input or a run that cannot start (a bad study,
+an unwritable, full or locked results folder: one message on stderr, no traceback,
+nothing solved); 3 a run that ended with a fault (a worker killed, a disk full, a
+scenario that failed: one line each, every finished scenario kept, a rerun resumes); 4
+with ``--strict``, a run whose scenarios did not all end at a limit; 130 interrupted
+(Ctrl-C; finished scenarios are kept).
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ from __future__ import annotations
 import argparse
 import logging
 import sys
+from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -69,6 +74,10 @@ def _parser() -> argparse.ArgumentParser:
         "default: a local cluster of --jobs workers)",
     )
     run.add_argument("--fresh", action="store_true", help="ignore scenarios solved by an earlier run")
+    run.add_argument(
+        "--strict", action="store_true",
+        help="exit with code 4 unless every scenario ends at a limit (for scripted pipelines)",
+    )
     run.add_argument("--no-plots", action="store_true", help="write the results only")
 
     show = sub.add_parser("show", help="summarise a results file", description="One line per scenario of RESULTS.nc.")
@@ -146,10 +155,12 @@ class _Bar:
             self.bar = None
 
 
-def _run(args: argparse.Namespace) -> int:
-    import shutil
+#: exit codes of ``tce run`` (module docstring)
+EXIT_FAULT, EXIT_STRICT, EXIT_INTERRUPTED = 3, 4, 130
 
-    from .runner import RunError, run_study
+
+def _run(args: argparse.Namespace) -> int:
+    from .runner import OUTCOMES, RunError, RunFault, run_study
     from .schema import StudyError, load_study
 
     if args.scheduler and args.backend != "dask":
@@ -158,28 +169,40 @@ def _run(args: argparse.Namespace) -> int:
         study = load_study(args.study)
     except StudyError as exc:
         raise UsageError(str(exc)) from None
-    if args.fresh:
-        shutil.rmtree(args.out / study.name / "scenarios", ignore_errors=True)
+    kept = f"finished scenarios are kept in {args.out / study.name / 'scenarios'}"
     bar = _Bar(study.name)
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,
-            progress=bar, plots=not args.no_plots,
+            progress=bar, plots=not args.no_plots, fresh=args.fresh,
         )
     except RunError as exc:
         raise UsageError(str(exc)) from None
-    except KeyboardInterrupt:
+    except RunFault as fault:
         bar.close()
+        for line in fault.report.faults:
+            print(f"tce: error: {line}", file=sys.stderr)
+        done = len(fault.report.outcomes)
         print(
-            f"tce: interrupted; finished scenarios are kept in {args.out / study.name / 'scenarios'}: "
-            "run the same command again to resume",
+            f"tce: the run ended with {len(fault.report.faults)} fault(s); {done} {kept}; "
+            "results.nc was not written: run the same command again to solve the rest",
             file=sys.stderr,
         )
-        return 130
+        return EXIT_FAULT
+    except KeyboardInterrupt:
+        bar.close()
+        print(f"tce: interrupted; {kept}: run the same command again to resume", file=sys.stderr)
+        return EXIT_INTERRUPTED
     bar.close()
+    counts = {o: list(report.outcomes.values()).count(o) for o in OUTCOMES}
+    counts.update({o: n for o, n in Counter(report.outcomes.values()).items() if o not in counts})
     what = f"{len(report.solved)} solved" + (f", {len(report.reused)} reused" if report.reused else "")
-    print(f"{report.results}: {len(report.solved) + len(report.reused)} scenarios ({what}), {len(report.figures)} figures")
-    return 0
+    tally = ", ".join(f"{n} {o}" for o, n in counts.items() if n)
+    print(f"{report.results}: {len(report.outcomes)} scenarios ({what}): {tally}; {len(report.figures)} figures")
+    odd = {name: o for name, o in report.outcomes.items() if o != "limit"}
+    for name, outcome in odd.items():
+        print(f"  {outcome}: {name}")
+    return EXIT_STRICT if args.strict and odd else 0
 
 
 def _show(args: argparse.Namespace) -> int:
@@ -191,6 +214,10 @@ def _show(args: argparse.Namespace) -> int:
     table = ds[cols].to_dataframe()[cols].rename(columns={"lambda_direct": "direct", "lambda_gap": "gap"})
     print(f"study {ds.attrs.get('study_name', '?')} (tce {ds.attrs.get('tce_version', '?')}, {ds.attrs.get('solver', '?')})")
     print(table.to_string(float_format=lambda v: f"{v:.6g}"))
+    if "no_limit_reason" in ds:  # results written before tce explained them have none
+        for name, why in zip(ds["scenario"].values, ds["no_limit_reason"].values):
+            if str(why):
+                print(f"{name}: no_limit: {why}")
     return 0
 
 

@@ -87,16 +87,16 @@ class JobsChoice:
     work_s: float = float("nan")
 
 
-def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[str], Analysis]) -> tuple[float, str]:
+def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario], Analysis]) -> tuple[float, str]:
     """Estimated solver work (s) of ``scenarios`` and how it was reckoned (module docstring).
 
-    Builds the first scenario's analysis with ``analysis_of(group)`` (the runner's cached
+    Builds the first scenario's analysis with ``analysis_of(scenario)`` (the runner's cached
     builder) and, for a model of at most :data:`LARGE_MODEL` unknowns, times one warm TCE
     solve and the direct limit of each direction.
     """
     first = scenarios[0]
     t0 = time.perf_counter()
-    an = analysis_of(first.group)
+    an = analysis_of(first)
     model = an.model(an.model_kind(first.alpha, first.settlements))
     t_build = time.perf_counter() - t0
     if model.n_vars > LARGE_MODEL:
@@ -120,7 +120,7 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[str], An
 def choose_jobs(
     scenarios: Sequence[Scenario],
     jobs: int | None,
-    analysis_of: Callable[[str], Analysis],
+    analysis_of: Callable[[Scenario], Analysis],
     backend: str = "loky",
     cpus: int | None = None,
 ) -> JobsChoice:
@@ -133,7 +133,7 @@ def choose_jobs(
     jobs : int or None
         Workers asked for (``--jobs``): used as given. None: decide.
     analysis_of : callable
-        ``group -> Analysis``, the runner's cached builder (an in-process run reuses what
+        ``scenario -> Analysis``, the runner's cached builder (an in-process run reuses what
         the estimate built).
     backend : str
         ``"dask"`` runs on a cluster: all ``cpus`` workers, no estimate.

@@ -1,24 +1,36 @@
 """Results datasets (``docs/results.md``): one per scenario while running, one per study at the end.
 
 Each finished scenario becomes a one-scenario :class:`xarray.Dataset`
-(:func:`scenario_dataset`) written atomically to ``<study dir>/scenarios/`` (temporary
-file, then :func:`os.replace`), so an interrupted run loses no finished scenario. The
-study's ``results.nc`` is the concatenation of those files along ``scenario``, in the
+(:func:`scenario_dataset`) written atomically to ``<study dir>/scenarios/`` by the process
+that solved it (:func:`write_scenario`), so an interrupted run loses no finished scenario.
+The study's ``results.nc`` is the concatenation of those files along ``scenario``, in the
 study's order, with the load paths padded to a common number of steps
-(:func:`merge_scenarios`). A scenario file records the scenario's full definition
-(:attr:`tce.study.Scenario.key`); a rerun reuses it only when that definition is unchanged
-(:func:`load_finished`).
+(:func:`merge_scenarios`).
+
+Storage rules: every file is written atomically (:func:`write_atomic`: a temporary file in
+the same folder, fsync, rename, fsync of the folder), so a reader sees the old file or the
+complete new one, never a part; a write that fails raises :class:`StorageError` naming the
+path and the cause and leaves no temporary behind. A scenario file records the hash of
+its scenario's definition (:attr:`tce.study.Scenario.key`) and of its own content; a
+rerun reuses it only when both match and it holds every variable of
+:data:`SCENARIO_VARS` (:func:`load_finished`). One run at a time writes a study folder
+(:func:`folder_lock`).
 """
 
 from __future__ import annotations
 
+import contextlib
 import datetime as _dt
+import errno
+import fcntl
 import hashlib
 import json
 import logging
 import os
 import re
-from collections.abc import Iterable, Sequence
+import shutil
+import socket
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -26,17 +38,25 @@ import xarray as xr
 
 from .. import __version__
 from ..core.analysis import Analysis
+from ..analysis.diagnose import no_limit_reason
 from ..analysis.loadpath import LoadPathResult
+from ..analysis.nonassoc import NonAssocResult
 from ..core.solve import SOLVER_NAME, TCEResult
-from .schema import Scenario, Study, build_structure
+from .schema import Scenario, Study
 
 __all__ = [
-    "merge_scenarios",
+    "SCENARIO_VARS",
+    "FolderLocked",
+    "StorageError",
+    "folder_lock",
     "load_finished",
+    "merge_scenarios",
+    "remove_temporaries",
     "scenario_dataset",
     "scenario_path",
     "study_attrs",
     "write_atomic",
+    "write_scenario",
 ]
 
 log = logging.getLogger(__name__)
@@ -46,6 +66,16 @@ XYZ = ("x", "y", "z")
 DOF = ("vx", "vy", "vz", "wx", "wy", "wz")
 #: variables that measure cost, not the answer (they differ from run to run)
 TIMING = ("solve_time", "wall_time")
+#: data variables every scenario file holds (a file without one of them is solved again)
+SCENARIO_VARS = (
+    "lam", "tce", "eq_residual", "cone_residual", "status", "reaction", "resultant", "pressure_point",
+    "torque", "lambda_max", "lambda_upper", "lambda_direct", "lambda_gap", "lambda_kinematic",
+    "certificate_gap", "n_solves", "solve_time", "wall_time", "outcome", "model", "mechanism",
+    "interface_mode", "hinge_point", "interface_a", "interface_b", "block_centroid", "block_support",
+    "no_limit_reason",
+)
+#: name of the lock file of a study folder
+LOCK_NAME = ".tce-run.lock"
 _FILL_TEXT = ""
 
 #: name -> (units, long_name)
@@ -57,6 +87,7 @@ META: dict[str, tuple[str, str]] = {
     "lambda_kinematic": ("1", "load multiplier from the virtual work of the loads on the mechanism"),
     "certificate_gap": ("1", "relative gap between kinematic and direct load multipliers"),
     "outcome": ("-", "how the load path ended (limit, unbounded, infeasible, no_limit, numerical)"),
+    "no_limit_reason": ("-", "why there is no finite limit, in words (empty unless the outcome is no_limit)"),
     "model": ("-", "model solved (planar or spatial)"),
     "n_solves": ("-", "number of TCE solves of the load path"),
     "solve_time": ("s", "wall time inside the solver's solve calls, summed over the load path (set-up excluded)"),
@@ -94,6 +125,17 @@ META: dict[str, tuple[str, str]] = {
     "thickness": ("m", "thickness"),
     "depth": ("m", "depth"),
     "radius": ("m", "mid-surface radius"),
+    "cohesion": ("kN/m^2", "cohesion of the joints"),
+    "tensile_strength": ("kN/m^2", "tensile strength of the joints"),
+    "compressive_strength": ("kN/m^2", "compressive strength of the joints (per contact vertex)"),
+    # non-associative bracket (flow = "non-associative" only; tce.analysis.nonassoc)
+    "lambda_assoc": ("1", "associative lambda_max of the direct limit analysis (upper end of the bracket)"),
+    "lambda_nonassoc": ("1", "non-associative estimate of lambda_max (Gilbert et al. 2006 scheme; NaN unless converged)"),
+    "nonassoc_status": ("-", "status of the non-associative scheme (converged, not_converged, dilatant, infeasible, ...)"),
+    "nonassoc_iterations": ("-", "non-associative iterations made"),
+    "nonassoc_converged": ("-", "1 when the scheme reached a fixed point, else 0"),
+    "nonassoc_admissibility": ("1", "violation of the Coulomb law by the final state, over the total weight"),
+    "nonassoc_dilatancy": ("1", "largest opening of a loaded sliding contact in the final mechanism (0: none)"),
 }
 
 
@@ -208,7 +250,24 @@ def _label(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
-def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr.Dataset:
+def _nonassoc_vars(na: NonAssocResult) -> dict[str, tuple]:
+    """The associative/non-associative bracket of the scenario."""
+    scalars = {
+        "lambda_assoc": na.lambda_assoc,
+        "lambda_nonassoc": na.lambda_nonassoc,
+        "nonassoc_iterations": na.iterations,
+        "nonassoc_converged": int(na.converged),
+        "nonassoc_admissibility": na.admissibility,
+        "nonassoc_dilatancy": na.dilatancy,
+    }
+    out: dict[str, tuple] = {k: (("scenario",), np.asarray([v])) for k, v in scalars.items()}
+    out["nonassoc_status"] = (("scenario",), _text([na.status]))
+    return out
+
+
+def scenario_dataset(
+    sc: Scenario, lp: LoadPathResult, analysis: Analysis, nonassoc: NonAssocResult | None = None
+) -> xr.Dataset:
     """The one-scenario dataset of a load path (``docs/results.md``).
 
     Parameters
@@ -219,6 +278,9 @@ def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr
     lp : LoadPathResult
     analysis : Analysis
         The analysis that ran it (for the assembly and the model's interfaces).
+    nonassoc : NonAssocResult, optional
+        The non-associative bracket (materials with ``flow = "non-associative"``): adds
+        ``lambda_assoc``, ``lambda_nonassoc`` and the ``nonassoc_*`` variables.
     """
     path = lp.path
     n_itf = len(analysis.assembly.interfaces)
@@ -227,36 +289,130 @@ def scenario_dataset(sc: Scenario, lp: LoadPathResult, analysis: Analysis) -> xr
     data = _path_vars(path, step_slots, n_itf)
     data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
     data.update(_static_vars(analysis))
+    data["no_limit_reason"] = (("scenario",), _text([no_limit_reason(analysis, lp)]))
+    if nonassoc is not None:
+        data.update(_nonassoc_vars(nonassoc))
     ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)))
     ds.attrs["scenario_key"] = sc.key
     return _label(ds)
 
 
 # ----------------------------------------------------------------------------- files
+class StorageError(OSError):
+    """A results file or folder that cannot be written; the message names the path and the cause."""
+
+
+class FolderLocked(RuntimeError):
+    """Another run holds the study folder."""
+
+
 def scenario_path(directory: Path, sc: Scenario) -> Path:
     """File of one finished scenario: a readable slug of its name plus a short hash."""
-    slug = re.sub(r"[^A-Za-z0-9_.=-]+", "_", sc.name).strip("_")[:80]
+    slug = re.sub(r"[^A-Za-z0-9_.=-]+", "_", sc.name).strip("_.")[:80]
     digest = hashlib.sha256(sc.name.encode()).hexdigest()[:8]
     return directory / f"{slug}-{digest}.nc"
 
 
+_CAUSES = {
+    errno.ENOSPC: "no space left on the device",
+    errno.EDQUOT: "disk quota exceeded",
+    errno.EROFS: "read-only file system",
+    errno.EACCES: "permission denied",
+    errno.EPERM: "permission denied",
+    errno.ENOTDIR: "a file is in the way of a folder",
+    errno.EEXIST: "a file is in the way of a folder",
+    errno.EISDIR: "a folder is in the way of a file",
+}
+
+
+def storage_error(path: Path, exc: BaseException) -> StorageError:
+    """A :class:`StorageError` for ``path`` saying why ``exc`` happened, and what to do."""
+    no = getattr(exc, "errno", None)
+    try:  # the netCDF library reports a full disk as "NetCDF: HDF error" or "Permission denied"
+        full = shutil.disk_usage(next(p for p in (path, *path.parents) if p.exists())).free < 2**20
+    except OSError:
+        full = False
+    cause = "no space left on the device" if full else _CAUSES.get(no or 0, str(exc))
+    fix = "free some space" if "space" in cause or "quota" in cause else "choose another --out"
+    err = StorageError(f"cannot write {path}: {cause}; fix: {fix}, then run the same command again")
+    err.errno = no
+    return err
+
+
 def write_atomic(ds: xr.Dataset, path: Path) -> Path:
-    """Write ``ds`` to ``path`` as netCDF via a temporary file and :func:`os.replace`."""
-    path.parent.mkdir(parents=True, exist_ok=True)
+    """Write ``ds`` to ``path`` as netCDF atomically: a temporary file in the same folder,
+    fsync, :func:`os.replace`, fsync of the folder.
+
+    Raises
+    ------
+    StorageError
+        The file cannot be written (no temporary file is left).
+    """
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
+        path.parent.mkdir(parents=True, exist_ok=True)
         ds.to_netcdf(tmp)
+        with open(tmp, "rb") as fh:
+            os.fsync(fh.fileno())
         os.replace(tmp, path)
+        _fsync_dir(path.parent)
+    except (OSError, RuntimeError) as exc:
+        raise storage_error(path, exc) from None
     finally:
-        tmp.unlink(missing_ok=True)
+        with contextlib.suppress(OSError):
+            tmp.unlink(missing_ok=True)
     return path
 
 
-def load_finished(directory: Path, scenarios: Iterable[Scenario]) -> dict[str, xr.Dataset]:
-    """Scenario datasets already written under ``directory`` whose definition is unchanged.
+def _fsync_dir(directory: Path) -> None:
+    """Make a rename in ``directory`` durable."""
+    fd = os.open(directory, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
 
-    A file that cannot be read or was written for another definition is ignored (and
-    will be overwritten when its scenario is solved again).
+
+def remove_temporaries(directory: Path, pid: int | None = None) -> list[Path]:
+    """Remove the temporary files :func:`write_atomic` left in ``directory`` (a writer
+    killed mid-write): those of process ``pid``, or all (the caller holds the folder's lock)."""
+    pattern = f".*.{pid}.tmp" if pid is not None else ".*.tmp"
+    gone = []
+    for tmp in directory.glob(pattern):
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+            gone.append(tmp)
+    return gone
+
+
+def content_digest(ds: xr.Dataset) -> str:
+    """SHA-256 of a dataset's variables (names, dimensions, types and values), not its attrs."""
+    h = hashlib.sha256()
+    for name in sorted(map(str, ds.variables)):
+        v = ds[name].variable
+        text = v.dtype.kind in "OUS"  # object strings are read back as fixed-width ones
+        h.update(f"{name}|{v.dims}|{'text' if text else v.dtype.str}|{v.shape}|".encode())
+        if text:
+            h.update("\x00".join(map(str, v.values.ravel())).encode())
+        else:
+            h.update(np.ascontiguousarray(v.values).tobytes())
+    return h.hexdigest()
+
+
+def write_scenario(ds: xr.Dataset, directory: Path, sc: Scenario) -> Path:
+    """Write one scenario's dataset (:func:`scenario_dataset`) with its content digest."""
+    ds = ds.copy()
+    ds.attrs["content_sha256"] = content_digest(ds)
+    return write_atomic(ds, scenario_path(directory, sc))
+
+
+def load_finished(directory: Path, scenarios: Iterable[Scenario]) -> dict[str, xr.Dataset]:
+    """Scenario datasets already written under ``directory`` that can be trusted.
+
+    A file is used only when it can be read, was written for the same definition
+    (:attr:`~tce.study.Scenario.key`), holds every variable of :data:`SCENARIO_VARS` and
+    still has the content it was written with (truncated, corrupted or edited files are
+    solved again, and overwritten then).
     """
     found: dict[str, xr.Dataset] = {}
     for sc in scenarios:
@@ -265,14 +421,77 @@ def load_finished(directory: Path, scenarios: Iterable[Scenario]) -> dict[str, x
             continue
         try:
             ds = xr.load_dataset(path)
-        except (OSError, ValueError) as exc:
-            log.warning("ignoring unreadable scenario file %s (%s)", path, exc)
+        except Exception as exc:  # noqa: BLE001 - the netCDF library raises many kinds on a damaged file
+            log.warning("ignoring unreadable scenario file %s (%s): solving %r again", path, exc, sc.name)
             continue
-        if ds.attrs.get("scenario_key") == sc.key:
-            found[sc.name] = ds
-        else:
+        missing = [v for v in SCENARIO_VARS if v not in ds.data_vars]
+        if ds.attrs.get("scenario_key") != sc.key:
             log.info("scenario %r changed since %s was written: solving it again", sc.name, path)
+        elif missing or ds.attrs.get("content_sha256") != content_digest(ds):
+            log.warning(
+                "ignoring scenario file %s (%s): solving %r again",
+                path, f"no {missing}" if missing else "its content was changed", sc.name,
+            )
+        else:
+            found[sc.name] = ds
     return found
+
+
+@contextlib.contextmanager
+def folder_lock(directory: Path) -> Iterator[Path]:
+    """Hold ``directory/.tce-run.lock`` while the block runs: one run per study folder.
+
+    The lock is an exclusive :func:`fcntl.flock` on the file, released by the system when
+    its holder ends in any way, so a lock left by a process that died (a stale lock) is
+    simply taken over. The file records the holder's pid, host and start time, for the
+    message of a run that finds it held.
+
+    Raises
+    ------
+    FolderLocked
+        Another process holds the lock.
+    StorageError
+        The lock file cannot be written.
+    """
+    path = directory / LOCK_NAME
+    while True:
+        try:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise storage_error(path, exc) from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = os.read(fd, 4096).decode(errors="replace").strip() or "unknown"
+            os.close(fd)
+            raise FolderLocked(
+                f"{directory}: another run is writing this folder ({holder}); "
+                "fix: wait for it to end, or give another --out"
+            ) from None
+        try:
+            same = os.fstat(fd).st_ino == os.stat(path).st_ino
+        except FileNotFoundError:
+            same = False
+        if same:  # not unlinked by the previous holder between our open and flock
+            break
+        os.close(fd)
+    try:
+        old = os.read(fd, 4096).decode(errors="replace").strip()
+        if old:
+            log.info("taking over the lock of a run that ended without releasing it (%s)", old)
+        record = f"pid {os.getpid()} on {socket.gethostname()} since {_dt.datetime.now().isoformat(timespec='seconds')}"
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, record.encode(), 0)
+        os.fsync(fd)
+    except OSError as exc:
+        os.close(fd)
+        raise storage_error(path, exc) from None
+    try:
+        yield path
+    finally:
+        with contextlib.suppress(OSError):
+            os.unlink(path)
+        os.close(fd)
 
 
 def _text_as_object(ds: xr.Dataset) -> xr.Dataset:
@@ -293,13 +512,14 @@ def _pad(ds: xr.Dataset, n_steps: int) -> xr.Dataset:
 def study_attrs(study: Study, models: Iterable[str]) -> dict[str, str]:
     """Global attrs: study text, versions, solver, models, assembly and material."""
     first = study.scenarios()[0]
+    assembly = study.assembly(first.structure)
     return {
         "study": study.text,
         "study_name": study.name,
         "tce_version": __version__,
         "solver": SOLVER_NAME,
         "model": ", ".join(sorted(set(models))),
-        "assembly": json.dumps(build_structure(first.structure).to_dict()),
+        "assembly": json.dumps(assembly.to_dict()),
         "material": json.dumps(study.spec.material.model_dump()),
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
     }

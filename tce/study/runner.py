@@ -1,50 +1,102 @@
 """Run a study: solve its missing scenarios in parallel, keep each as it finishes, merge, plot.
 
 :func:`run_study` expands a :class:`tce.study.Study` into scenarios, skips those already
-written under ``<out>/<study name>/scenarios/`` with an unchanged definition, and solves
-the rest with :class:`joblib.Parallel` (``loky`` processes on this machine, or a Dask
-distributed cluster through joblib's ``dask`` backend). Each worker process keeps the
-:class:`tce.analysis.Analysis` of every structure and material it has met (a small
-cache), so the operators and solvers are built once and reused for all the load steps
-and scenarios that share them; the scenarios are dispatched grouped by analysis. The
-answer of a scenario does not depend on where or in which order it runs.
+written under ``<out>/<study name>/scenarios/`` that can be trusted
+(:func:`tce.study.results.load_finished`), and solves the rest: in this process with
+``jobs=1``, in a pool of worker processes with ``jobs > 1`` (``backend="loky"``, the
+default), or on a Dask distributed cluster through joblib's ``dask`` backend. Each worker
+keeps the :class:`tce.analysis.Analysis` of the structures and materials it has met, so
+operators are built once per worker and reused; the structure itself is built once per
+run (when the study is validated) and sent to the workers. The answer of a scenario does
+not depend on where or in which order it runs.
 
-Each finished scenario is written at once by the calling process (atomically), so an
-interruption loses nothing finished. When all are done, ``results.nc`` is written
-(atomically) beside them, then the figures (:mod:`tce.plot`).
+Faults (``docs/studies.md``, "Faults and resuming"):
+
+- Each scenario is written, atomically, by the process that solved it, before the
+  parent is told it is done; what is finished is on disk whatever happens next.
+- A worker that dies (killed by a signal, e.g. by the out-of-memory killer) is reported
+  with its scenario and signal; that scenario is not retried in this run (it would likely
+  die again) and the run goes on with the others in a new worker. A results folder that
+  cannot be written stops the dispatch (the running scenarios finish). Either way the run
+  ends with :class:`RunFault` (exit code 3 in the CLI) after every other scenario is
+  kept, ``results.nc`` is not replaced, and a rerun solves only what is missing.
+- Ctrl-C (:class:`KeyboardInterrupt`) stops the workers at once (a worker that is writing
+  a file finishes it first), removes the temporary files and re-raises.
+- Workers ignore Ctrl-C (the parent decides) and end within a second if the parent dies.
+- One run at a time per study folder (:func:`tce.study.results.folder_lock`); the folder
+  is created and locked before anything is solved, so an unwritable destination fails
+  with :class:`RunError` before the run.
 """
 
 from __future__ import annotations
 
 import contextlib
-import json
 import logging
+import multiprocessing as mp
+import multiprocessing.connection
+import os
+import shutil
+import signal
+import threading
+import time
+import traceback
+from collections import deque
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
 import joblib
 import xarray as xr
 
-from ..core.analysis import Analysis
 from ..analysis.loadpath import load_path
+from ..analysis.nonassoc import nonassociative_limit
+from ..core.analysis import Analysis
+from ..structures.assembly import Assembly
 from .jobs import choose_jobs
-from .results import load_finished, merge_scenarios, scenario_dataset, scenario_path, write_atomic
-from .schema import Scenario, Study, build_material, build_structure
+from .results import (
+    FolderLocked,
+    StorageError,
+    folder_lock,
+    load_finished,
+    merge_scenarios,
+    remove_temporaries,
+    scenario_dataset,
+    storage_error,
+    write_atomic,
+    write_scenario,
+)
+from .schema import Scenario, Study, build_material
 
-__all__ = ["RunError", "RunReport", "run_study", "solve_scenario", "write_plots"]
+__all__ = ["RunError", "RunFault", "RunReport", "run_study", "solve_scenario", "write_plots"]
 
 log = logging.getLogger(__name__)
 
 Backend = Literal["loky", "dask"]
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
+#: outcomes of a load path, in the order the run summary lists them
+OUTCOMES = ("limit", "no_limit", "unbounded", "infeasible", "numerical")
 
 
 class RunError(RuntimeError):
-    """A run that cannot start (for example an unreachable Dask scheduler)."""
+    """A run that cannot start: an unreachable Dask scheduler, an unwritable or locked
+    results folder (exit code 2 in the CLI; nothing was solved)."""
+
+
+class RunFault(RuntimeError):
+    """A run that ended with a fault (a worker died, a file could not be written, a
+    scenario failed): every finished scenario is kept, ``results.nc`` is not replaced.
+
+    Attributes
+    ----------
+    report : RunReport
+        What the run did before and after the fault (``report.faults`` lists them).
+    """
+
+    def __init__(self, report: RunReport) -> None:
+        super().__init__("\n".join(report.faults))
+        self.report = report
 
 
 @dataclass
@@ -54,9 +106,13 @@ class RunReport:
     Attributes
     ----------
     results : Path
-        The study's ``results.nc``.
+        The study's ``results.nc`` (written only when every scenario is solved).
     solved, reused : list of str
         Scenarios solved by this run, and scenarios taken from an earlier run.
+    outcomes : dict
+        ``{scenario: outcome}`` of every finished scenario, in the study's order.
+    faults : list of str
+        One line per fault (empty for a run that went through).
     figures : list of Path
         Figures written beside the results.
     """
@@ -64,16 +120,26 @@ class RunReport:
     results: Path
     solved: list[str] = field(default_factory=list)
     reused: list[str] = field(default_factory=list)
+    outcomes: dict[str, str] = field(default_factory=dict)
+    faults: list[str] = field(default_factory=list)
     figures: list[Path] = field(default_factory=list)
 
 
 # ----------------------------------------------------------------------------- worker side
-@lru_cache(maxsize=8)
-def _analysis(group: str) -> Analysis:
-    """The analysis of a scenario group (built once per worker process, then reused)."""
-    structure, material = json.loads(group)
-    log.debug("building the analysis of %s", group)
-    return Analysis(build_structure(structure), build_material(material))
+_ANALYSES: dict[str, Analysis] = {}
+_KEEP = 8  # analyses a worker keeps (most recently used)
+
+
+def _analysis(sc: Scenario, assembly: Assembly) -> Analysis:
+    """The analysis of a scenario group (built once per process, then reused)."""
+    analysis = _ANALYSES.pop(sc.group, None)
+    if analysis is None:
+        log.debug("building the analysis of %s", sc.group)
+        analysis = Analysis(assembly, build_material(sc.material))
+    _ANALYSES[sc.group] = analysis
+    while len(_ANALYSES) > _KEEP:
+        _ANALYSES.pop(next(iter(_ANALYSES)))
+    return analysis
 
 
 def _cold(analysis: Analysis) -> Analysis:
@@ -88,9 +154,9 @@ def _cold(analysis: Analysis) -> Analysis:
     return analysis
 
 
-def solve_scenario(sc: Scenario) -> xr.Dataset:
-    """Run the load path of one scenario and return its one-scenario dataset."""
-    analysis = _cold(_analysis(sc.group))
+def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
+    """Run the load path of one scenario on its built ``assembly``; return its dataset."""
+    analysis = _cold(_analysis(sc, assembly))
     lp = load_path(
         analysis,
         alpha=sc.alpha,
@@ -100,18 +166,80 @@ def solve_scenario(sc: Scenario) -> xr.Dataset:
         lam_cap=sc.loads["lambda_cap"],
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
-    return scenario_dataset(sc, lp, analysis)
+    bracket = None
+    if analysis.material.flow == "non-associative":
+        bracket = nonassociative_limit(analysis, sc.alpha)
+    return scenario_dataset(sc, lp, analysis, nonassoc=bracket)
+
+
+def _solve_and_write(sc: Scenario, assembly: Assembly, directory: Path) -> tuple[str, int]:
+    """Solve ``sc`` and write its file; return its outcome and number of solves."""
+    ds = solve_scenario(sc, assembly)
+    with _writing():
+        write_scenario(ds, directory, sc)
+    return str(ds["outcome"].values[0]), int(ds["n_solves"].values[0])
+
+
+class _Stop:
+    """A worker's termination request, deferred while it writes a file."""
+
+    writing = False
+    requested = False
+
+
+@contextlib.contextmanager
+def _writing() -> Iterator[None]:
+    _Stop.writing = True
+    try:
+        yield
+    finally:
+        _Stop.writing = False
+        if _Stop.requested:
+            os._exit(1)
+
+
+def _on_terminate(signum: int, frame: Any) -> None:
+    if _Stop.writing:
+        _Stop.requested = True
+    else:
+        os._exit(1)
+
+
+def _watch_parent(parent: int) -> None:
+    """End this worker within a second of its parent's death (``kill -9`` of ``tce run``)."""
+    while os.getppid() == parent:
+        time.sleep(0.5)
+    os.kill(os.getpid(), signal.SIGTERM)
+
+
+def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: int) -> None:
+    """Worker process: solve the scenarios the parent sends, write each, reply in one message."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is for the parent to handle
+    signal.signal(signal.SIGTERM, _on_terminate)
+    threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+    logging.getLogger("tce").setLevel(level)
+    while True:
+        try:
+            task = conn.recv()
+        except EOFError:
+            return
+        if task is None:
+            return
+        sc, assembly = task
+        try:
+            outcome, n_solves = _solve_and_write(sc, assembly, Path(directory))
+            reply: tuple = ("done", sc.name, outcome, n_solves)
+        except StorageError as exc:
+            reply = ("storage", sc.name, str(exc))
+        except Exception as exc:  # noqa: BLE001 - reported to the parent with its traceback
+            reply = ("error", sc.name, f"{type(exc).__name__}: {exc}", traceback.format_exc())
+        conn.send(reply)
 
 
 # ----------------------------------------------------------------------------- caller side
 @contextlib.contextmanager
-def _backend(backend: Backend, scheduler: str | None, jobs: int) -> Iterator[int]:
-    """Configure joblib for ``backend``; yield the ``n_jobs`` to give :class:`joblib.Parallel`."""
-    if backend == "loky":
-        yield jobs
-        return
-    if backend != "dask":
-        raise RunError(f"unknown backend {backend!r}: use 'loky' or 'dask'")
+def _dask(scheduler: str | None, jobs: int) -> Iterator[None]:
+    """joblib's ``dask`` backend on the cluster at ``scheduler`` (or a local one of ``jobs`` workers)."""
     try:
         from distributed import Client, LocalCluster
     except ImportError:
@@ -129,7 +257,7 @@ def _backend(backend: Backend, scheduler: str | None, jobs: int) -> Iterator[int
             raise RunError(f"cannot reach the Dask scheduler {scheduler!r}: {exc}") from None
         log.info("running on the Dask cluster %s", client.scheduler.address)
         stack.enter_context(joblib.parallel_config(backend="dask"))
-        yield -1
+        yield
 
 
 def _grouped(scenarios: list[Scenario]) -> list[Scenario]:
@@ -147,23 +275,184 @@ def write_plots(ds: xr.Dataset, outdir: Path) -> list[Path]:
     return list(plot.write_figures(ds, Path(outdir)))
 
 
-def _solve_missing(
-    todo: list[Scenario], directory: Path, jobs: int, backend: Backend, scheduler: str | None, progress: Progress | None
-) -> dict[str, xr.Dataset]:
-    """Solve ``todo``, writing each scenario file as soon as its answer arrives."""
-    done: dict[str, xr.Dataset] = {}
+class _Tally:
+    """Outcomes, faults and progress of one dispatch."""
+
+    def __init__(self, total: int, progress: Progress | None) -> None:
+        self.total, self.progress = total, progress
+        self.outcomes: dict[str, str] = {}
+        self.faults: list[str] = []
+        self.steps = 0
+
+    def done(self, name: str, outcome: str, n_solves: int) -> None:
+        self.outcomes[name] = outcome
+        self.steps += n_solves
+        if self.progress is not None:
+            self.progress(len(self.outcomes), self.total, self.steps)
+
+    def fault(self, line: str, details: str = "") -> None:
+        log.debug("fault: %s\n%s", line, details)
+        self.faults.append(line)
+
+
+def _failed(sc: Scenario, exc: BaseException) -> str:
+    return f"scenario {sc.name!r} failed: {type(exc).__name__}: {exc} (run with -v for the traceback)"
+
+
+def _in_process(todo: list[Scenario], study: Study, directory: Path, tally: _Tally) -> None:
+    """Solve ``todo`` one after the other in this process."""
+    for sc in todo:
+        try:
+            result = _solve_and_write(sc, study.assembly(sc.structure), directory)
+        except StorageError as exc:
+            tally.fault(str(exc))
+            return  # the destination takes no more: stop
+        except Exception as exc:  # noqa: BLE001 - reported as a fault, the others go on
+            tally.fault(_failed(sc, exc), traceback.format_exc())
+            continue
+        tally.done(sc.name, *result)
+
+
+def _death(process: mp.process.BaseProcess, sc: Scenario | None) -> str:
+    """One line on a worker that ended without replying."""
+    code = process.exitcode
+    if code is not None and code < 0:
+        name = signal.Signals(-code).name
+        how = f"was killed by {name}" + (" (as the out-of-memory killer does)" if name == "SIGKILL" else "")
+    else:
+        how = f"exited with code {code}"
+    what = f"while solving scenario {sc.name!r}: that scenario is not saved" if sc else "between scenarios"
+    return f"worker process {process.pid} {how} {what}; the other scenarios went on"
+
+
+def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tally: _Tally) -> None:
+    """Solve ``todo`` in ``jobs`` worker processes (see the module docstring for faults)."""
+    ctx = mp.get_context("spawn")
+    queue = deque(todo)
+    workers: dict[Any, list] = {}  # parent end of the pipe -> [process, scenario being solved]
+    stopping = False
+    level = logging.getLogger("tce").getEffectiveLevel()
+
+    def start() -> Any:
+        conn, child = ctx.Pipe()
+        process = ctx.Process(target=_worker, args=(child, str(directory), os.getpid(), level), daemon=True)
+        process.start()
+        child.close()
+        workers[conn] = [process, None]
+        return conn
+
+    def feed(conn: Any) -> None:
+        """Give the worker its next scenario, or tell it to end."""
+        sc = queue.popleft() if queue and not stopping else None
+        workers[conn][1] = sc
+        try:
+            conn.send(None if sc is None else (sc, study.assembly(sc.structure)))
+        except OSError:  # it died between scenarios: its end shows in the next wait
+            if sc is not None:
+                queue.appendleft(sc)
+            workers[conn][1] = "dead"
+
+    def bury(conn: Any) -> None:
+        """Report a worker that ended without replying, clean after it, replace it."""
+        process, sc = workers.pop(conn)
+        conn.close()
+        process.join(5)
+        tally.fault(_death(process, sc if isinstance(sc, Scenario) else None))
+        remove_temporaries(directory, process.pid)
+        if queue and not stopping:
+            feed(start())
+
+    try:
+        for _ in range(min(jobs, len(todo))):
+            feed(start())
+        while busy := [c for c, (_, sc) in workers.items() if sc is not None]:
+            for conn in mp.connection.wait(busy):
+                try:
+                    reply = conn.recv()
+                except (EOFError, OSError):
+                    bury(conn)
+                    continue
+                kind, name, *rest = reply
+                sc = workers[conn][1]
+                if kind == "done":
+                    tally.done(name, *rest)
+                elif kind == "storage":
+                    tally.fault(rest[0])
+                    stopping = True  # the destination takes no more: the running ones finish
+                else:
+                    tally.fault(_failed(sc, RuntimeError(rest[0])), rest[1])
+                feed(conn)
+    finally:
+        _end(workers, directory)
+
+
+def _end(workers: dict[Any, list], directory: Path) -> None:
+    """Stop the workers (one that is writing a file finishes it), wait for them, remove
+    their temporary files."""
+    for process, sc in workers.values():
+        if sc is not None and process.is_alive():
+            process.terminate()
+    for conn, (process, _) in workers.items():
+        process.join(10)
+        if process.is_alive():
+            process.kill()
+            process.join()
+        conn.close()
+        remove_temporaries(directory, process.pid)
+
+
+def _on_dask(todo: list[Scenario], study: Study, directory: Path, scheduler: str | None, jobs: int, tally: _Tally) -> None:
+    """Solve ``todo`` on a Dask cluster; this process writes each answer as it arrives
+    (the workers of a remote cluster may not see ``directory``)."""
     by_name = {sc.name: sc for sc in todo}
-    steps = 0
-    with _backend(backend, scheduler, jobs) as n_jobs:
-        parallel = joblib.Parallel(n_jobs=n_jobs, return_as="generator_unordered")
-        for ds in parallel(joblib.delayed(solve_scenario)(sc) for sc in _grouped(todo)):
-            name = str(ds["scenario"].values[0])
-            write_atomic(ds, scenario_path(directory, by_name[name]))
-            done[name] = ds
-            steps += int(ds["n_solves"].values[0])
-            if progress is not None:
-                progress(len(done), len(todo), steps)
-    return done
+    with _dask(scheduler, jobs):
+        tasks = (joblib.delayed(solve_scenario)(sc, study.assembly(sc.structure)) for sc in _grouped(todo))
+        try:
+            for ds in joblib.Parallel(n_jobs=-1, return_as="generator_unordered")(tasks):
+                sc = by_name[str(ds["scenario"].values[0])]
+                try:
+                    write_scenario(ds, directory, sc)
+                except StorageError as exc:
+                    tally.fault(str(exc))
+                    return
+                tally.done(sc.name, str(ds["outcome"].values[0]), int(ds["n_solves"].values[0]))
+        except Exception as exc:  # noqa: BLE001 - a lost worker or a failed task, reported as a fault
+            tally.fault(f"the Dask run failed: {type(exc).__name__}: {exc}", traceback.format_exc())
+
+
+def _study_folder(out: Path | str, name: str) -> Path:
+    """``out/name``, checked to resolve to a folder directly inside ``out``."""
+    root = Path(out).resolve()
+    directory = (root / name).resolve()
+    if directory.parent != root:
+        raise RunError(
+            f"{Path(out) / name}: resolves to {directory}, outside {root}; fix: give the study a plain name "
+            "or remove the link"
+        )
+    return directory
+
+
+def _lock(stack: contextlib.ExitStack, directory: Path) -> None:
+    """Create the study folder and take its lock (in ``stack``), or raise :class:`RunError`."""
+    folder = directory / "scenarios"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise RunError(str(storage_error(folder, exc))) from None
+    try:
+        stack.enter_context(folder_lock(directory))
+    except (FolderLocked, StorageError) as exc:
+        raise RunError(str(exc)) from None
+    free = shutil.disk_usage(directory).free
+    if free < MIN_FREE:
+        raise RunError(
+            f"cannot write {directory}: {free} bytes free, less than {MIN_FREE}; fix: free some space, "
+            "then run the same command again"
+        )
+
+
+#: Free space a run needs before it starts (bytes).
+MIN_FREE = 2**20
 
 
 def run_study(
@@ -174,6 +463,7 @@ def run_study(
     scheduler: str | None = None,
     progress: Progress | None = None,
     plots: bool = True,
+    fresh: bool = False,
 ) -> RunReport:
     """Solve every scenario of ``study`` not solved yet and write ``results.nc`` (and figures).
 
@@ -184,11 +474,13 @@ def run_study(
     out : path
         Results root: the study writes into ``out/<study name>/``.
     jobs : int, optional
-        Parallel workers. Default: in-process when the study's estimated work is below
-        what starting workers costs, all cores otherwise (:func:`tce.study.jobs.choose_jobs`,
-        its reason logged at info). With ``backend="dask"`` and no ``scheduler``, the size
-        of the local cluster started for the run (default: all cores).
+        Parallel workers; 1 solves in this process. Default: in-process when the study's
+        estimated work is below what starting workers costs, all cores otherwise
+        (:func:`tce.study.jobs.choose_jobs`, its reason logged at info). With
+        ``backend="dask"`` and no ``scheduler``, the size of the local cluster started
+        (default: all cores).
     backend : {"loky", "dask"}
+        ``loky``: worker processes on this machine; ``dask``: a Dask distributed cluster.
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:port``).
     progress : callable, optional
@@ -196,6 +488,8 @@ def run_study(
         each scenario solved.
     plots : bool
         Write the figures after the results.
+    fresh : bool
+        Delete the scenario files of earlier runs first (under the folder's lock).
 
     Returns
     -------
@@ -204,37 +498,68 @@ def run_study(
     Raises
     ------
     RunError
-        The backend cannot start.
+        The run cannot start (backend, unwritable, full or locked folder); nothing solved.
+    RunFault
+        The run ended with a fault; every finished scenario is on disk, ``results.nc``
+        was not replaced.
+    KeyboardInterrupt
+        Ctrl-C; every finished scenario is on disk.
     """
     if jobs is not None and jobs < 1:
         raise RunError(f"jobs must be >= 1, got {jobs}")
-    directory = Path(out) / study.name
+    if backend not in ("loky", "dask"):
+        raise RunError(f"unknown backend {backend!r}: use 'loky' or 'dask'")
+    directory = _study_folder(out, study.name)
+    folder = directory / "scenarios"
     scenarios = study.scenarios()
-    parts = load_finished(directory / "scenarios", scenarios)
-    todo = [sc for sc in scenarios if sc.name not in parts]
-    if todo:
-        choice = choose_jobs(_grouped(todo), jobs, _analysis, backend)
-        log.info("%s", choice.reason)
-        jobs = choice.jobs
-    jobs = jobs or 1
-    if parts:
-        log.info(
-            "resuming %s: %d of %d scenarios already solved, solving the %d missing",
-            study.name, len(parts), len(scenarios), len(todo),
-        )
-    else:
-        where = "in-process" if jobs == 1 and backend == "loky" else f"on {jobs} {backend} worker(s)"
-        log.info("running %s: %d scenarios %s", study.name, len(todo), where)
-    report = RunReport(directory / "results.nc", reused=list(parts))
-    if todo:
-        if progress is not None:
-            progress(0, len(todo), 0)  # the bar shows (and ticks) from the start
-        solved = _solve_missing(todo, directory / "scenarios", jobs, backend, scheduler, progress)
-        parts.update(solved)
-        report.solved = [sc.name for sc in todo]
-    ds = merge_scenarios(study, parts)
-    write_atomic(ds, report.results)
-    log.info("wrote %s", report.results)
-    if plots:
-        report.figures = write_plots(ds, directory)
+    with contextlib.ExitStack() as stack:
+        _lock(stack, directory)
+        for d in (directory, folder):
+            remove_temporaries(d)  # left by a run that was killed mid-write
+        if fresh:
+            for old in folder.glob("*.nc"):
+                old.unlink()
+        parts = load_finished(folder, scenarios)
+        todo = [sc for sc in scenarios if sc.name not in parts]
+        if todo:
+            choice = choose_jobs(_grouped(todo), jobs, lambda sc: _analysis(sc, study.assembly(sc.structure)), backend)
+            log.info("%s", choice.reason)
+            jobs = choice.jobs
+        jobs = jobs or 1
+        if parts:
+            log.info(
+                "resuming %s: %d of %d scenarios already solved, solving the %d missing",
+                study.name, len(parts), len(scenarios), len(todo),
+            )
+        else:
+            where = "in-process" if jobs == 1 and backend == "loky" else f"on {jobs} {backend} worker(s)"
+            log.info("running %s: %d scenarios %s", study.name, len(todo), where)
+        report = RunReport(directory / "results.nc", reused=list(parts))
+        if todo:
+            tally = _Tally(len(todo), progress)
+            if progress is not None:
+                progress(0, len(todo), 0)  # the bar shows (and ticks) from the start
+            if backend == "dask":
+                _on_dask(todo, study, folder, scheduler, jobs, tally)
+            elif jobs == 1:
+                _in_process(todo, study, folder, tally)
+            else:
+                _in_pool(_grouped(todo), study, folder, jobs, tally)
+            report.solved = [sc.name for sc in todo if sc.name in tally.outcomes]
+            report.faults = tally.faults
+            parts.update(load_finished(folder, [sc for sc in todo if sc.name in tally.outcomes]))
+            lost = [n for n in report.solved if n not in parts]
+            report.faults += [f"scenario {n!r} was solved but its file cannot be read back" for n in lost]
+        report.outcomes = {sc.name: str(parts[sc.name]["outcome"].values[0]) for sc in scenarios if sc.name in parts}
+        if report.faults:
+            raise RunFault(report)
+        ds = merge_scenarios(study, parts)
+        try:
+            write_atomic(ds, report.results)
+        except StorageError as exc:
+            report.faults.append(str(exc))
+            raise RunFault(report) from None
+        log.info("wrote %s", report.results)
+        if plots:
+            report.figures = write_plots(ds, directory)
     return report

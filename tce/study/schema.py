@@ -1,10 +1,14 @@
 """Study files: a TOML description of a structure, its material, its loads and its scenarios.
 
 A study is read and validated as a whole before anything runs (:func:`load_study`): the
-schema (pydantic, unknown keys forbidden, NaN and infinities refused), then the structure
-is built once per distinct geometry and every scenario's support names are checked
-against it. Every problem is reported as a :class:`StudyError` whose message names the
-file, the key and the fix. The format is documented in ``docs/studies.md``.
+schema (pydantic in strict mode: unknown keys forbidden with a "did you mean", NaN and
+infinities refused, no booleans or quoted numbers where numbers are expected), limits
+(the study name is one plain path component; at most :data:`MAX_INCREMENTS` load
+increments and :data:`MAX_BLOCKS` blocks), then the structure is built once per distinct
+geometry (kept for the run: :meth:`Study.assembly`) and every scenario's support names
+are checked against it; scenario names must be distinct. Every problem is reported as a
+:class:`StudyError` whose message names the file, the key and the fix. The format is
+documented in ``docs/studies.md``.
 
 A valid study expands (:meth:`Study.scenarios`) into the cartesian product of its
 settlement cases, its lateral directions (``[loads] alpha``) and its ``[sweep]`` lists,
@@ -13,6 +17,7 @@ in that order, each expanded :class:`Scenario` carrying everything a worker need
 
 from __future__ import annotations
 
+import hashlib
 import itertools
 import json
 import math
@@ -21,18 +26,39 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, get_args
 
-from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, field_validator
+from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, field_validator, model_validator
 
-from ..structures.assembly import Assembly
+from .. import __version__
+from ..analysis.loadpath import MAX_INCREMENTS
 from ..core.material import Material
+from ..structures.assembly import Assembly
+from ..structures.io import MAX_BLOCKS, InputLimitError
+from ..structures.params import did_you_mean
 
-__all__ = ["Scenario", "Study", "StudyError", "build_material", "build_structure", "load_study", "parse_study"]
+__all__ = [
+    "MAX_BLOCKS",
+    "MAX_INCREMENTS",
+    "STRUCTURE_TYPES",
+    "Scenario",
+    "Study",
+    "StudyError",
+    "build_material",
+    "build_structure",
+    "load_study",
+    "parse_study",
+]
 
 COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
 #: swept parameters that change the structure (the others change material or settlement)
 GEOMETRY_SWEEPS = ("inner_radius", "thickness", "depth", "radius")
+#: swept parameters of the material
+MATERIAL_SWEEPS = ("friction", "cohesion", "tensile_strength", "compressive_strength")
+#: names a file or folder may not take on some systems (Windows), with or without an extension
+RESERVED_NAMES = frozenset(
+    ["CON", "PRN", "AUX", "NUL"] + [f"{p}{k}" for p in ("COM", "LPT") for k in range(1, 10)]
+)
 
 
 class StudyError(ValueError):
@@ -40,7 +66,9 @@ class StudyError(ValueError):
 
 
 class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True)
+    # strict: a number must be written as a number (an int is accepted for a float), never
+    # as a boolean or a string
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True, strict=True)
 
 
 Positive = Annotated[float, Field(gt=0)]
@@ -51,8 +79,18 @@ Vector6 = Annotated[list[float], Field(min_length=6, max_length=6)]
 class StudySection(_Strict):
     """``[study]``: the study's name (also its results folder) and an optional description."""
 
-    name: str = Field(min_length=1, pattern=r"^[A-Za-z0-9_.-]+$")
+    name: str = Field(min_length=1, max_length=100, pattern=r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
     description: str = ""
+
+    @field_validator("name")
+    @classmethod
+    def _one_path_component(cls, v: str) -> str:
+        # the pattern already excludes separators and a leading "." (so "." and "..")
+        if v.endswith("."):
+            raise ValueError(f"{v!r} ends with '.'; fix: end the name with a letter or digit")
+        if v.split(".")[0].upper() in RESERVED_NAMES:
+            raise ValueError(f"{v!r} is a reserved file name on some systems; fix: choose another name")
+        return v
 
 
 class ArchStructure(_Strict):
@@ -62,7 +100,7 @@ class ArchStructure(_Strict):
     inner_radius: Positive = 1.0
     thickness: Positive = 0.2
     depth: Positive = 0.25
-    voussoirs: Annotated[int, Field(ge=1)] = 14
+    voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
     unit_weight: Positive = 20.0
     support_height: Positive | None = None
 
@@ -71,6 +109,103 @@ class ArchStructure(_Strict):
         from ..structures.arch import semicircular_arch
 
         return semicircular_arch(**self.model_dump(exclude={"type"}))
+
+
+class PointedArchStructure(_Strict):
+    """``[structure] type = "pointed_arch"``: :func:`tce.structures.arch.pointed_arch`."""
+
+    type: Literal["pointed_arch"]
+    span: Positive = 2.0
+    rise: Positive | None = None
+    centre_offset: NonNegative | None = None
+    thickness: Positive = 0.2
+    depth: Positive = 0.25
+    voussoirs: Annotated[int, Field(ge=2)] = 14
+    unit_weight: Positive = 20.0
+    pier_height: Positive | None = None
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.arch import pointed_arch
+
+        return pointed_arch(**self.model_dump(exclude={"type"}))
+
+
+class SegmentalArchStructure(_Strict):
+    """``[structure] type = "segmental_arch"``: :func:`tce.structures.arch.segmental_arch`."""
+
+    type: Literal["segmental_arch"]
+    span: Positive = 2.0
+    rise: Positive = 0.5
+    thickness: Positive = 0.2
+    depth: Positive = 0.25
+    voussoirs: Annotated[int, Field(ge=1)] = 12
+    unit_weight: Positive = 20.0
+    pier_height: Positive | None = None
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.arch import segmental_arch
+
+        return segmental_arch(**self.model_dump(exclude={"type"}))
+
+
+class ArchOnPiersStructure(_Strict):
+    """``[structure] type = "arch_on_piers"``: :func:`tce.structures.arch.semicircular_arch_on_piers`."""
+
+    type: Literal["arch_on_piers"]
+    inner_radius: Positive = 1.0
+    thickness: Positive = 0.2
+    depth: Positive = 0.25
+    voussoirs: Annotated[int, Field(ge=1)] = 14
+    pier_height: Positive = 1.0
+    unit_weight: Positive = 20.0
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.arch import semicircular_arch_on_piers
+
+        return semicircular_arch_on_piers(**self.model_dump(exclude={"type"}))
+
+
+class BarrelVaultStructure(_Strict):
+    """``[structure] type = "barrel_vault"``: :func:`tce.structures.vault.barrel_vault`."""
+
+    type: Literal["barrel_vault"]
+    inner_radius: Positive = 1.0
+    thickness: Positive = 0.2
+    depth: Positive = 1.5
+    voussoirs: Annotated[int, Field(ge=1)] = 12
+    courses: Annotated[int, Field(ge=1)] = 6
+    bond: Literal["stack", "running"] = "stack"
+    unit_weight: Positive = 20.0
+    support_height: Positive | None = None
+    supports: Literal["walls", "courses"] = "walls"
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.vault import barrel_vault
+
+        return barrel_vault(**self.model_dump(exclude={"type"}))
+
+
+class GroinVaultStructure(_Strict):
+    """``[structure] type = "groin_vault"``: :func:`tce.structures.vault.groin_vault`."""
+
+    type: Literal["groin_vault"]
+    span_x: Positive = 2.0
+    span_y: Positive | None = None
+    thickness: Positive = 0.2
+    voussoirs: Annotated[int, Field(ge=2, multiple_of=2)] = 8
+    unit_weight: Positive = 20.0
+    support_height: Positive | None = None
+    supports: Literal["corners", "springings"] = "corners"
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.vault import groin_vault
+
+        return groin_vault(**self.model_dump(exclude={"type"}))
 
 
 class DomeStructure(_Strict):
@@ -84,6 +219,15 @@ class DomeStructure(_Strict):
     oculus: Annotated[float, Field(ge=0, lt=90)] = 0.0
     unit_weight: Positive = 20.0
     support_height: Positive | None = None
+
+    @model_validator(mode="after")
+    def _not_too_many_blocks(self) -> DomeStructure:
+        if self.sectors * (self.courses + 1) > MAX_BLOCKS:
+            raise ValueError(
+                f"sectors x (courses + 1) = {self.sectors * (self.courses + 1)} blocks, more than "
+                f"MAX_BLOCKS = {MAX_BLOCKS}; fix: use fewer sectors or courses"
+            )
+        return self
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
@@ -111,15 +255,42 @@ class FileStructure(_Strict):
         return load_assembly(self.path, supports=self.supports, unit_weight=self.unit_weight)
 
 
-Structure = Annotated[ArchStructure | DomeStructure | FileStructure, Field(discriminator="type")]
+_STRUCTURES = (
+    ArchStructure,
+    PointedArchStructure,
+    SegmentalArchStructure,
+    ArchOnPiersStructure,
+    BarrelVaultStructure,
+    GroinVaultStructure,
+    DomeStructure,
+    FileStructure,
+)
+#: the ``[structure] type`` values, in the order docs/studies.md lists them
+STRUCTURE_TYPES = tuple(cls.model_fields["type"].annotation.__args__[0] for cls in _STRUCTURES)
+Structure = Annotated[
+    ArchStructure
+    | PointedArchStructure
+    | SegmentalArchStructure
+    | ArchOnPiersStructure
+    | BarrelVaultStructure
+    | GroinVaultStructure
+    | DomeStructure
+    | FileStructure,
+    Field(discriminator="type"),
+]
 
 
 class MaterialSection(_Strict):
-    """``[material]``: friction (absent: Heyman, unlimited) and optional stiffnesses."""
+    """``[material]``: friction (absent: Heyman, unlimited), optional stiffnesses, cohesion,
+    tensile and compressive strength (kN/m^2) and the flow rule (``docs/materials.md``)."""
 
     friction: NonNegative | None = None
     normal_stiffness: Positive | None = None
     shear_stiffness: Positive | None = None
+    cohesion: NonNegative = 0.0
+    tensile_strength: NonNegative = 0.0
+    compressive_strength: Positive | None = None
+    flow: Literal["associative", "non-associative"] = "associative"
 
     def build(self) -> Material:
         """The :class:`tce.material.Material` of this section."""
@@ -142,15 +313,38 @@ class LoadsSection(_Strict):
     @field_validator("alpha")
     @classmethod
     def _some_alpha(cls, v: float | list[float]) -> float | list[float]:
-        if isinstance(v, list) and not v:
-            raise ValueError("give at least one direction")
+        if isinstance(v, list):
+            if not v:
+                raise ValueError("an empty list; fix: give at least one direction")
+            _distinct("alpha", v)
         return v
+
+    @model_validator(mode="after")
+    def _path_ends(self) -> LoadsSection:
+        if not self.lambda_cap / self.lambda_step <= MAX_INCREMENTS:
+            raise ValueError(
+                f"lambda_cap / lambda_step = {self.lambda_cap / self.lambda_step:.3g} load increments, more than "
+                f"MAX_INCREMENTS = {MAX_INCREMENTS}; fix: use a larger lambda_step or a smaller lambda_cap"
+            )
+        return self
+
+
+def _distinct(key: str, values: list[float]) -> None:
+    """Refuse a value listed twice (two scenarios would share one name and one answer)."""
+    seen: set[float] = set()
+    for v in values:
+        if v in seen:
+            raise ValueError(f"the value {v!r} is listed twice in {key}; fix: remove one of them")
+        seen.add(v)
 
 
 class SweepSection(_Strict):
     """``[sweep]``: lists of values; the study runs the cartesian product."""
 
     friction: list[NonNegative] | None = None
+    cohesion: list[NonNegative] | None = None
+    tensile_strength: list[NonNegative] | None = None
+    compressive_strength: list[Positive] | None = None
     magnitude: list[float] | None = None
     inner_radius: list[Positive] | None = None
     thickness: list[Positive] | None = None
@@ -170,14 +364,17 @@ class StudyFile(_Strict):
     material: MaterialSection = MaterialSection()
     loads: LoadsSection = LoadsSection()
     sweep: SweepSection = SweepSection()
-    scenarios: dict[str, dict[str, Vector6]] = Field(default_factory=lambda: {"none": {}})
+    scenarios: Annotated[
+        dict[Annotated[str, Field(min_length=1, max_length=100)], dict[str, Vector6]], Field(min_length=1)
+    ] = Field(default_factory=lambda: {"none": {}})
 
     @field_validator("sweep")
     @classmethod
     def _no_empty_list(cls, v: SweepSection) -> SweepSection:
         for key, values in v.items():
             if not values:
-                raise ValueError(f"sweep.{key} is an empty list: give at least one value or remove it")
+                raise ValueError(f"sweep.{key} is an empty list; fix: give at least one value or remove it")
+            _distinct(f"sweep.{key}", values)
         return v
 
 
@@ -202,6 +399,9 @@ class Scenario:
         Validated ``[structure]`` and ``[material]`` sections with the swept values applied.
     loads : dict
         ``lambda_step``, ``tolerance``, ``lambda_cap``.
+    assembly_digest : str
+        SHA-256 of the built assembly (:func:`assembly_digest`): what the structure is,
+        whatever file or generator it came from.
     """
 
     name: str
@@ -212,18 +412,41 @@ class Scenario:
     structure: dict[str, Any]
     material: dict[str, Any]
     loads: dict[str, float]
+    assembly_digest: str
 
     @property
     def group(self) -> str:
         """Key of the analysis this scenario needs: scenarios with equal keys share one."""
-        return json.dumps([self.structure, self.material], sort_keys=True)
+        return json.dumps([self.assembly_digest, self.material], sort_keys=True)
 
     @property
     def key(self) -> str:
-        """Everything that determines the answer, as canonical JSON (for resuming)."""
-        return json.dumps(
-            [self.group, self.settlements, self.alpha, self.loads], sort_keys=True
+        """SHA-256 of everything that determines the answer (for resuming): the built
+        assembly, the material, the support motions, the direction, the load-path settings
+        and the versions of tce and of the solver."""
+        from ..core.solve import SOLVER_NAME
+
+        text = json.dumps(
+            {
+                "assembly": self.assembly_digest,
+                "material": self.material,
+                "settlements": self.settlements,
+                "alpha": self.alpha,
+                "loads": self.loads,
+                "tce": __version__,
+                "solver": SOLVER_NAME,
+            },
+            sort_keys=True,
         )
+        return hashlib.sha256(text.encode()).hexdigest()
+
+
+def assembly_digest(assembly: Assembly) -> str:
+    """SHA-256 of an assembly's blocks and interfaces (names, exact coordinates, faces,
+    unit weights, supports, stiffness multipliers; not its ``meta``)."""
+    data = assembly.to_dict()
+    data.pop("meta")
+    return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()
 
 
 @dataclass(frozen=True)
@@ -243,11 +466,21 @@ class Study:
     path: Path
     text: str
     spec: StudyFile = field(repr=False)
+    _assemblies: dict[str, Assembly] = field(default_factory=dict, repr=False, compare=False)
+    _digests: dict[str, str] = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def name(self) -> str:
         """The study's name (``[study] name``)."""
         return self.spec.study.name
+
+    def assembly(self, structure: dict[str, Any]) -> Assembly:
+        """The built assembly of a scenario's ``structure`` section: built once (when the
+        study is validated), then the same object for the run, its workers and its results."""
+        key = json.dumps(structure, sort_keys=True)
+        if key not in self._assemblies:
+            self._assemblies[key] = build_structure(structure)
+        return self._assemblies[key]
 
     @cached_property
     def swept(self) -> list[tuple[str, list[float]]]:
@@ -269,21 +502,31 @@ class Study:
                 p = dict(zip(names, (float(v) for v in values), strict=True))
                 scale = p.get("magnitude", 1.0)
                 label = "/".join(f"{k}={_fmt(p[k])}" for k, v in axes if len(v) > 1)
+                structure = _with(spec.structure.model_dump(), p, GEOMETRY_SWEEPS)
                 yield Scenario(
                     name=f"{case}/{label}" if label else case,
                     settlement=case,
                     settlements={s: [scale * u for u in vec] for s, vec in motions.items()},
                     alpha=p["alpha"],
                     params=p,
-                    structure=_with(spec.structure.model_dump(), p, GEOMETRY_SWEEPS),
-                    material=_with(spec.material.model_dump(), p, ("friction",)),
+                    structure=structure,
+                    material=_with(spec.material.model_dump(), p, MATERIAL_SWEEPS),
                     loads=loads,
+                    assembly_digest=self._digest(structure),
                 )
+
+    def _digest(self, structure: dict[str, Any]) -> str:
+        key = json.dumps(structure, sort_keys=True)
+        if key not in self._digests:
+            self._digests[key] = assembly_digest(self.assembly(structure))
+        return self._digests[key]
 
 
 def _fmt(value: float) -> str:
-    """Short, exact-enough label of a swept value."""
-    return f"{value:g}"
+    """Exact label of a swept value: the shortest text that reads back as the same float
+    (``0.8000001`` stays ``0.8000001``), without a trailing ``.0``."""
+    text = repr(float(value))
+    return text[:-2] if text.endswith(".0") else text
 
 
 def _with(section: dict[str, Any], params: dict[str, float], keys: tuple[str, ...]) -> dict[str, Any]:
@@ -300,6 +543,7 @@ _HINTS = {
     "greater_than": "use a value > {gt}",
     "greater_than_equal": "use a value >= {ge}",
     "less_than": "use a value < {lt}",
+    "multiple_of": "use a multiple of {multiple_of}",
     "finite_number": "use a finite number (NaN and inf are not allowed)",
     "too_short": "give exactly 6 numbers [ux, uy, uz, rx, ry, rz] (m, rad)",
     "too_long": "give exactly 6 numbers [ux, uy, uz, rx, ry, rz] (m, rad)",
@@ -312,8 +556,12 @@ _HINTS = {
     "dict_type": "write a table",
     "model_type": "write a table",
     "string_type": "write a quoted string",
-    "string_pattern_mismatch": "use only letters, digits, '_', '.' and '-'",
+    "string_pattern_mismatch": "use only letters, digits, '_', '.' and '-', not starting with '.' or '-'",
     "string_too_short": "give a non-empty value",
+    "string_too_long": "use at most {max_length} characters",
+    "less_than_equal": "use a value <= {le}",
+    "bool_type": "write true or false",
+    "value_error": "{fix}",
     "union_tag_invalid": "use one of the structure types listed",
     "union_tag_not_found": "add type = \"semicircular_arch\" (or another structure type)",
     "literal_error": "use one of the values listed",
@@ -326,11 +574,45 @@ def _key(loc: tuple[Any, ...]) -> str:
     for item in loc:
         if isinstance(item, int):
             parts[-1] = f"{parts[-1]}[{item}]" if parts else f"[{item}]"
-        elif item in ("float", "list[float]", "semicircular_arch", "dome", "file") or "[" in str(item):
+        elif item in ("float", "list[float]", *STRUCTURE_TYPES) or "[" in str(item):
             continue
         else:
             parts.append(str(item))
     return ".".join(parts) or "(top level)"
+
+
+#: ``[structure] type`` -> its section (from the ``Structure`` union)
+_STRUCTURES: dict[str, type[BaseModel]] = {
+    get_args(cls.model_fields["type"].annotation)[0]: cls for cls in get_args(get_args(Structure)[0])
+}
+
+
+def _siblings(loc: tuple[Any, ...]) -> list[str]:
+    """The keys allowed beside the last item of a pydantic location (for "did you mean")."""
+    model: type[BaseModel] | None = StudyFile
+    for item in loc[:-1]:
+        if item in _STRUCTURES:
+            model = _STRUCTURES[item]
+        elif model is not None and item in model.model_fields:
+            ann = model.model_fields[item].annotation
+            model = ann if isinstance(ann, type) and issubclass(ann, BaseModel) else None
+        else:
+            return []
+    return list(model.model_fields) if model is not None else []
+
+
+def _hint(err: dict[str, Any]) -> str:
+    """How to fix one pydantic error: the hint of its type, with a "did you mean"."""
+    ctx = dict(err.get("ctx", {}))
+    if err["type"] == "value_error":  # our validators write "what is wrong; fix: how"
+        ctx["fix"] = str(ctx.get("error", "")).partition("; fix: ")[2] or "see docs/studies.md"
+    hint = _HINTS.get(err["type"], "see docs/studies.md").format(**ctx)
+    if err["type"] == "extra_forbidden":
+        hint = f"remove it or correct its spelling{did_you_mean(err['loc'][-1], _siblings(err['loc']))} (keys: docs/studies.md)"
+    elif err["type"] == "union_tag_invalid":
+        tag = err["ctx"]["tag"]
+        hint = f"use one of the structure types {list(_STRUCTURES)}{did_you_mean(tag, _STRUCTURES)}"
+    return hint
 
 
 def _describe(path: Path, exc: ValidationError) -> str:
@@ -341,10 +623,16 @@ def _describe(path: Path, exc: ValidationError) -> str:
         if key in seen:  # a union reports each alternative: keep the first
             continue
         seen.add(key)
-        hint = _HINTS.get(err["type"], "see docs/studies.md").format(**err.get("ctx", {}))
-        got = "" if err["type"] in ("missing",) else f" (got {err.get('input')!r})"
-        lines.append(f"{path}: {key}: {err['msg']}{got}; fix: {hint}")
+        got = "" if err["type"] in ("missing", "value_error", "union_tag_invalid") else f" (got {_short(err.get('input'))})"
+        msg = str(err["ctx"]["error"]).partition("; fix: ")[0] if err["type"] == "value_error" else err["msg"]
+        lines.append(f"{path}: {key}: {msg}{got}; fix: {_hint(err)}")
     return "\n".join(lines)
+
+
+def _short(value: Any) -> str:
+    """``repr`` of an input, cut to 60 characters."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def parse_study(text: str, path: Path | str = "<study>") -> Study:
@@ -394,28 +682,68 @@ def build_material(section: dict[str, Any]) -> Material:
 
 
 def _check_scenarios(study: Study) -> None:
-    """Build every distinct structure and material; check the supports each scenario moves."""
-    checked: dict[str, tuple[str, ...]] = {}
+    """Build every distinct structure (kept for the run) and material; check the supports
+    each scenario moves, and that no two scenarios share a name."""
+    spec = study.spec
+    fields = type(spec.structure).model_fields
+    for key, _ in spec.sweep.items():
+        if key in GEOMETRY_SWEEPS and key not in fields:
+            usable = [k for k in GEOMETRY_SWEEPS if k in fields]
+            raise StudyError(
+                f"{study.path}: sweep.{key}: the structure type {spec.structure.type!r} has no parameter "
+                f"{key!r}; fix: sweep one of {usable} or remove it"
+            )
+    geometry = [(k, v) for k, v in spec.sweep.items() if k in GEOMETRY_SWEEPS]
+    for values in itertools.product(*(v for _, v in geometry)):
+        swept = dict(zip((k for k, _ in geometry), (float(v) for v in values), strict=True))
+        try:
+            study.assembly(_with(spec.structure.model_dump(), swept, GEOMETRY_SWEEPS)).validate()
+        except (ValueError, OSError) as exc:
+            raise StudyError(
+                f"{study.path}: structure: cannot build it{f' with {swept}' if swept else ''}: {exc}; "
+                f"fix: {_build_fix(spec.structure, exc, swept)}"
+            ) from None
+    names: set[str] = set()
     for sc in study.scenarios():
-        skey = json.dumps(sc.structure, sort_keys=True)
-        if skey not in checked:
-            try:
-                checked[skey] = build_structure(sc.structure).validate().support_names
-            except (ValueError, OSError) as exc:
-                swept = {k: v for k, v in sc.params.items() if k in GEOMETRY_SWEEPS}
-                raise StudyError(
-                    f"{study.path}: structure: cannot build it{f' with {swept}' if swept else ''}: {exc}; "
-                    "fix: change the [structure] or [sweep] values"
-                ) from None
         try:
             build_material(sc.material)
         except (ValueError, ValidationError) as exc:
-            raise StudyError(f"{study.path}: material: {exc}; fix: change the [material] values") from None
-        unknown = sorted(set(sc.settlements) - set(checked[skey]))
+            # Material's messages start with the parameter they are about
+            name = str(exc).split(" ", 1)[0]
+            key = f"material.{name}" if name in MaterialSection.model_fields else "material"
+            swept = {k: v for k, v in sc.params.items() if k in MATERIAL_SWEEPS}
+            raise StudyError(
+                f"{study.path}: {key}: {exc}{f' (with {swept})' if swept else ''}; "
+                "fix: change the [material] or [sweep] values"
+            ) from None
+        supports = study.assembly(sc.structure).support_names
+        unknown = sorted(set(sc.settlements) - set(supports))
         if unknown:
             raise StudyError(
                 f"{study.path}: scenarios.{sc.settlement}.{unknown[0]}: the structure has no support "
-                f"named {unknown[0]!r}; fix: use one of {list(checked[skey])}"
+                f"named {unknown[0]!r}; fix: use one of {list(supports)}{did_you_mean(unknown[0], supports)}"
             )
         if any(not math.isfinite(u) for v in sc.settlements.values() for u in v):
             raise StudyError(f"{study.path}: scenarios.{sc.settlement}: a displacement overflows; fix: smaller values")
+        if sc.name in names:
+            raise StudyError(
+                f"{study.path}: scenarios.{sc.settlement}: two scenarios are named {sc.name!r}; "
+                "fix: rename the settlement case"
+            )
+        names.add(sc.name)
+
+
+def _build_fix(section: BaseModel, exc: Exception, swept: dict[str, float]) -> str:
+    """The fix of a structure that cannot be built, for the kind of failure."""
+    if not isinstance(section, FileStructure):
+        return f"change the [sweep] values of {sorted(swept)}" if swept else "change the [structure] values"
+    text = str(exc)
+    if isinstance(exc, FileNotFoundError):
+        return "correct [structure] path (relative to the study file)"
+    if isinstance(exc, InputLimitError):
+        return "split the structure or simplify its blocks (limits: docs/assembly-format.md)"
+    if "not a regular file" in text:
+        return "point [structure] path at a block file (.json or .obj)"
+    if "no support block" in text or "every block is a support" in text or "support block(s)" in text:
+        return "name the support blocks with supports = [...] in [structure]"
+    return "correct the block file named above"

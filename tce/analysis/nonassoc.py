@@ -1,0 +1,283 @@
+"""Non-associative friction: the load factor of joints that slide without opening.
+
+The limit theorems behind :mod:`tce.core.limit` assume an associated flow rule: a Coulomb
+joint that slides also opens (dilatancy ``dn = mu ||dt||``). Real dry joints slide without
+opening, and where sliding takes part in the collapse the associative ``lambda_max`` is an
+upper estimate (Drucker, 1954; Livesley, 1978, part II). This module estimates the collapse
+load of non-dilatant Coulomb joints by the iterative scheme of Gilbert, Casapulla and Ahmed
+(2006) [1]_, written for the cone programs of :mod:`tce.core.problem` as Portioli et al. did
+for 3D blocks [2]_:
+
+1. iteration 0 is the associative limit analysis: ``lambda_assoc`` and its normal forces
+   ``fn_0``;
+2. iteration ``k`` fixes the friction capacity of every contact from the normal forces of
+   the previous ones, ``||ft|| <= mu max(fn_{k-1}, 0) + c A`` (``fn_{k-1}`` under-relaxed,
+   :class:`NonAssocSolver`) (a pseudo-cohesion, friction
+   angle zero), leaves the normal forces free within ``-t A <= fn <= fc A``, and solves the
+   limit problem again (:func:`tce.core.conic.cone_rows` with ``shear_capacity``). The
+   flow rule of this law has no dilatancy: a sliding contact that carries load does not
+   open (its normal relative velocity is zero by complementarity);
+3. the scheme stops at a fixed point: ``lambda_k`` no longer changes (relative ``tol``)
+   and the state ``F_k`` meets the Coulomb law itself (violation below ``tol`` times the
+   total weight ``W``), so ``F_k`` is an equilibrium at ``lambda_k`` that is admissible for
+   the real joints and whose collapse mechanism (the dual of the last problem) slides
+   without opening.
+
+The fixed point is a collapse state of the non-associative problem, so ``lambda_nonassoc``
+is at most ``lambda_assoc`` (its state is statically admissible); it is the scheme's
+estimate, not a proven lower bound: a non-associative problem may have several collapse
+states and the lowest is a nonconvex problem (Ferris and Tin-Loi, 2001). Where a sub-problem's optimal force state is not unique,
+the fixed point reached depends on the state the solver returns (Clarabel's interior point
+returns the centre of the optimal face): two blocks side by side rocking together collapse,
+without dilatancy, at any load of an interval whose lowest end is each block rocking alone
+(``tests/test_materials.py``), and the scheme returns one load inside it. The scheme may
+also fail to settle (Gilbert et al. report cycling on some problems); the result then says
+``not_converged`` and carries the iterates, never a number dressed as converged.
+
+References
+----------
+.. [1] M. Gilbert, C. Casapulla and H. M. Ahmed, "Limit analysis of masonry block structures
+   with non-associative frictional joints using linear programming", *Computers &
+   Structures* 84 (2006) 873-887, doi:10.1016/j.compstruc.2006.02.005.
+.. [2] F. Portioli, C. Casapulla, M. Gilbert and L. Cascini, "Limit analysis of 3D masonry
+   block structures with non-associative frictional joints using cone programming",
+   *Computers & Structures* 143 (2014) 108-121.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..core.analysis import Analysis
+from ..core.conic import cone_rows, cone_violation
+from ..core.limit import LimitResult, LimitSolver, Mechanism
+from ..core.material import Material
+from ..core.model import Model, lateral_direction
+from ..core.result import Result
+
+__all__ = ["NonAssocResult", "NonAssocSolver", "nonassociative_limit"]
+
+log = logging.getLogger(__name__)
+
+#: largest normal opening (relative to the largest vertex speed of the mechanism) a loaded
+#: sliding contact may show in a non-dilatant mechanism
+DILATANCY_TOL = 1e-4
+
+
+@dataclass(frozen=True, eq=False, kw_only=True)
+class NonAssocResult(Result):
+    """The associative/non-associative bracket of one load direction (``ok`` when ``converged``).
+
+    Attributes
+    ----------
+    status : str
+        ``converged`` (a fixed point whose state is admissible and whose mechanism has no
+        dilatancy), ``not_converged`` (no fixed point within ``max_iter``: the iterates are in
+        ``history``, ``lambda_nonassoc`` is NaN), ``dilatant`` (a fixed point whose mechanism
+        still opens at a loaded sliding contact beyond :data:`DILATANCY_TOL`), or the status of
+        a limit solve that failed (``infeasible``, ``unbounded``, ``numerical``).
+    alpha : float
+        Direction of the lateral loads (degrees; NaN for other live loads).
+    model : str
+        ``"planar"`` or ``"spatial"``.
+    lambda_assoc : float
+        Associative lambda_max (iteration 0): the upper end of the bracket.
+    lambda_nonassoc : float
+        The scheme's estimate for non-dilatant joints (NaN unless ``converged``).
+    iterations : int
+        Non-associative solves made (iteration 0 not counted).
+    converged : bool
+        ``lambda`` settled and the final state meets the Coulomb law.
+    history : tuple of float
+        ``lambda_k`` of every iteration, the associative one first.
+    admissibility : float
+        Largest violation of the material's law by the final state, over ``W``.
+    dilatancy : float
+        Largest normal opening of a loaded sliding contact in the final mechanism, relative
+        to its largest vertex speed (0 for a mechanism without dilatancy).
+    forces : (nc, dim) ndarray
+        Final contact forces (kN); NaN unless ``converged``.
+    mechanism : Mechanism or None
+        Collapse mechanism of the final iteration.
+    """
+
+    OK = ("converged",)
+
+    alpha: float
+    model: str
+    lambda_assoc: float
+    lambda_nonassoc: float = float("nan")
+    iterations: int = 0
+    converged: bool = False
+    history: tuple[float, ...] = ()
+    admissibility: float = float("nan")
+    dilatancy: float = float("nan")
+    forces: NDArray[np.float64] = field(repr=False)
+    mechanism: Mechanism | None = field(default=None, repr=False)
+
+
+def contact_velocities(model: Model, velocities: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Relative velocity of every contact, ``(nc, dim)`` in its frame (normal first; B
+    with respect to A, positive normal = opening), from block velocities ``(n_blocks, 6)``
+    about each centroid (:attr:`tce.core.limit.Mechanism.velocities`)."""
+    a = model.assembly
+    ia = np.array([i.a for i in a.interfaces])[model.contact_interface]
+    ib = np.array([i.b for i in a.interfaces])[model.contact_interface]
+    p = model.contact_points
+    c = a.centroids
+
+    def point_velocity(block: NDArray[np.int64]) -> NDArray[np.float64]:
+        return velocities[block, :3] + np.cross(velocities[block, 3:], p - c[block])
+
+    rel = point_velocity(ib) - point_velocity(ia)
+    normals = np.array([a.interfaces[k].normal for k in model.contact_interface]).reshape(-1, 3)
+    dirs = np.concatenate([normals[:, None, :], model.tangents], axis=1)  # (nc, dim, 3)
+    return np.einsum("kdj,kj->kd", dirs, rel)
+
+
+class NonAssocSolver:
+    """The iterative non-associative limit of one model and material (module docstring).
+
+    Parameters
+    ----------
+    model : Model
+    material : Material
+        Its friction, cohesion and strengths; its ``flow`` is not consulted (this solver
+        is the non-associative computation).
+    max_iter : int
+        Largest number of non-associative solves.
+    tol : float
+        Relative change of ``lambda``, change of the normal forces and violation of the
+        Coulomb law (both over ``W``) accepted at a fixed point.
+    relaxation : float
+        Under-relaxation ``w`` in (0, 1] of the normal forces that fix the capacities:
+        ``fn <- fn + w (fn_k - fn)``. The plain scheme (``w = 1``) cycles on problems whose
+        sub-problems have many optimal force states (a whole course sliding); ``w = 0.5``
+        settled every case tried (``docs/materials.md``).
+    """
+
+    def __init__(
+        self, model: Model, material: Material, max_iter: int = 100, tol: float = 1e-6, relaxation: float = 0.5
+    ) -> None:
+        if not (isinstance(max_iter, int) and max_iter >= 1):
+            raise ValueError(f"max_iter must be a whole number >= 1, got {max_iter!r}")
+        if not (np.isfinite(tol) and tol > 0):
+            raise ValueError(f"tol must be a finite number > 0, got {tol!r}")
+        if not (np.isfinite(relaxation) and 0 < relaxation <= 1):
+            raise ValueError(f"relaxation must be in (0, 1], got {relaxation!r}")
+        self.model = model
+        self.material = material
+        self.max_iter = max_iter
+        self.tol = tol
+        self.relaxation = relaxation
+        self.associative = LimitSolver(model, material)
+        # the law of the fixed-capacity problems has no friction angle: its flow check in
+        # LimitSolver is the one of mu = 0 (dn >= 0), with the same crushing
+        self._fixed = Material(
+            friction=0.0, tensile_strength=material.tensile_strength,
+            compressive_strength=material.compressive_strength,
+        )
+
+    def solve(self, alpha: float = 0.0, start: LimitResult | None = None) -> NonAssocResult:
+        """The bracket for lateral loads in direction ``alpha`` (degrees); ``start`` is the
+        associative answer when the caller has it (:meth:`tce.core.analysis.Analysis.limit`)."""
+        model = self.model
+        if model.kind == "planar" and abs(lateral_direction(alpha) @ model.plane.m) > 1e-12:
+            raise ValueError("lateral direction out of the planar model's plane: use the spatial model")
+        return self.solve_loads(model.b_dead, model.b_lateral(alpha), alpha, start)
+
+    def solve_loads(
+        self,
+        b_fixed: NDArray[np.float64],
+        b_live: NDArray[np.float64],
+        alpha: float = float("nan"),
+        start: LimitResult | None = None,
+    ) -> NonAssocResult:
+        """The bracket for live loads ``b_live`` with ``b_fixed`` always applied (``A_eq``'s row
+        layout, kN and kN m)."""
+        t0 = time.perf_counter()
+        model, mat = self.model, self.material
+        W = model.assembly.total_weight
+        assoc = start if start is not None else self.associative.solve_loads(b_fixed, b_live, alpha)
+        solve_time = assoc.solve_time
+        empty = np.full((model.n_contacts, model.dim), np.nan)
+        common = dict(alpha=float(alpha), model=model.kind, lambda_assoc=assoc.lambda_max)
+
+        def done(**kw: object) -> NonAssocResult:
+            return NonAssocResult(solve_time=solve_time, wall_time=time.perf_counter() - t0, **common, **kw)
+
+        if assoc.status != "optimal":
+            return done(status=assoc.status, forces=empty, history=(assoc.lambda_max,),
+                        message=f"associative limit {assoc.status}: no bracket ({assoc.message})")
+        mu = mat.friction
+        if mu is None or mu == 0.0:
+            # no friction capacity depends on the normal force: the associative state and
+            # mechanism already have no dilatancy (Heyman: no sliding; mu = 0: dn >= 0 only)
+            why = "unlimited friction: nothing slides" if mu is None else "friction 0: no capacity depends on fn"
+            return done(status="converged", lambda_nonassoc=assoc.lambda_max, converged=True,
+                        history=(assoc.lambda_max,), admissibility=0.0, dilatancy=0.0,
+                        forces=assoc.forces, mechanism=assoc.mechanism, message=f"equal to the associative limit ({why})")
+        history = [assoc.lambda_max]
+        fn = assoc.forces[:, 0]
+        last: LimitResult | None = None
+        viol = float("nan")
+        for k in range(1, self.max_iter + 1):
+            rows = cone_rows(model, 0.0, cohesion=mat.cohesion, tensile_strength=mat.tensile_strength,
+                             compressive_strength=mat.compressive_strength, shear_capacity=mu * np.maximum(fn, 0.0))
+            last = LimitSolver(model, self._fixed, self.associative.tol, rows=rows).solve_loads(b_fixed, b_live, alpha)
+            solve_time += last.solve_time
+            if last.status != "optimal":
+                return done(status=last.status, forces=empty, iterations=k, history=tuple(history),
+                            message=f"iteration {k}: limit solve {last.status} ({last.message})")
+            history.append(last.lambda_max)
+            viol = cone_violation(model, mu, last.forces, **mat.strengths) / W
+            moved = float(np.abs(last.forces[:, 0] - fn).max(initial=0.0)) / W
+            fn = fn + self.relaxation * (last.forces[:, 0] - fn)
+            settled = abs(history[-1] - history[-2]) <= self.tol * max(abs(history[-1]), 1.0)
+            log.debug("non-associative iteration %d: lambda %.12g, fn moved %.3g W, law violation %.3g W",
+                      k, history[-1], moved, viol)
+            if settled and moved <= self.tol and viol <= self.tol:
+                dil = self._dilatancy(last)
+                status = "converged" if dil <= DILATANCY_TOL else "dilatant"
+                return done(
+                    status=status, lambda_nonassoc=last.lambda_max if status == "converged" else float("nan"),
+                    iterations=k, converged=True, history=tuple(history), admissibility=viol, dilatancy=dil,
+                    forces=last.forces if status == "converged" else empty, mechanism=last.mechanism,
+                    message=f"fixed point after {k} iterations (Gilbert, Casapulla and Ahmed 2006)",
+                )
+        return done(status="not_converged", iterations=self.max_iter, history=tuple(history), admissibility=viol,
+                    forces=empty, mechanism=last.mechanism if last is not None else None,
+                    message=f"no fixed point after {self.max_iter} iterations: last lambda {history[-1]:.6g}, "
+                    f"law violation {viol:.3g} W")
+
+    def _dilatancy(self, res: LimitResult) -> float:
+        """Largest normal opening of a contact that slides while carrying load (above its
+        tension cut-off and below crushing), relative to the mechanism's largest vertex speed."""
+        if res.mechanism is None:
+            return float("nan")
+        d = contact_velocities(self.model, res.mechanism.velocities)
+        dn, dt = d[:, 0], np.linalg.norm(d[:, 1:], axis=1)
+        mat, W = self.material, self.model.assembly.total_weight
+        area = self.model.contact_area
+        fn = res.forces[:, 0]
+        loaded = fn + mat.tensile_strength * area > self.tol * W
+        if mat.compressive_strength is not None:
+            loaded &= mat.compressive_strength * area - fn > self.tol * W
+        sliding = dt > DILATANCY_TOL
+        return float(np.abs(dn[loaded & sliding]).max(initial=0.0))
+
+
+def nonassociative_limit(
+    analysis: Analysis, alpha: float = 0.0, max_iter: int = 100, tol: float = 1e-6, relaxation: float = 0.5
+) -> NonAssocResult:
+    """The associative/non-associative bracket of ``analysis`` for lateral loads in direction
+    ``alpha`` (degrees), on the model the scene runs on; iteration 0 is
+    :meth:`tce.core.analysis.Analysis.limit` (cached). See :class:`NonAssocSolver`."""
+    kind = analysis.model_kind(alpha)
+    solver = NonAssocSolver(analysis.model(kind), analysis.material, max_iter=max_iter, tol=tol, relaxation=relaxation)
+    return solver.solve(alpha, start=analysis.limit(alpha))
