@@ -70,7 +70,8 @@ def test_run_logs_its_choice(tmp_path, caplog):
     study = load_study(STUDIES / "fig7_8_inplane.toml")
     with caplog.at_level("INFO", logger="tce"):
         run_study(study, tmp_path, plots=False)
-    assert any(r.message.startswith("in-process: the study's work") for r in caplog.records)
+    assert any(r.message.startswith("running fig7_8_inplane: 4 scenarios; in-process: the study's work")
+               for r in caplog.records)
 
 
 @pytest.mark.parametrize("jobs", [[], ["--jobs", "2"]], ids=["default", "two workers"])

@@ -57,7 +57,7 @@ def test_run_logs_plain_progress_when_not_a_terminal(tmp_path):
 
 
 def test_long_items_are_not_silent(caplog):
-    with caplog.at_level(logging.INFO, logger="tce"):
+    with caplog.at_level(logging.DEBUG, logger="tce"):
         with Progress(3, "slow things", unit="thing", every=0.2, bar=False) as bar:
             bar.doing("the first")
             time.sleep(1.0)  # one long item: the heartbeat speaks meanwhile

@@ -57,8 +57,9 @@ NO_DASK = "TCE_NO_DASK"
 
 
 def block_dask_import() -> bool:
-    """Make ``import dask`` fail in this process unless it already happened; True if blocked."""
-    if "dask" in sys.modules and sys.modules["dask"] is not None:
+    """Make ``import dask`` fail in this process; True if blocked. Nothing is done once dask
+    or xarray is imported (xarray has then already taken note that dask is installed)."""
+    if sys.modules.get("dask") is not None or "xarray" in sys.modules:
         return False
     sys.modules["dask"] = None  # type: ignore[assignment]  # import raises ModuleNotFoundError
     return True

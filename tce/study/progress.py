@@ -121,7 +121,7 @@ class Progress:
         self.set_done(done)
 
     def close(self) -> None:
-        """Stop the heartbeat; the bar stays on screen, and a last log line says where it ended."""
+        """Stop the heartbeat; the bar stays on screen (a log says where it stopped at debug level)."""
         self._stop.set()
         self._beat.join(timeout=2.0)
         with self._lock:
@@ -129,7 +129,7 @@ class Progress:
                 self._bar.close()
                 self._bar = None
             elif self.done < self.total:
-                self._line(time.monotonic(), "stopped at ")
+                self._line(time.monotonic(), "stopped at ", logging.DEBUG)  # the caller says why
 
     def __enter__(self) -> Progress:
         return self
@@ -141,9 +141,10 @@ class Progress:
     def _postfix(self) -> str:
         return ", ".join(x for x in (self.current, self.extra) if x)
 
-    def _line(self, now: float, prefix: str = "") -> None:
+    def _line(self, now: float, prefix: str = "", level: int = logging.INFO) -> None:
         what = f" ({self._postfix()})" if self._postfix() else ""
-        log.info("%s: %s%d/%d %ss%s, %.0f s", self.desc, prefix, self.done, self.total, self.unit, what, now - self._t0)
+        log.log(level, "%s: %s%d/%d %ss%s, %.0f s", self.desc, prefix, self.done, self.total, self.unit, what,
+                now - self._t0)
         self._last_line = now
 
     def _heartbeat(self) -> None:

@@ -521,19 +521,18 @@ def run_study(
                 old.unlink()
         parts = load_finished(folder, scenarios)
         todo = [sc for sc in scenarios if sc.name not in parts]
+        how = ""
         if todo:
             choice = choose_jobs(_grouped(todo), jobs, lambda sc: _analysis(sc, study.assembly(sc.structure)), backend)
-            log.info("%s", choice.reason)
-            jobs = choice.jobs
+            jobs, how = choice.jobs, f"; {choice.reason}"
         jobs = jobs or 1
         if parts:
             log.info(
-                "resuming %s: %d of %d scenarios already solved, solving the %d missing",
-                study.name, len(parts), len(scenarios), len(todo),
+                "resuming %s: %d of %d scenarios already solved, solving the %d missing%s",
+                study.name, len(parts), len(scenarios), len(todo), how,
             )
         else:
-            where = "in-process" if jobs == 1 and backend == "loky" else f"on {jobs} {backend} worker(s)"
-            log.info("running %s: %d scenarios %s", study.name, len(todo), where)
+            log.info("running %s: %d scenarios%s", study.name, len(todo), how)
         report = RunReport(directory / "results.nc", reused=list(parts))
         if todo:
             tally = _Tally(len(todo), progress)
