@@ -54,7 +54,7 @@ def test_direct_bracket_takes_fewer_solves_for_the_same_limit(arch, sett):
 def test_a_wrong_direct_value_falls_back_to_bisection(arch, shift):
     an = Analysis(arch, Material(0.8))
     true = an.limit(0.0)
-    an.limit = lambda alpha: dataclasses.replace(true, lambda_max=true.lambda_max + shift)  # type: ignore[method-assign]
+    an.limit = lambda *a, **k: dataclasses.replace(true, lambda_max=true.lambda_max + shift)  # type: ignore[method-assign]
     lp = load_path(an, 0.0, {"right": [MM, 0, 0, 0, 0, 0]}, step=0.02, atol=1e-6)
     verified(lp, 1e-6)
     assert abs(lp.lambda_max - true.lambda_max) <= 1e-6

@@ -1,7 +1,8 @@
 """Load-path driver: raise lambda until the TCE has no admissible answer, then bisect.
 
-For one scenario (support motions, possibly none), a lateral direction ``alpha`` and the
-analysis' material, :func:`load_path` solves the TCE at ``lam = 0, step, 2 step, ...``
+For one scenario (support motions, possibly none), a load pattern (the lateral direction
+``alpha``, or a :class:`tce.core.loads.LoadPattern` whose live part lambda multiplies) and
+the analysis' material, :func:`load_path` solves the TCE at ``lam = 0, step, 2 step, ...``
 until the first step whose status is not ``optimal`` (``numerical`` steps are kept,
 reported and stepped over: they are never taken as the limit). When that step is
 ``infeasible``, it narrows the bracket between the last ``optimal`` and the first
@@ -32,6 +33,7 @@ from numpy.typing import ArrayLike
 
 from ..core.analysis import Analysis
 from ..core.limit import LimitResult
+from ..core.loads import LoadPattern, as_pattern
 from ..core.result import Result
 from ..core.solve import TCEResult
 
@@ -56,7 +58,9 @@ class LoadPathResult(Result):
         not be decided, or no optimal step lies within the tolerance of the first
         inadmissible one).
     alpha : float
-        Direction of the lateral loads (degrees).
+        Direction of the lateral loads (degrees; NaN when the pattern has no lateral part).
+    loads : LoadPattern
+        The load pattern.
     settlements : dict
         Support motions of the scenario ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad).
     steps : list of TCEResult
@@ -66,7 +70,7 @@ class LoadPathResult(Result):
     lambda_upper : float
         Smallest multiplier found inadmissible (NaN if none).
     limit : LimitResult
-        The direct limit analysis in the same direction.
+        The direct limit analysis of the same pattern.
     n_solves : int
     solve_time : float
         Wall time inside the solver's solve calls, summed over the steps (s).
@@ -77,6 +81,7 @@ class LoadPathResult(Result):
     OK = ("limit",)
 
     alpha: float
+    loads: LoadPattern = field(repr=False)
     settlements: dict
     steps: list[TCEResult] = field(repr=False)
     lambda_max: float
@@ -155,12 +160,13 @@ def _first_inadmissible(lo: float | None, steps: list[TCEResult]) -> str:
 
 def load_path(
     analysis: Analysis,
-    alpha: float = 0.0,
+    alpha: float | None = None,
     settlements: Mapping[str, ArrayLike] | None = None,
     step: float = 0.02,
     atol: float = 1e-6,
     rtol: float = 0.0,
     lam_cap: float = 100.0,
+    loads: LoadPattern | None = None,
     bracket: Literal["direct", "bisection"] = "direct",
 ) -> LoadPathResult:
     """Increment lambda by ``step`` from 0, then narrow the first inadmissible increment.
@@ -168,8 +174,8 @@ def load_path(
     Parameters
     ----------
     analysis : Analysis
-    alpha : float
-        Lateral direction (degrees, from +x towards +y).
+    alpha : float, optional
+        Lateral direction (degrees, from +x towards +y) of the default pattern (0 when None).
     settlements : dict, optional
         Support motions (m, rad) about each support centroid.
     step : float
@@ -179,6 +185,8 @@ def load_path(
     lam_cap : float
         Largest multiplier tried before the path gives up (``outcome = "no_limit"``);
         ``lam_cap / step`` may not exceed :data:`MAX_INCREMENTS`.
+    loads : LoadPattern, optional
+        The load pattern instead of ``alpha`` (its live part is multiplied by lambda).
     bracket : {"direct", "bisection"}
         How the last increment is narrowed (module docstring): first a bracket around the
         direct lambda_max, or bisection alone.
@@ -199,9 +207,10 @@ def load_path(
             "use a larger step or a smaller lam_cap"
         )
     t0 = time.perf_counter()
+    pattern = as_pattern(alpha, loads)
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in (settlements or {}).items()}
     steps: list[TCEResult] = []
-    solve_at = analysis.path(alpha, sett)
+    solve_at = analysis.path(settlements=sett, loads=pattern)
 
     def run(lam: float) -> TCEResult:
         r = solve_at(lam)
@@ -230,14 +239,14 @@ def load_path(
     if outcome == "limit":
         assert lo is not None and hi is not None
         if bracket == "direct":
-            lo, hi = _confirm_direct(run, lo, hi, analysis.limit(alpha).lambda_max, atol, rtol)
+            lo, hi = _confirm_direct(run, lo, hi, analysis.limit(loads=pattern).lambda_max, atol, rtol)
         lo_bracket = lo  # admissible end of the bracket; `lo` stays the last optimal step
         while hi - lo_bracket > max(atol, rtol * abs(hi)):
             mid = 0.5 * (lo_bracket + hi)
             if not lo_bracket < mid < hi:
                 break  # the bracket is two neighbouring floats: no multiplier lies between them
             r = run(mid)
-            direct = analysis.limit(alpha).lambda_max
+            direct = analysis.limit(loads=pattern).lambda_max
             if r.status == "optimal":
                 lo = lo_bracket = mid
             elif r.status == "infeasible":
@@ -260,12 +269,13 @@ def load_path(
     return LoadPathResult(
         status=outcome,
         message=f"{outcome} after {len(steps)} solves",
-        alpha=float(alpha),
+        alpha=pattern.direction,
+        loads=pattern,
         settlements=sett,
         steps=steps,
         lambda_max=float(lam_max),
         lambda_upper=float(hi) if hi is not None else float("nan"),
-        limit=analysis.limit(alpha),
+        limit=analysis.limit(loads=pattern),
         n_solves=len(steps),
         solve_time=float(sum(s.solve_time for s in steps)),
         wall_time=time.perf_counter() - t0,

@@ -1,8 +1,9 @@
 """Minimum thickness: the geometric safety factor of an arch (or any family of structures).
 
 :func:`minimum_thickness` bisects a geometric parameter ``t`` between a value where the
-structure stands under self-weight and one where it does not; "stands" means the TCE at
-``lam = 0`` with no support motion is ``optimal`` (an admissible force state exists).
+structure stands and one where it does not; "stands" means the TCE with no support motion
+is ``optimal`` (an admissible force state exists) under self-weight, or under a fixed load
+pattern (:class:`tce.core.loads.LoadPattern`) at a fixed multiplier ``lam`` of its live part.
 :func:`arch_minimum_thickness` applies it to the semicircular arch with a fixed centreline
 radius ``R`` and number of voussoirs, and reports ``t / R`` (Milankovitch's continuous
 value for a semicircular arch under self-weight is ``t/R = 0.1075``).
@@ -16,6 +17,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..core.analysis import Analysis
+from ..core.loads import LoadPattern
 from ..structures.arch import semicircular_arch
 from ..structures.params import check_positive, check_whole
 from ..structures.assembly import Assembly
@@ -57,9 +59,12 @@ def minimum_thickness(
     material: Material | None = None,
     tol: float = 1e-6,
     reference: float = 1.0,
+    loads: LoadPattern | None = None,
+    lam: float = 0.0,
     progress: Callable[[int, int], None] | None = None,
 ) -> ThicknessResult:
-    """Bisect the thinnest ``t`` in ``[lo, hi]`` for which ``build(t)`` stands under self-weight.
+    """Bisect the thinnest ``t`` in ``[lo, hi]`` for which ``build(t)`` stands under self-weight
+    (or the pattern ``loads`` at multiplier ``lam``).
 
     Parameters
     ----------
@@ -73,6 +78,11 @@ def minimum_thickness(
         Relative width of the final bracket, ``(hi - lo) / hi``.
     reference : float
         Length that ``ratio`` divides by (m).
+    loads : LoadPattern, optional
+        Loads beside the self-weight, resolved against each structure built (block names
+        and ``on_top`` points must fit every thickness tried); default: self-weight alone.
+    lam : float
+        Multiplier of the pattern's live part (>= 0; default 0: its fixed part only).
     progress : callable, optional
         ``progress(solves done, solves expected)`` after each solve (the expected count is
         an upper bound until the last call, where both are equal); e.g. a
@@ -81,9 +91,11 @@ def minimum_thickness(
     Raises
     ------
     ValueError
-        When ``hi`` does not stand or ``lo`` does.
+        When ``hi`` does not stand or ``lo`` does, or ``lam`` is negative or not finite.
     """
     check_positive(lo=lo, hi=hi, tol=tol, reference=reference)
+    if not (math.isfinite(lam) and lam >= 0):
+        raise ValueError(f"lam must be a finite number >= 0, got {lam!r}")
     if not lo < hi:
         raise ValueError(f"need lo < hi, got lo={lo}, hi={hi}")
     material = material or Material()
@@ -97,7 +109,7 @@ def minimum_thickness(
     def stands(t: float) -> bool:
         nonlocal n, undecided, solve_time
         n += 1
-        r = Analysis(build(t), material).solve(0.0)
+        r = Analysis(build(t), material).solve(lam, loads=loads)
         undecided += r.status == "numerical"
         solve_time += r.solve_time
         if progress is not None:
@@ -129,12 +141,14 @@ def arch_minimum_thickness(
     depth: float = 0.25,
     material: Material | None = None,
     tol: float = 1e-6,
+    loads: LoadPattern | None = None,
+    lam: float = 0.0,
     progress: Callable[[int, int], None] | None = None,
 ) -> ThicknessResult:
     """Minimum thickness of a semicircular arch with fixed centreline radius (m).
 
     The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``;
-    ``progress`` as in :func:`minimum_thickness`.
+    ``loads``, ``lam`` and ``progress`` as in :func:`minimum_thickness`.
     """
     check_positive(centre_radius=centre_radius, depth=depth)
     n = check_whole(voussoirs, "voussoirs")
@@ -143,5 +157,6 @@ def arch_minimum_thickness(
         return semicircular_arch(centre_radius - t / 2, t, depth, n)
 
     return minimum_thickness(
-        build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius, progress=progress
+        build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius, loads=loads,
+        lam=lam, progress=progress,
     )

@@ -35,7 +35,16 @@ from numpy.typing import NDArray
 from ..structures.assembly import Assembly
 from ..structures.geometry import cross
 
-__all__ = ["InterfaceMap", "Model", "Plane", "build_model", "find_plane", "lateral_direction"]
+__all__ = [
+    "InterfaceMap",
+    "Model",
+    "Plane",
+    "build_model",
+    "find_plane",
+    "lateral_direction",
+    "motions_in_plane",
+    "scene_in_plane",
+]
 
 ModelKind = Literal["spatial", "planar"]
 EZ = np.array([0.0, 0.0, 1.0])
@@ -274,13 +283,17 @@ class Model:
 
 
 def scene_in_plane(plane: Plane, alpha: float, settlements: dict[str, np.ndarray] | None, tol: float = 1e-12) -> bool:
-    """True when the lateral direction ``alpha`` and every support motion lie in ``plane``.
-
-    A motion ``(u, omega)`` is in plane when ``u . m = 0`` and ``omega`` is parallel to ``m``.
-    """
+    """True when the lateral direction ``alpha`` and every support motion lie in ``plane``
+    (:func:`motions_in_plane`; other loads: :meth:`tce.core.loads.AppliedLoads.in_plane`)."""
     d = lateral_direction(alpha)
     if abs(d @ plane.m) > 1e-12:
         return False
+    return motions_in_plane(plane, settlements, tol)
+
+
+def motions_in_plane(plane: Plane, settlements: dict[str, np.ndarray] | None, tol: float = 1e-12) -> bool:
+    """True when every support motion lies in ``plane``: a motion ``(u, omega)`` is in plane
+    when ``u . m = 0`` and ``omega`` is parallel to ``m`` (relative to its largest entry)."""
     for u in (settlements or {}).values():
         u = np.asarray(u, dtype=float)
         scale = max(np.abs(u).max(), 1e-300)

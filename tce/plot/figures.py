@@ -46,6 +46,7 @@ from numpy.typing import NDArray
 from scipy.spatial import ConvexHull
 
 from ..structures.assembly import Assembly
+from .load_arrows import draw_loads_2d, draw_loads_3d
 
 __all__ = [
     "assembly_view",
@@ -466,6 +467,8 @@ def assembly_view(
             pts += [pp[ok] + 0.5 * vec, pp[ok] - 0.5 * vec]
             handles.append(Line2D([], [], color=FORCE_COLOUR, linewidth=1.6, marker=">", markersize=5,
                                   label=f"interface resultant at pressure point\n(arrow: 1 kN = {_fmt(scale)} m)"))
+        load_handles, tails = draw_loads_3d(ax, ds, scenario, float(_value(ds, "lam", scenario)[step]), scale)
+        handles, pts = handles + load_handles, pts + [tails]
         sig = ok & np.isfinite(tq) & (np.abs(np.nan_to_num(tq)) > TORQUE_TOL * fmax * asm.size)
         if sig.any():
             tmax = float(np.abs(tq[sig]).max())
@@ -538,11 +541,12 @@ def thrust_line(
     hinges = _hinge_points(ds, scenario)
     if len(hinges) and math.isfinite(lmax) and any(np.isclose(lam[k], lmax) for k in steps):
         ax.plot(hinges[:, 0], hinges[:, 2], **HINGE_MARKER, gid="hinges", label="hinge")
+    tails = draw_loads_2d(ax, ds, scenario, asm.size)
     if steps:
         fig.legend(loc="outside lower center", ncols=min(len(steps) + 1, 3), fontsize=7, frameon=False,
                    title="line of thrust (pressure points)", title_fontsize=7)
         ax.set_title(f"{scenario}: line of thrust", fontsize=10)
-    _equal_2d(ax, np.vstack(verts)[:, [0, 2]], asm.size)
+    _equal_2d(ax, np.vstack([np.vstack(verts)[:, [0, 2]], tails]), asm.size)
     return fig
 
 
@@ -596,7 +600,8 @@ def mechanism_view(
         _draw_blocks_2d(ax, asm, verts, faint=True)
         _draw_blocks_2d(ax, asm, moved)
         ax.plot(hinges[:, 0], hinges[:, 2], **marker)
-        _equal_2d(ax, np.vstack(verts + moved)[:, [0, 2]], asm.size)
+        tails = draw_loads_2d(ax, ds, scenario, asm.size)
+        _equal_2d(ax, np.vstack([np.vstack(verts + moved)[:, [0, 2]], tails]), asm.size)
     else:
         _draw_blocks_3d(ax, asm, verts, faint=True)
         _draw_blocks_3d(ax, asm, moved)
@@ -663,6 +668,9 @@ def write_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
     scenarios only) and ``mechanism_<s>.png`` (when the scenario has a mechanism);
     ``bracket.png`` when a material parameter is swept (:mod:`tce.plot.materials`);
     ``sheet.png`` and ``sheet.pdf``. ``<s>`` is the scenario name made safe for file names.
+    A load-position sweep (a ``load_x`` coordinate) first gets ``capacity.png``
+    (:func:`tce.plot.capacity.influence_line`); its other figures show only the critical
+    position of each group (:func:`tce.plot.capacity.critical_scenarios`).
 
     Parameters
     ----------
@@ -673,7 +681,7 @@ def write_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
     Returns
     -------
     list of pathlib.Path
-        The files written, in the order above.
+        The files written (``capacity.png`` first for a load-position sweep).
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
@@ -685,6 +693,11 @@ def write_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
         fig.savefig(path, dpi=150)
         written.append(path)
 
+    if "load_x" in ds.coords:  # a load-position sweep: its influence line, then its critical positions only
+        from .capacity import critical_scenarios, influence_line
+
+        save(influence_line(ds), "capacity.png")
+        ds = ds.sel(scenario=critical_scenarios(ds))
     save(thrust_curves(ds), "thrust.png")
     seen: set[str] = set()
     for i, s in enumerate(_scenarios(ds)):

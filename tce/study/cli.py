@@ -2,7 +2,8 @@
 
 ``tce run STUDY.toml``   validate a study, solve its scenarios in parallel, write
                          ``<out>/<study>/results.nc`` and its figures (resumes a run).
-``tce show RESULTS.nc``  one line per scenario: limit, outcome, model, cost.
+``tce show RESULTS.nc``  one line per scenario: limit, outcome, model, cost (and the
+                         critical position of a load-position sweep).
 ``tce plot RESULTS.nc``  the figures of a results file.
 
 Exit codes (``tce run``): 0 success; 2 bad input or a run that cannot start (a bad study,
@@ -218,7 +219,22 @@ def _show(args: argparse.Namespace) -> int:
         for name, why in zip(ds["scenario"].values, ds["no_limit_reason"].values):
             if str(why):
                 print(f"{name}: no_limit: {why}")
+    if "load_x" in ds.coords:
+        _show_critical(ds)
     return 0
+
+
+def _show_critical(ds) -> None:
+    """The critical position of a load-position sweep, per group of the other coordinates."""
+    from .positions import critical_positions
+
+    print("critical load position (smallest lambda_max over load_x):")
+    for c in critical_positions(ds):
+        where = f"{c.group}: " if c.group else ""
+        if c.scenario:
+            print(f"  {where}load_x = {c.load_x:.6g} m, lambda_max = {c.lambda_max:.6g} (scenario {c.scenario})")
+        else:
+            print(f"  {where}no position has a finite lambda_max")
 
 
 def _plot(args: argparse.Namespace) -> int:

@@ -108,6 +108,9 @@ META: dict[str, tuple[str, str]] = {
     "interface_b": ("-", "block B of the interface"),
     "block_centroid": ("m", "block centroid"),
     "block_support": ("-", "1 for support blocks, 0 for free blocks"),
+    "load_point": ("m", "point of application of each declared load (a distributed load: each part's resultant)"),
+    "load_force": ("kN", "force of each declared load, global frame (a scaled load: at lambda = 1)"),
+    "load_scaled": ("1", "1 for a live load (multiplied by lambda), 0 for a fixed load"),
     # coordinates
     "scenario": ("-", "scenario name"),
     "step": ("-", "load-path step, sorted by load multiplier"),
@@ -117,6 +120,7 @@ META: dict[str, tuple[str, str]] = {
     "xyz": ("-", "global axis"),
     "block": ("-", "block name"),
     "dof": ("-", "rigid-body velocity component"),
+    "load": ("-", "applied load (point loads, then the parts of distributed loads)"),
     "settlement": ("-", "settlement case ([scenarios.NAME] of the study)"),
     "alpha": ("degree", "direction of the lateral loads, from +x towards +y"),
     "friction": ("1", "friction coefficient (NaN: unlimited)"),
@@ -125,6 +129,7 @@ META: dict[str, tuple[str, str]] = {
     "thickness": ("m", "thickness"),
     "depth": ("m", "depth"),
     "radius": ("m", "mid-surface radius"),
+    "load_x": ("m", "plan abscissa of the moving (scaled, on_top) point loads"),
     "cohesion": ("kN/m^2", "cohesion of the joints"),
     "tensile_strength": ("kN/m^2", "tensile strength of the joints"),
     "compressive_strength": ("kN/m^2", "compressive strength of the joints (per contact vertex)"),
@@ -224,6 +229,20 @@ def _static_vars(analysis: Analysis) -> dict[str, tuple]:
     }
 
 
+def _load_vars(lp: LoadPathResult, analysis: Analysis) -> tuple[dict[str, tuple], dict[str, tuple]]:
+    """Variables and coordinate of the declared point and distributed loads (for arrows);
+    empty for the paper's pattern alone."""
+    applied = analysis.applied_loads(loads=lp.loads)
+    if not len(applied.blocks):
+        return {}, {}
+    data = {
+        "load_point": (("scenario", "load", "xyz"), applied.points[None]),
+        "load_force": (("scenario", "load", "xyz"), applied.forces[None]),
+        "load_scaled": (("scenario", "load"), applied.scaled.astype(float)[None]),
+    }
+    return data, {"load": (("load",), np.arange(len(applied.blocks)))}
+
+
 def _coords(sc: Scenario, analysis: Analysis, n_steps: int) -> dict[str, tuple]:
     a = analysis.assembly
     coords: dict[str, tuple] = {
@@ -292,7 +311,9 @@ def scenario_dataset(
     data["no_limit_reason"] = (("scenario",), _text([no_limit_reason(analysis, lp)]))
     if nonassoc is not None:
         data.update(_nonassoc_vars(nonassoc))
-    ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)))
+    loads, load_coord = _load_vars(lp, analysis)
+    data.update(loads)
+    ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)) | load_coord)
     ds.attrs["scenario_key"] = sc.key
     return _label(ds)
 
@@ -521,6 +542,7 @@ def study_attrs(study: Study, models: Iterable[str]) -> dict[str, str]:
         "model": ", ".join(sorted(set(models))),
         "assembly": json.dumps(assembly.to_dict()),
         "material": json.dumps(study.spec.material.model_dump()),
+        "loads": json.dumps(study.spec.loads.model_dump()),
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
     }
 

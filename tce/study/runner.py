@@ -159,16 +159,16 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     analysis = _cold(_analysis(sc, assembly))
     lp = load_path(
         analysis,
-        alpha=sc.alpha,
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
         atol=sc.loads["tolerance"],
         lam_cap=sc.loads["lambda_cap"],
+        loads=sc.loads_pattern,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     bracket = None
     if analysis.material.flow == "non-associative":
-        bracket = nonassociative_limit(analysis, sc.alpha)
+        bracket = nonassociative_limit(analysis, loads=sc.loads_pattern)
     return scenario_dataset(sc, lp, analysis, nonassoc=bracket)
 
 
