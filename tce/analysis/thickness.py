@@ -61,6 +61,7 @@ def minimum_thickness(
     reference: float = 1.0,
     loads: LoadPattern | None = None,
     lam: float = 0.0,
+    progress: Callable[[int, int], None] | None = None,
 ) -> ThicknessResult:
     """Bisect the thinnest ``t`` in ``[lo, hi]`` for which ``build(t)`` stands under self-weight
     (or the pattern ``loads`` at multiplier ``lam``).
@@ -82,6 +83,10 @@ def minimum_thickness(
         and ``on_top`` points must fit every thickness tried); default: self-weight alone.
     lam : float
         Multiplier of the pattern's live part (>= 0; default 0: its fixed part only).
+    progress : callable, optional
+        ``progress(solves done, solves expected)`` after each solve (the expected count is
+        an upper bound until the last call, where both are equal); e.g. a
+        :class:`tce.study.progress.Progress`.
 
     Raises
     ------
@@ -98,12 +103,17 @@ def minimum_thickness(
     n = undecided = 0
     solve_time = 0.0
 
+    # solves: the two ends, then one per halving of the bracket down to tol * lo (an upper bound)
+    expected = 2 + max(0, math.ceil(math.log2((hi - lo) / (tol * lo))))
+
     def stands(t: float) -> bool:
         nonlocal n, undecided, solve_time
         n += 1
         r = Analysis(build(t), material).solve(lam, loads=loads)
         undecided += r.status == "numerical"
         solve_time += r.solve_time
+        if progress is not None:
+            progress(n, max(expected, n))
         return r.status == "optimal"
 
     if not stands(hi):
@@ -116,6 +126,8 @@ def minimum_thickness(
             hi = mid
         else:
             lo = mid
+    if progress is not None:
+        progress(n, n)
     return ThicknessResult(
         status="optimal", message=f"bracket [{lo:.9g}, {hi:.9g}] m after {n} solves ({undecided} undecided)",
         solve_time=solve_time, wall_time=time.perf_counter() - t0,
@@ -131,11 +143,12 @@ def arch_minimum_thickness(
     tol: float = 1e-6,
     loads: LoadPattern | None = None,
     lam: float = 0.0,
+    progress: Callable[[int, int], None] | None = None,
 ) -> ThicknessResult:
     """Minimum thickness of a semicircular arch with fixed centreline radius (m).
 
     The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``;
-    ``loads`` and ``lam`` as in :func:`minimum_thickness`.
+    ``loads``, ``lam`` and ``progress`` as in :func:`minimum_thickness`.
     """
     check_positive(centre_radius=centre_radius, depth=depth)
     n = check_whole(voussoirs, "voussoirs")
@@ -144,5 +157,6 @@ def arch_minimum_thickness(
         return semicircular_arch(centre_radius - t / 2, t, depth, n)
 
     return minimum_thickness(
-        build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius, loads=loads, lam=lam
+        build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius, loads=loads,
+        lam=lam, progress=progress,
     )

@@ -104,32 +104,41 @@ def mechanism_from_velocities(model: Model, vel: NDArray[np.float64], tol: float
     tangential part does, and opens when only the normal part is left.
     """
     a = model.assembly
-    pts = np.vstack([b.shape.vertices for b in a.blocks])
-    owner = np.concatenate([np.full(len(b.shape.vertices), i) for i, b in enumerate(a.blocks)])
-    speed = vel[owner, :3] + np.cross(vel[owner, 3:], pts - a.centroids[owner])
+    c = a.centroids
+    faces = a.face_table
+    owner = faces.vertex_owner
+    speed = vel[owner, :3] + np.cross(vel[owner, 3:], faces.points - c[owner])
     vmax = np.abs(speed).max(initial=0.0)
     vel = vel / vmax if vmax > 0 else vel
-    modes, hp = [], np.full((len(model.interfaces), 3), np.nan)
-    for slot, k in enumerate(model.interfaces):
-        itf = a.interfaces[k]
-        dw = vel[itf.b, 3:] - vel[itf.a, 3:]
-        p = itf.points
-        rel = (vel[itf.b, :3] + np.cross(vel[itf.b, 3:], p - a.centroids[itf.b])) - (
-            vel[itf.a, :3] + np.cross(vel[itf.a, 3:], p - a.centroids[itf.a])
-        )
-        dn = rel @ itf.normal
-        dt = rel - dn[:, None] * itf.normal
-        width = np.ptp(p, axis=0).max()
-        moving = np.abs(rel).max()
-        if moving <= tol:
-            modes.append("closed")
-        elif np.linalg.norm(dw) * width > 1e-2 * moving:
-            modes.append("hinge")
-            hp[slot] = p[np.argmin(np.abs(dn))]
-        elif np.abs(dt).max() > 1e-2 * moving:
-            modes.append("sliding")
-        else:
-            modes.append("opening")
+    # every vertex of the model's interfaces (interface by interface, in slot order)
+    t = a.interface_table
+    slots = np.asarray(model.interfaces, dtype=np.int64)
+    counts = t.polygons.counts[slots]
+    first = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
+    slot = np.repeat(np.arange(len(slots)), counts)
+    k = slots[slot]
+    p = t.points[t.start[k] + np.arange(len(slot)) - first[slot]]
+    ia, ib, n = t.a[k], t.b[k], t.normal[k]
+    rel = (vel[ib, :3] + np.cross(vel[ib, 3:], p - c[ib])) - (vel[ia, :3] + np.cross(vel[ia, 3:], p - c[ia]))
+    dn = np.einsum("ij,ij->i", rel, n)
+    dt = rel - dn[:, None] * n
+    modes = np.full(len(slots), "opening", dtype=object)
+    hp = np.full((len(slots), 3), np.nan)
+    if len(slots):
+        width = (np.maximum.reduceat(p, first) - np.minimum.reduceat(p, first)).max(axis=1)
+        moving = np.maximum.reduceat(np.abs(rel).max(axis=1), first)
+        sliding = np.maximum.reduceat(np.abs(dt).max(axis=1), first) > 1e-2 * moving
+        turning = np.linalg.norm(vel[t.b[slots], 3:] - vel[t.a[slots], 3:], axis=1) * width > 1e-2 * moving
+        closed = moving <= tol
+        modes[~closed & ~turning & sliding] = "sliding"
+        hinge = ~closed & turning
+        modes[hinge] = "hinge"
+        modes[closed] = "closed"
+        # the hinge line's trace: the first vertex of least |dn| of each interface
+        order = np.lexsort((np.arange(len(slot)), np.abs(dn), slot))
+        least = order[np.searchsorted(slot[order], np.arange(len(slots)))]
+        hp[hinge] = p[least[hinge]]
+    modes = modes.tolist()
     return Mechanism(vel, tuple(modes), hp)
 
 

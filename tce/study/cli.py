@@ -80,7 +80,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("study", type=Path, metavar="STUDY.toml", help="study file (TOML)")
     run.add_argument("--out", type=Path, default=Path("results"), metavar="DIR", help="results root (default: results)")
-    run.add_argument("--jobs", type=_jobs, default=None, metavar="N", help="parallel workers (default: all cores)")
+    run.add_argument("--jobs", type=_jobs, default=None, metavar="N", help="parallel workers (default: in-process when the study is smaller than starting workers costs, else all cores)")
     run.add_argument(
         "--backend", choices=("loky", "dask"), default="loky",
         help="loky: processes on this machine (default); dask: a Dask distributed cluster",
@@ -183,22 +183,27 @@ def _open_results(path: Path):
 
 
 class _Bar:
-    """tqdm progress of scenarios and load steps (silent when stderr is not a terminal)."""
+    """Progress of a run's scenarios (:class:`tce.study.progress.Progress`): a bar on a
+    terminal, one-line progress in the log otherwise."""
 
-    def __init__(self) -> None:
+    def __init__(self, desc: str) -> None:
+        self.desc = desc
         self.bar = None
 
     def __call__(self, done: int, total: int, steps: int) -> None:
-        from tqdm import tqdm
+        from .progress import Progress
 
         if self.bar is None:
-            self.bar = tqdm(total=total, unit="scenario", disable=not sys.stderr.isatty(), file=sys.stderr)
-        self.bar.set_postfix_str(f"{steps} steps")
-        self.bar.update(done - self.bar.n)
+            self.bar = Progress(total, self.desc, unit="scenario")
+        self.bar.note(f"{steps} load steps")
+        self.bar.set_done(done)
+        if done >= total:
+            self.close()  # solving is over: what follows (figures) reports itself
 
     def close(self) -> None:
         if self.bar is not None:
             self.bar.close()
+            self.bar = None
 
 
 #: exit codes of ``tce run`` (module docstring)
@@ -216,7 +221,7 @@ def _run(args: argparse.Namespace) -> int:
     except StudyError as exc:
         raise UsageError(str(exc)) from None
     kept = f"finished scenarios are kept in {args.out / study.name / 'scenarios'}"
-    bar = _Bar()
+    bar = _Bar(study.name)
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,
@@ -365,16 +370,29 @@ def _bench(args: argparse.Namespace) -> int:
     return bench_command(args)
 
 
+def _without_dask() -> None:
+    """Keep xarray from importing dask in this program and its workers (:mod:`tce.study.jobs`)."""
+    import os
+
+    from .jobs import NO_DASK, block_dask_import
+
+    os.environ[NO_DASK] = "1"
+    block_dask_import()
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tce`` command; returns the exit code.
 
     Parameters
     ----------
     argv : sequence of str, optional
-        Arguments without the program name (default: ``sys.argv[1:]``).
+        Arguments without the program name (default: ``sys.argv[1:]``, the ``tce``
+        program, which then keeps dask from being imported unless ``--backend dask``).
     """
     args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
     _setup_logging(args.verbose, args.quiet)
+    if argv is None and getattr(args, "backend", None) != "dask":
+        _without_dask()
     commands = {"run": _run, "show": _show, "plot": _plot, "view": _view, "export": _export, "check": _check,
                 "bench": _bench}
     try:

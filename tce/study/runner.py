@@ -54,6 +54,7 @@ from ..analysis.loadpath import LoadPathResult, load_path
 from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
+from .jobs import choose_jobs
 from .results import (
     FolderLocked,
     StorageError,
@@ -537,14 +538,18 @@ def run_study(
     out : path
         Results root: the study writes into ``out/<study name>/``.
     jobs : int, optional
-        Parallel workers (default: all cores); 1 solves in this process. With
-        ``backend="dask"`` and no ``scheduler``, the size of the local cluster started.
+        Parallel workers; 1 solves in this process. Default: in-process when the study's
+        estimated work is below what starting workers costs, all cores otherwise
+        (:func:`tce.study.jobs.choose_jobs`, its reason logged at info). With
+        ``backend="dask"`` and no ``scheduler``, the size of the local cluster started
+        (default: all cores).
     backend : {"loky", "dask"}
         ``loky``: worker processes on this machine; ``dask``: a Dask distributed cluster.
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:port``).
     progress : callable, optional
-        ``progress(done, total, steps)`` after each scenario solved.
+        ``progress(done, total, steps)`` before the first scenario (``done = 0``) and after
+        each scenario solved.
     plots : bool
         Write the figures after the results.
     fresh : bool
@@ -564,8 +569,7 @@ def run_study(
     KeyboardInterrupt
         Ctrl-C; every finished scenario is on disk.
     """
-    jobs = jobs or os.cpu_count() or 1
-    if jobs < 1:
+    if jobs is not None and jobs < 1:
         raise RunError(f"jobs must be >= 1, got {jobs}")
     if backend not in ("loky", "dask"):
         raise RunError(f"unknown backend {backend!r}: use 'loky' or 'dask'")
@@ -581,16 +585,23 @@ def run_study(
                 old.unlink()
         parts = load_finished(folder, scenarios)
         todo = [sc for sc in scenarios if sc.name not in parts]
+        how = ""
+        if todo:
+            choice = choose_jobs(_grouped(todo), jobs, lambda sc: _analysis(sc, study.assembly(sc.structure)), backend)
+            jobs, how = choice.jobs, f"; {choice.reason}"
+        jobs = jobs or 1
         if parts:
             log.info(
-                "resuming %s: %d of %d scenarios already solved, solving the %d missing",
-                study.name, len(parts), len(scenarios), len(todo),
+                "resuming %s: %d of %d scenarios already solved, solving the %d missing%s",
+                study.name, len(parts), len(scenarios), len(todo), how,
             )
         else:
-            log.info("running %s: %d scenarios on %d %s worker(s)", study.name, len(todo), jobs, backend)
+            log.info("running %s: %d scenarios%s", study.name, len(todo), how)
         report = RunReport(directory / "results.nc", reused=list(parts))
         if todo:
             tally = _Tally(len(todo), progress)
+            if progress is not None:
+                progress(0, len(todo), 0)  # the bar shows (and ticks) from the start
             if backend == "dask":
                 _on_dask(todo, study, folder, scheduler, jobs, tally)
             elif jobs == 1:
