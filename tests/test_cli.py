@@ -100,7 +100,7 @@ def test_run_show_plot(tmp_path: Path, capsys, monkeypatch) -> None:
     study = write(tmp_path, STUDY)
     out = tmp_path / "results"
     drawn: list[Path] = []
-    monkeypatch.setattr(tce.plot, "write_figures", lambda ds, outdir: drawn.append(outdir) or [outdir / "a.png"])
+    monkeypatch.setattr(tce.plot, "write_figures", lambda ds, outdir, **kw: drawn.append(outdir) or [outdir / "a.png"])
     assert main(["run", str(study), "--out", str(out), "--jobs", "1"]) == 0
     results = out / "cli" / "results.nc"
     stdout = capsys.readouterr().out

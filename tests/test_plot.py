@@ -1,315 +1,396 @@
 """Figures of a results dataset: what is drawn, not only that a file exists.
 
-The datasets come from the real solver (the paper's arch, in plane with settlements and
-out of plane), assembled here following docs/results.md.
+The datasets are written by the real runner (the paper's arch, in plane with settlements
+and out of plane; a running-bond wall), so the figures read exactly what ``tce run``
+stores. Independent references: the weight of the arch in closed form (equilibrium of
+the forces on the supports), the geometry of the arch (hinge lines across its depth),
+and direct TCE solves at the drawn multipliers.
 """
 
 from __future__ import annotations
 
-import json
-from collections.abc import Mapping
+import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
-from matplotlib.axes import Axes
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
-from tce.plot import figures as plot
-from tce.analysis import Analysis
-from tce.structures.arch import semicircular_arch
-from tce.structures.assembly import Assembly
-from tce.analysis.loadpath import LoadPathResult, load_path
+from tce.core.analysis import Analysis
 from tce.core.material import Material
-from tce.core.resultants import global_vertex_forces
+from tce.plot import data, draw, figures
+from tce.plot.output import figure_tasks, write_figures
+from tce.structures.arch import semicircular_arch
+from tce.structures.dome import hemispherical_dome
+from tce.study.runner import run_study
+from tce.study.schema import parse_study
 
-COMPONENTS = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"]
-
-
-def dataset_from_load_paths(assembly: Assembly, runs: Mapping[str, LoadPathResult]) -> xr.Dataset:
-    """A results dataset (docs/results.md, the variables the plots read) from load paths.
-
-    Parameters
-    ----------
-    assembly : Assembly
-    runs : mapping of scenario name to LoadPathResult
-
-    Returns
-    -------
-    xarray.Dataset
-        Also holds the optional ``vertex_force`` / ``vertex_point`` variables.
-    """
-    names = list(runs)
-    asm = assembly
-    nstep = max(len(r.path) for r in runs.values())
-    ni, nb, ns = len(asm.interfaces), len(asm.blocks), len(asm.support_names)
-    first = next(r for lp in runs.values() for r in lp.path if r.ok)
-    nv = len(first.interface_map.vertex_points)
-
-    def full(*shape: int) -> np.ndarray:
-        return np.full(shape, np.nan)
-
-    lam, status = full(len(names), nstep), np.full((len(names), nstep), "", dtype=object)
-    reaction, tce = full(len(names), nstep, ns, 6), full(len(names), nstep)
-    res, pp, torque = full(len(names), nstep, ni, 3), full(len(names), nstep, ni, 3), full(len(names), nstep, ni)
-    vforce = full(len(names), nstep, nv, 3)
-    mech, hinge = full(len(names), nb, 6), full(len(names), ni, 3)
-    mode = np.full((len(names), ni), "", dtype=object)
-    model = np.full(len(names), "", dtype=object)
-    for s, lp in enumerate(runs.values()):
-        for k, r in enumerate(lp.path):
-            lam[s, k], status[s, k] = r.lam, r.status
-            model[s] = r.model
-            if not r.ok:
-                continue
-            slots = list(r.interfaces)
-            reaction[s, k], tce[s, k] = r.support_wrenches, r.tce
-            res[s, k, slots], pp[s, k, slots], torque[s, k, slots] = r.resultants, r.pressure_points, r.torques
-            vforce[s, k] = global_vertex_forces(r.interface_map, r.vertex_forces)
-        m = lp.limit.mechanism
-        if m is not None:
-            mech[s] = m.velocities
-            slots = list(r.interfaces)
-            mode[s, slots], hinge[s, slots] = m.modes, m.hinge_points
-    sc, st, itf = ("scenario",), ("scenario", "step"), ("scenario", "step", "interface")
-
-    def var(dims: tuple, data: np.ndarray, units: str, long_name: str) -> xr.Variable:
-        return xr.Variable(dims, data, attrs=dict(units=units, long_name=long_name))
-
-    ds = xr.Dataset(
-        {
-            "lambda_max": var(sc, np.array([r.lambda_max for r in runs.values()]), "1", "lambda max"),
-            "lambda_upper": var(sc, np.array([r.lambda_upper for r in runs.values()]), "1", "lambda upper"),
-            "lambda_direct": var(sc, np.array([r.lambda_direct for r in runs.values()]), "1", "direct"),
-            "outcome": var(sc, np.array([r.outcome for r in runs.values()], dtype=object), "-", "outcome"),
-            "model": var(sc, model, "-", "model"),
-            "lam": var(st, lam, "1", "load multiplier"),
-            "status": var(st, status, "-", "status"),
-            "reaction": var(st + ("support", "component"), reaction, "kN, kN m", "support reaction"),
-            "tce": var(st, tce, "kN m", "total complementary energy"),
-            "resultant": var(itf + ("xyz",), res, "kN", "interface resultant"),
-            "pressure_point": var(itf + ("xyz",), pp, "m", "pressure point"),
-            "torque": var(itf, torque, "kN m", "torque about the normal"),
-            "vertex_force": var(st + ("vertex", "xyz"), vforce, "kN", "vertex force"),
-            "vertex_point": var(("vertex", "xyz"), first.interface_map.vertex_points, "m", "vertex position"),
-            "mechanism": var(("scenario", "block", "dof"), mech, "m, rad", "collapse mechanism"),
-            "interface_mode": var(("scenario", "interface"), mode, "-", "interface mode"),
-            "hinge_point": var(("scenario", "interface", "xyz"), hinge, "m", "hinge point"),
-            "interface_a": var(("interface",), np.array([asm.names[i.a] for i in asm.interfaces], object), "-", "A"),
-            "interface_b": var(("interface",), np.array([asm.names[i.b] for i in asm.interfaces], object), "-", "B"),
-            "block_centroid": var(("block", "xyz"), asm.centroids, "m", "block centroid"),
-            "block_support": var(("block",), np.array([int(b.support) for b in asm.blocks]), "-", "support"),
-        },
-        coords={
-            "scenario": names,
-            "step": np.arange(nstep),
-            "support": list(asm.support_names),
-            "component": COMPONENTS,
-            "interface": [f"{asm.names[i.a]}|{asm.names[i.b]}" for i in asm.interfaces],
-            "xyz": ["x", "y", "z"],
-            "block": list(asm.names),
-            "dof": ["vx", "vy", "vz", "wx", "wy", "wz"],
-            "alpha": ("scenario", np.array([r.alpha for r in runs.values()])),
-        },
-        attrs={"study_name": "arch-test", "assembly": json.dumps(asm.to_dict())},
-    )
-    return ds
+ARCH = """
+[study]
+name = "{name}"
+[structure]
+type = "semicircular_arch"
+[material]
+{material}
+[loads]
+alpha = {alpha}
+lambda_step = {step}
+tolerance = {tolerance}
+{extra}
+"""
+#: weight of the paper's arch in closed form: 14 voussoirs with plane faces, each a trapezoid between
+#: chords of the 1.0 and 1.2 m circles over pi/14: (n/2)(Re^2 - Ri^2) sin(pi/n) m^2 x 0.25 m x 20 kN/m^3
+ARCH_WEIGHT = 14 / 2 * (1.2**2 - 1.0**2) * math.sin(math.pi / 14) * 0.25 * 20.0
 
 
-def arch_dataset(alpha: float, scenarios: Mapping[str, dict], friction: float = 0.8) -> xr.Dataset:
-    """The paper's arch under lateral loads in direction ``alpha``, one load path per scenario."""
-    asm = semicircular_arch()
-    analysis = Analysis(asm, Material(friction=friction))
-    runs = {name: load_path(analysis, alpha, sett, step=0.04, atol=2e-3) for name, sett in scenarios.items()}
-    return dataset_from_load_paths(asm, runs)
+def run(tmp: Path, name: str, alpha: float = 0.0, material: str = "", extra: str = "", step: float = 0.04,
+        tolerance: float = 1e-3) -> xr.Dataset:
+    text = ARCH.format(name=name, alpha=alpha, material=material, extra=extra, step=step, tolerance=tolerance)
+    study = parse_study(text, tmp / f"{name}.toml")
+    report = run_study(study, tmp, jobs=1, plots=False)
+    return xr.load_dataset(report.results)
 
 
 @pytest.fixture(scope="module")
-def planar() -> xr.Dataset:
-    return arch_dataset(
-        0.0,
-        {
-            "loads only": {},
-            "right outward": {"right": [0.001, 0, 0, 0, 0, 0]},
-            "right inward": {"right": [-0.001, 0, 0, 0, 0, 0]},
-        },
-    )
+def planar(tmp_path_factory: pytest.TempPathFactory) -> xr.Dataset:
+    """In-plane load paths: no settlement (non-unique), right support outward and inward; Heyman."""
+    extra = """
+[scenarios.none]
+[scenarios.outward]
+right = [0.001, 0, 0, 0, 0, 0]
+[scenarios.inward]
+right = [-0.001, 0, 0, 0, 0, 0]
+[plots]
+steps = [0.0, 0.1, "max"]
+"""
+    return run(tmp_path_factory.mktemp("planar"), "planar", extra=extra)
 
 
 @pytest.fixture(scope="module")
-def spatial() -> xr.Dataset:
-    return arch_dataset(90.0, {"out of plane": {}, "out of plane, right sinks": {"right": [0, 0, -0.001, 0, 0, 0]}})
+def spatial(tmp_path_factory: pytest.TempPathFactory) -> xr.Dataset:
+    """Out-of-plane load paths (alpha = 90): no settlement, right support down and outward."""
+    extra = """
+[scenarios.none]
+[scenarios.downward]
+right = [0, 0, -0.001, 0, 0, 0]
+[scenarios.outward]
+right = [0.001, 0, 0, 0, 0, 0]
+[plots]
+steps = ["max"]
+kinds = ["states", "base", "thrust", "mechanism"]
+"""
+    return run(tmp_path_factory.mktemp("spatial"), "spatial", alpha=90.0, extra=extra, tolerance=1e-6)
 
 
-def axes_of(fig: Figure) -> list[Axes]:
-    return fig.get_axes()
+def inside_figure(fig: Figure) -> None:
+    """Every legend and text lies inside the figure (nothing clipped), and the legends below
+    the panels overlap none of them (nor their tick labels)."""
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    box = fig.bbox
+    renderer = canvas.get_renderer()
+    for art in [*fig.legends, *fig.texts, *(t for ax in fig.axes for t in ax.texts)]:
+        ext = art.get_window_extent(renderer)
+        assert ext.x0 >= box.x0 - 1 and ext.x1 <= box.x1 + 1, art
+        assert ext.y0 >= box.y0 - 1 and ext.y1 <= box.y1 + 1, art
+    bottom = min(ax.get_tightbbox(renderer).y0 for ax in fig.axes if ax.axison or ax.collections or ax.lines)
+    for legend in fig.legends:
+        assert legend.get_window_extent(renderer).y1 <= bottom + 1, "legend over the panels"
 
 
-def by_gid(ax: Axes, gid: str) -> list:
-    return [a for a in ax.get_children() if a.get_gid() == gid]
+# ---------------------------------------------------------------------------- forces on the supports
+def test_forces_on_supports_balance_the_loads(planar: xr.Dataset, spatial: xr.Dataset) -> None:
+    """The supports carry the weight (V) and the lateral load lambda W (H in plane, S out of plane)."""
+    frame = data.structure_frame(semicircular_arch())
+    assert frame.kind == "line"
+    for ds, along in ((planar, "H"), (spatial, "S")):
+        for s in data.scenarios(ds):
+            ok = data.optimal_steps(ds, s)
+            f = data.support_forces(ds, s, frame)
+            lam = ds.lam.sel(scenario=s).values[ok]
+            np.testing.assert_allclose(f["V"][ok].sum(axis=1), ARCH_WEIGHT, rtol=1e-9)
+            left, right = list(ds.support.values).index("left"), list(ds.support.values).index("right")
+            if along == "H":  # H is outward at each support: right along +x, left along -x
+                total = f["H"][ok, right] - f["H"][ok, left]
+            else:  # S is along +y at both supports
+                total = f["S"][ok].sum(axis=1)
+            np.testing.assert_allclose(total, lam * ARCH_WEIGHT, atol=1e-9 * ARCH_WEIGHT)
+    # gravity alone: the arch pushes both supports outward
+    f = data.support_forces(planar, "none", frame)
+    assert np.all(f["H"][0] > 0)
 
 
-# ---------------------------------------------------------------------------- thrust curves
-def test_thrust_curves_one_line_per_scenario_and_support(planar: xr.Dataset) -> None:
-    fig = plot.thrust_curves(planar)
-    ax_h, ax_v = axes_of(fig)
-    for ax, component in ((ax_h, "H"), (ax_v, "V")):
-        for s in planar.scenario.values:
-            lines = [ln for ln in ax.get_lines() if str(ln.get_gid()).startswith(f"reaction:{s}:")]
-            assert len(lines) == planar.sizes["support"]
-            for ln in lines:
-                sup = ln.get_gid().split(":")[-1]
-                sel = planar.sel(scenario=s, support=sup)
-                ok = (sel.status == "optimal").values
-                f = sel.reaction.values[ok]
-                expected = np.hypot(f[:, 0], f[:, 1]) if component == "H" else f[:, 2]
-                order = np.argsort(sel.lam.values[ok])
-                np.testing.assert_allclose(ln.get_xdata(), sel.lam.values[ok][order])
-                np.testing.assert_allclose(ln.get_ydata(), expected[order])
-    assert ax_h.get_xlabel().endswith("(–)") and "(kN)" in ax_h.get_ylabel() and "(kN)" in ax_v.get_ylabel()
+def test_frames_of_arch_dome_wall(tmp_path: Path) -> None:
+    dome = data.structure_frame(hemispherical_dome(sectors=8, courses=4))
+    assert dome.kind == "radial"
+    for s, out in dome.outward.items():  # radial: horizontal, unit, away from the centre
+        assert abs(out[2]) < 1e-12 and np.isclose(np.linalg.norm(out), 1.0)
+    arch = data.structure_frame(semicircular_arch())
+    np.testing.assert_allclose(arch.outward["right"], [1, 0, 0])
+    np.testing.assert_allclose(arch.outward["left"], [-1, 0, 0])
+    np.testing.assert_allclose(arch.across["left"], [0, 1, 0])
 
 
-def test_thrust_curves_mark_lambda_max_and_differ_in_greyscale(planar: xr.Dataset) -> None:
-    fig = plot.thrust_curves(planar)
-    marked = {ln.get_xdata()[0] for ln in by_gid(axes_of(fig)[0], "lambda_max")}
-    np.testing.assert_allclose(sorted(marked), sorted(set(np.round(planar.lambda_max.values, 9))))
-    assert len(marked) == 1  # same direction: one limit, the curves meet there
-    styles = {(str(ln.get_linestyle()), ln.get_marker()) for ln in axes_of(fig)[0].get_lines() if "reaction" in str(ln.get_gid())}
-    assert len(styles) == planar.sizes["scenario"] * planar.sizes["support"]
-    legend_text = {t.get_text() for lg in fig.legends for t in lg.get_texts()}
-    assert set(map(str, planar.scenario.values)) <= legend_text
+def test_thrust_curves_draw_the_frame_components(planar: xr.Dataset, spatial: xr.Dataset) -> None:
+    frame = data.structure_frame(semicircular_arch())
+    for ds, comps in ((planar, "HV"), (spatial, "HSVM")):
+        fig = figures.thrust_curves(ds)
+        axes = fig.axes
+        assert len(axes) == len(comps)
+        for ax, comp in zip(axes, comps):
+            assert ax.get_ylabel().startswith(comp) and "+" in ax.get_ylabel()  # sign explained
+            assert ax.yaxis.get_major_formatter().get_useOffset() is False
+            drawn = [ln for ln in ax.get_lines() if str(ln.get_gid()).startswith(f"reaction:{comp}:")]
+            assert drawn
+            for ln in drawn:
+                _, _, s, sup = ln.get_gid().split(":")
+                ok = data.optimal_steps(ds, s)
+                j = list(ds.support.values).index(sup)
+                np.testing.assert_allclose(ln.get_xdata(), ds.lam.sel(scenario=s).values[ok])
+                np.testing.assert_allclose(ln.get_ydata(), data.support_forces(ds, s, frame)[comp][ok, j])
+        inside_figure(fig)
 
 
-def test_curves_meet_at_the_limit(planar: xr.Dataset) -> None:
-    """The paper's Fig. 8: at lambda_max the support motions no longer matter."""
-    at = [plot.default_step(planar, s) for s in planar.scenario.values]
-    h = [planar.reaction.sel(scenario=s, step=k, support="right", component="Fx").item() for s, k in zip(planar.scenario.values, at)]
-    np.testing.assert_allclose(h, h[0], rtol=2e-2)
+def test_coincident_curves_are_named_together(spatial: xr.Dataset) -> None:
+    """Out of plane, V of 'none' and 'outward' coincide (a horizontal motion does not change
+    the vertical reactions of the symmetric rocking state): drawn once, named together."""
+    fig = figures.thrust_curves(spatial)
+    ax_v = fig.axes[2]
+    frame = data.structure_frame(semicircular_arch())
+    curves = [(s, j) for s in data.scenarios(spatial) for j in range(2)]
+    values = {(s, j): data.support_forces(spatial, s, frame)["V"][data.optimal_steps(spatial, s), j] for s, j in curves}
+    distinct = []
+    for key, v in values.items():
+        if not any(len(v) == len(w) and np.allclose(v, w, atol=1e-6 * np.abs(v).max()) for w in distinct):
+            distinct.append(v)
+    lines = [ln for ln in ax_v.get_lines() if str(ln.get_gid()).startswith("reaction:V:")]
+    assert len(lines) == len(distinct) < len(curves)
+    assert "coincide" in ax_v.get_title(loc="left")
 
 
-# ---------------------------------------------------------------------------- assembly view
-@pytest.mark.parametrize("view", ["axo", "elevation", "plan"])
-def test_assembly_view_arrows_at_pressure_points(spatial: xr.Dataset, view: str) -> None:
-    s = "out of plane"
-    fig = plot.assembly_view(spatial, s, view=view)
-    (ax,) = axes_of(fig)
-    k = plot.default_step(spatial, s)
-    assert spatial.lam.sel(scenario=s, step=k).item() == spatial.lambda_max.sel(scenario=s).item()
-    pp = spatial.pressure_point.sel(scenario=s, step=k).values
-    res = spatial.resultant.sel(scenario=s, step=k).values
-    (quiver,) = by_gid(ax, "resultants")
-    shafts = np.array(quiver._segments3d[: len(pp)])
-    np.testing.assert_allclose(shafts.mean(axis=1), pp, atol=1e-12)
-    lengths = np.linalg.norm(shafts[:, 1] - shafts[:, 0], axis=1)
-    scale = lengths / np.linalg.norm(res, axis=1)
-    np.testing.assert_allclose(scale, scale[0])  # one scale for every arrow ...
+def test_constant_looks_constant(spatial: xr.Dataset) -> None:
+    """A constant vertical force gets a y range of at least 5 % of its value (no 1e-11 zoom)."""
+    fig = figures.thrust_curves(spatial, ["none"])
+    ax_v = fig.axes[2]
+    lo, hi = ax_v.get_ylim()
+    assert hi - lo >= 0.05 * ARCH_WEIGHT / 2
+    assert not ax_v.yaxis.get_offset_text().get_text()
+
+
+# ---------------------------------------------------------------------------- states
+def test_states_arrows_centred_on_pressure_points(spatial: xr.Dataset) -> None:
+    panels = [(s, "max") for s in data.scenarios(spatial)]
+    fig = figures.states_figure(spatial, panels)
+    (ax,) = fig.axes
     legend = " ".join(t.get_text() for lg in fig.legends for t in lg.get_texts())
-    assert f"1 kN = {scale[0]:.3g} m" in legend  # ... and the legend states it
-    (points,) = by_gid(ax, "pressure_points")
-    np.testing.assert_allclose(np.array(points.get_data_3d()).T, pp)
-    # equal scales: the box aspect follows the axis ranges
-    ranges = np.array([np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()), np.ptp(ax.get_zlim())])
-    np.testing.assert_allclose(ax.get_box_aspect() / ax.get_box_aspect().max(), ranges / ranges.max(), rtol=1e-9)
-    assert by_gid(ax, "blocks") and by_gid(ax, "supports")
+    scale = float(legend.split("1 kN = ")[1].split(" m")[0])
+    asm = semicircular_arch()
+    camera = draw.Camera.for_assembly(asm, across=True)  # spatial scenarios of a long structure
+    shafts = [c for c in ax.collections if c.get_gid() == "resultants"]
+    points = [ln for ln in ax.get_lines() if ln.get_gid() == "pressure_points"]
+    assert len(shafts) == len(points) == len(panels)
+    for (s, t), shaft, pts in zip(panels, shafts, points):
+        st = data.find_state(spatial, s, t)
+        pp = spatial.pressure_point.sel(scenario=s, step=st.step).values
+        res = spatial.resultant.sel(scenario=s, step=st.step).values
+        seg = np.array(shaft.get_segments())
+        mid = seg.mean(axis=1)
+        np.testing.assert_allclose(mid, np.column_stack(pts.get_data()), atol=1e-12)
+        off = mid[0] - camera.project(pp[0])  # one shift per panel
+        np.testing.assert_allclose(mid, camera.project(pp) + off, atol=1e-12)
+        np.testing.assert_allclose(seg[:, 1] - seg[:, 0], camera.project(res * scale), atol=1e-12)
+    inside_figure(fig)
 
 
-def test_assembly_view_torques_and_vertex_forces(spatial: xr.Dataset) -> None:
-    s = "out of plane, right sinks"
-    fig = plot.assembly_view(spatial, s, vertex_forces=True)
-    (ax,) = axes_of(fig)
-    k = plot.default_step(spatial, s)
-    tq = spatial.torque.sel(scenario=s, step=k).values
-    res = spatial.resultant.sel(scenario=s, step=k).values
-    significant = np.abs(tq) > plot.TORQUE_TOL * np.linalg.norm(res, axis=1).max() * semicircular_arch().size
-    arcs = by_gid(ax, "torques")
-    assert len(arcs) == int(significant.any())
-    if arcs:
-        assert len(arcs[0]._segments3d) == 2 * significant.sum()  # an arc and a head each
-    (vf,) = by_gid(ax, "vertex_forces")
-    n_live = np.sum(np.linalg.norm(spatial.vertex_force.sel(scenario=s, step=k).values, axis=1) > 0)
-    assert len(vf._segments3d) == 3 * n_live
+def test_non_unique_and_outcome_notes(planar: xr.Dataset, tmp_path: Path) -> None:
+    """The rigid scene without support motion is flagged non-unique, the settled ones are not."""
+    ok = data.optimal_steps(planar, "none")
+    assert np.all(planar.unique.sel(scenario="none").values[ok] == 0.0)
+    assert np.all(np.isnan(planar.unique.sel(scenario="outward").values[data.optimal_steps(planar, "outward")]))
+    fig = figures.states_figure(planar, [("none", 0.0), ("outward", 0.0)])
+    titles = [t.get_text() for t in fig.axes[0].texts if t.get_text().startswith(("none", "outward"))]
+    assert "not necessarily unique" in titles[0] and "unique" not in titles[1]
+    # a state above the limit is said to have no admissible state, nothing is drawn for it
+    st = data.find_state(planar, "outward", 5.0)
+    assert st.step is None and "no admissible state" in st.note
 
 
-# ---------------------------------------------------------------------------- thrust line
-def test_thrust_line_through_pressure_points(planar: xr.Dataset) -> None:
-    s = "right outward"
-    k_max = plot.default_step(planar, s)
-    for step, drawn in ((None, [k_max]), (0, [0]), ([0, k_max], [0, k_max])):
-        fig = plot.thrust_line(planar, s, step=step)
-        (ax,) = axes_of(fig)
-        for k in drawn:
-            pp = planar.pressure_point.sel(scenario=s, step=k).values
-            (line,) = by_gid(ax, f"thrust_line:{k}")
-            np.testing.assert_allclose(line.get_xdata(), pp[:, 0])
-            np.testing.assert_allclose(line.get_ydata(), pp[:, 2])
-        assert ax.get_aspect() == 1.0
-        outlines = [p for p in ax.patches if str(p.get_gid()).startswith("block:")]
-        assert len(outlines) == planar.sizes["block"]
-        # at the limit the line of thrust shows the hinges of the mechanism
-        hinges = by_gid(ax, "hinges")
-        assert len(hinges) == (k_max in drawn)
-        if hinges:
-            hp = planar.hinge_point.sel(scenario=s).values[planar.interface_mode.sel(scenario=s).values == "hinge"]
-            np.testing.assert_allclose(hinges[0].get_xdata(), hp[:, 0])
+def test_unique_with_compliance(tmp_path: Path) -> None:
+    ds = run(tmp_path, "compliant", material="friction = 0.8\nnormal_stiffness = 1e6", extra="[scenarios.none]")
+    ok = data.optimal_steps(ds, "none")
+    assert np.all(ds.unique.sel(scenario="none").values[ok] == 1.0)
 
 
-# ---------------------------------------------------------------------------- mechanism
-@pytest.mark.parametrize("which", ["planar", "spatial"])
-def test_mechanism_hinges_at_hinge_points(which: str, request: pytest.FixtureRequest) -> None:
-    ds = request.getfixturevalue(which)
-    s = str(ds.scenario.values[0])
-    fig = plot.mechanism_view(ds, s)
-    (ax,) = axes_of(fig)
-    modes = ds.interface_mode.sel(scenario=s).values
-    hp = ds.hinge_point.sel(scenario=s).values[modes == "hinge"]
-    assert len(hp) >= 1
-    (marks,) = by_gid(ax, "hinges")
-    if which == "planar":
-        np.testing.assert_allclose(np.column_stack([marks.get_xdata(), marks.get_ydata()]), hp[:, [0, 2]])
-        assert ax.get_aspect() == 1.0
-        moved = [p for p in ax.patches if str(p.get_gid()).startswith("block:")]
-        ghosts = [p for p in ax.patches if str(p.get_gid()).startswith("ghost:")]
-        assert len(moved) == len(ghosts) == ds.sizes["block"]
-    else:
-        np.testing.assert_allclose(np.array(marks.get_data_3d()).T, hp)
-        assert by_gid(ax, "blocks-ghost")
-    assert "exaggerated" in ax.get_title() and f"{ds.lambda_max.sel(scenario=s).item():.3f}" in ax.get_title()
+def test_drawn_state_is_solved_not_interpolated(planar: xr.Dataset) -> None:
+    """lambda = 0.1 is not a step of the path (step 0.04): the runner solved it; it equals a
+    direct solve, and the figures read it."""
+    st = data.find_state(planar, "outward", 0.1)
+    assert st.step is not None and math.isclose(st.lam, 0.1)
+    direct = Analysis(semicircular_arch(), Material()).solve(0.1, 0.0, {"right": [0.001, 0, 0, 0, 0, 0]})
+    stored = planar.reaction.sel(scenario="outward", step=st.step).values
+    np.testing.assert_allclose(stored, direct.support_wrenches, atol=1e-8 * ARCH_WEIGHT)
 
 
-def test_mechanism_moves_the_blocks_that_move(planar: xr.Dataset) -> None:
-    fig = plot.mechanism_view(planar, "loads only")
-    (ax,) = axes_of(fig)
-    vel = planar.mechanism.sel(scenario="loads only")
-    for b in semicircular_arch().blocks:
-        (ghost,) = [p for p in ax.patches if p.get_gid() == f"ghost:{b.name}"]
-        (moved,) = [p for p in ax.patches if p.get_gid() == f"block:{b.name}"]
-        still = np.allclose(ghost.get_xy(), moved.get_xy())
-        assert still == (not np.any(np.abs(vel.sel(block=b.name).values) > 1e-9))
-        assert still or not b.support
+def test_plot_solves_missing_states_on_demand(planar: xr.Dataset, tmp_path: Path) -> None:
+    from tce.plot.states import missing_states, solve_states
+
+    todo = missing_states(planar, ["inward"], [0.13, 0.1, 7.0])
+    assert todo == {"inward": [0.13]}  # 0.1 is stored, 7 is above the limit
+    ds = solve_states(planar, todo)
+    st = data.find_state(ds, "inward", 0.13)
+    direct = Analysis(semicircular_arch(), Material()).solve(0.13, 0.0, {"right": [-0.001, 0, 0, 0, 0, 0]})
+    np.testing.assert_allclose(ds.pressure_point.sel(scenario="inward", step=st.step).values[1:-1],
+                               direct.pressure_points[1:-1], atol=1e-9)
+    for s in data.scenarios(ds):  # steps stay sorted by lambda in every scenario
+        lam = ds.lam.sel(scenario=s).values
+        lam = lam[np.isfinite(lam)]
+        assert np.all(np.diff(lam) > 0)
+    assert ds.sizes["step"] == planar.sizes["step"] + 1
 
 
-# ---------------------------------------------------------------------------- sheet and files
-def test_figure_sheet_panels(planar: xr.Dataset) -> None:
-    fig = plot.figure_sheet(planar)
-    n = planar.sizes["scenario"]
-    three_d = [ax for ax in fig.get_axes() if ax.name == "3d"]
-    flat = [ax for ax in fig.get_axes() if ax.name != "3d"]
-    assert len(three_d) == n  # assembly view per scenario
-    assert len(flat) == 2 + 2 * n  # thrust curves (H, V) + thrust line + mechanism per scenario
+def test_thrust_line_only_for_a_line_of_blocks(planar: xr.Dataset) -> None:
+    arch = semicircular_arch()
+    chain = data.chain_interfaces(arch)
+    assert chain is not None and len(chain) == len(arch.interfaces)
+    # consecutive interfaces of the chain share a block
+    for a, b in zip(chain, chain[1:]):
+        ia, ib = arch.interfaces[a], arch.interfaces[b]
+        assert {ia.a, ia.b} & {ib.a, ib.b}
+    assert data.chain_interfaces(hemispherical_dome(sectors=6, courses=3)) is None
+    fig = figures.thrust_lines(planar, data.scenarios(planar), [0.0, "max"])
+    (ax,) = fig.axes
+    for s in data.scenarios(planar):
+        lines = [ln for ln in ax.get_lines() if ln.get_gid() == f"thrust_line:{s}"]
+        assert len(lines) == 2
+    inside_figure(fig)
 
 
-def test_write_figures(planar: xr.Dataset, spatial: xr.Dataset, tmp_path) -> None:
-    both = [planar, spatial]
-    for ds in both:
-        out = tmp_path / ds.scenario.values[0].replace(" ", "_")
-        ds.to_netcdf(out.with_suffix(".nc"))  # default engine: h5py may be absent
-        reread = xr.open_dataset(out.with_suffix(".nc"))
-        paths = plot.write_figures(reread, out)
-        names = {p.name for p in paths}
-        n = ds.sizes["scenario"]
-        planar_model = bool((ds.model == "planar").all())
-        assert {"thrust.png", "sheet.png", "sheet.pdf"} <= names
-        assert sum(p.startswith("assembly_") for p in names) == n
-        assert sum(p.startswith("thrust_line_") for p in names) == (n if planar_model else 0)
-        assert sum(p.startswith("mechanism_") for p in names) == n
-        assert all(p.exists() and p.stat().st_size > 1000 for p in paths)
+def test_dome_views_are_thinned(tmp_path: Path) -> None:
+    text = """
+[study]
+name = "dome"
+[structure]
+type = "dome"
+sectors = 8
+courses = 6
+thickness = 0.5
+[material]
+friction = 0.8
+[loads]
+lambda_step = 0.2
+tolerance = 1e-2
+[scenarios.none]
+[plots]
+steps = ["max"]
+"""
+    report = run_study(parse_study(text, tmp_path / "d.toml"), tmp_path, jobs=1, plots=False)
+    ds = xr.load_dataset(report.results)
+    fig = figures.states_figure(ds, [("none", "max")])
+    (ax,) = fig.axes
+    (shafts,) = [c for c in ax.collections if c.get_gid() == "resultants"]
+    st = data.find_state(ds, "none", "max")
+    res = ds.resultant.sel(scenario="none", step=st.step).values
+    mag = np.linalg.norm(res, axis=1)
+    assert np.isfinite(mag).sum() > figures.MAX_ARROWS == len(shafts.get_segments())
+    # the largest are the ones drawn: the smallest drawn is not smaller than the largest left out
+    lengths = np.linalg.norm(np.diff(np.array(shafts.get_segments()), axis=1)[:, 0], axis=1)
+    assert len(lengths) == figures.MAX_ARROWS
+    kept = np.sort(mag[np.isfinite(mag)])[::-1]
+    assert kept[figures.MAX_ARROWS - 1] >= kept[figures.MAX_ARROWS]
+    # hinge lines, grouped in one collection of segments inside their interfaces
+    segs = data.hinge_segments(ds, "none", data.assembly(ds))
+    assert len(segs) > 0
+    assert [c for c in ax.collections if c.get_gid() == "hinges"]
+    assert "thrust_lines" not in {t.kind for t in figure_tasks(ds, data.plot_spec(ds))}
+
+
+def test_hinge_lines_cross_the_arch(planar: xr.Dataset) -> None:
+    """In plane, the arch hinges about lines across its depth (along y, 0.25 m long)."""
+    segs = data.hinge_segments(planar, "outward", semicircular_arch())
+    assert len(segs) == 4  # the four-hinge mechanism
+    d = segs[:, 1] - segs[:, 0]
+    np.testing.assert_allclose(np.abs(d[:, 1]), 0.25, rtol=1e-9)
+    np.testing.assert_allclose(d[:, [0, 2]], 0.0, atol=1e-12)
+
+
+def test_one_mechanism_for_all_settlements(planar: xr.Dataset) -> None:
+    groups = data.mechanism_groups(planar, data.scenarios(planar))
+    assert groups == [data.scenarios(planar)]  # the limit analysis does not see settlements
+
+
+def test_base_figure(spatial: xr.Dataset) -> None:
+    names = data.scenarios(spatial)
+    fig = figures.base_figure(spatial, names, ["max"])
+    assert len([ax for ax in fig.axes if ax.axison]) == 2  # left|v01 and v14|right
+    ax = fig.axes[0]
+    for s in names:
+        (pt,) = [ln for ln in ax.get_lines() if ln.get_gid() == f"base:left|v01:{s}"]
+        st = data.find_state(spatial, s, "max")
+        p = spatial.pressure_point.sel(scenario=s, step=st.step, interface="left|v01").values
+        np.testing.assert_allclose(np.column_stack(pt.get_data())[0], p[:2])
+        # on the edge y = d/2 about which the arch rocks (lambda_max within 1e-6 of the limit)
+        assert math.isclose(p[1], 0.125, abs_tol=1e-5)
+    inside_figure(fig)
+
+
+# ---------------------------------------------------------------------------- sweeps and files
+@pytest.fixture(scope="module")
+def sweep(tmp_path_factory: pytest.TempPathFactory) -> xr.Dataset:
+    """15 scenarios: more than the per-scenario figures draw by default."""
+    extra = """
+[sweep]
+friction = [0.4, 0.8, 1.6]
+magnitude = [0.5, 1.0, 2.0]
+[scenarios.none]
+[scenarios.outward]
+right = [0.001, 0, 0, 0, 0, 0]
+[scenarios.transversal]
+right = [0, 0.001, 0, 0, 0, 0]
+"""
+    return run(tmp_path_factory.mktemp("sweep"), "sweep", material="friction = 0.8", extra=extra, step=0.1,
+               tolerance=1e-2)
+
+
+def test_large_sweep_draws_summaries_only(sweep: xr.Dataset, tmp_path: Path) -> None:
+    assert sweep.sizes["scenario"] == 27 > 12
+    spec = data.plot_spec(sweep)
+    assert spec.scenarios == ()
+    files = write_figures(sweep, tmp_path)
+    assert [f.name for f in files] == ["summary.png"]
+    fig = figures.summary_figure(sweep)
+    # lambda_max does not depend on the settlement cases without an out-of-plane motion, nor on the
+    # magnitude: the cases with equal answers share a row, the magnitudes one line
+    rows = {ax.get_title(loc="left") for ax in fig.axes}
+    assert any("none" in r and "outward" in r for r in rows)
+    for ax in fig.axes:
+        if ax.get_xlabel().startswith("friction"):
+            lines = [ln for ln in ax.get_lines() if str(ln.get_gid()).startswith("summary:")]
+            assert len(lines) == 1 and "identical" in lines[0].get_label()
+    inside_figure(fig)
+
+
+def test_sweep_colours_by_parameter_and_styles_by_case(sweep: xr.Dataset) -> None:
+    names = [s for s in data.scenarios(sweep) if s.endswith("magnitude=1")]
+    cases = list(dict.fromkeys(str(sweep.settlement.sel(scenario=n).values) for n in names))
+    fig = figures.thrust_curves(sweep, names)
+    for ax in fig.axes:
+        for ln in ax.get_lines():
+            if not str(ln.get_gid()).startswith("reaction:"):
+                continue
+            s = ln.get_gid().split(":")[2]
+            mu = float(sweep.friction.sel(scenario=s))
+            case = str(sweep.settlement.sel(scenario=s).values)
+            assert ln.get_color() == figures.COLOURS[[0.4, 0.8, 1.6].index(mu)]
+            assert ln.get_linestyle() == Line2D([], [], linestyle=figures.LINESTYLES[cases.index(case)]).get_linestyle()
+    inside_figure(fig)
+
+
+def test_write_figures_each_once(planar: xr.Dataset, tmp_path: Path) -> None:
+    files = write_figures(planar, tmp_path)
+    names = [f.name for f in files]
+    assert names == ["thrust.png", "states.png", "thrust_lines.png", "mechanism.png", "view.html"]
+    assert all(f.stat().st_size > 1000 for f in files)
+    assert not list(tmp_path.glob(".*.tmp"))

@@ -16,11 +16,12 @@ solves a scene and explains a non-``optimal`` answer:
 No finite limit (:func:`explain_no_limit`, :func:`no_limit_reason`): when the load path
 reaches ``lambda_cap`` (outcome ``no_limit``) or the direct limit is unbounded, the reason
 in words. An unbounded direct limit has a certificate: a force state ``F`` with
-``A_eq F + b_lat = 0`` that is admissible, i.e. a way to carry the lateral load with no
-self-weight (:meth:`tce.core.limit.LimitSolver.lateral_ray`); any multiple of it can be added
-to any admissible state, so no load collapses the structure. The interfaces it loads are the
-ones responsible. If the contacts of the free blocks with the supports can carry it alone,
-the lateral load goes straight into a support; otherwise the blocks lock against each other.
+``A_eq F + b_live = 0`` that is admissible, i.e. a way to carry the live load (the lateral
+load of the paper's pattern) with no self-weight
+(:meth:`tce.core.limit.LimitSolver.lateral_ray`); any multiple of it can be added to any
+admissible state, so no load collapses the structure. The interfaces it loads are the ones
+responsible. If the contacts of the free blocks with the supports can carry it alone, the
+live load goes straight into a support; otherwise the blocks lock against each other.
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from numpy.typing import ArrayLike
 
 from ..core.analysis import Analysis
 from ..core.limit import LimitSolver, Mechanism
+from ..core.loads import LoadPattern, as_pattern
 from ..core.result import Result
 from ..core.solve import TCEResult
 from ..structures.assembly import Assembly
@@ -118,7 +120,7 @@ class NoLimit:
     Attributes
     ----------
     reason : str
-        ``into_support`` (the free blocks' contacts with the supports carry the lateral load
+        ``into_support`` (the free blocks' contacts with the supports carry the live load
         without limit), ``locked`` (the blocks lock against each other and the supports),
         ``beyond_cap`` (the direct limit is finite but above the largest load tried),
         ``finite`` (there is a finite limit) or ``undecided`` (the direct limit analysis did
@@ -126,9 +128,9 @@ class NoLimit:
     summary : str
         The explanation in words.
     interfaces : list of str
-        ``"A|B"`` of the interfaces that carry the lateral load without limit, most loaded first.
+        ``"A|B"`` of the interfaces that carry the live load without limit, most loaded first.
     blocks : list of str
-        Free blocks that pass their lateral load straight into a support.
+        Free blocks that pass their live load straight into a support.
     """
 
     reason: str
@@ -142,24 +144,31 @@ def _names(items: list[str]) -> str:
     return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
 
 
-def explain_no_limit(analysis: Analysis, alpha: float = 0.0, reached: float | None = None) -> NoLimit:
-    """Why lateral loads in direction ``alpha`` (degrees) find no collapse (module docstring).
+def explain_no_limit(
+    analysis: Analysis, alpha: float | None = None, reached: float | None = None, loads: LoadPattern | None = None
+) -> NoLimit:
+    """Why lateral loads in direction ``alpha`` (degrees), or the live loads of the pattern
+    ``loads``, find no collapse (module docstring).
 
     Parameters
     ----------
     analysis : Analysis
-    alpha : float
+    alpha : float, optional
     reached : float, optional
         The largest multiplier a load path found admissible (for the message when the
         direct limit is finite).
+    loads : LoadPattern, optional
 
     Returns
     -------
     NoLimit
     """
-    lim = analysis.limit(alpha)
+    pattern = as_pattern(alpha, loads)
+    where = f"in direction {pattern.alpha:g} deg" if pattern.default else "for the live loads of the pattern"
+    what = "lateral load" if pattern.default else "live load"
+    lim = analysis.limit(loads=pattern)
     if lim.status == "optimal":
-        lmax = f"lambda_max = {lim.lambda_max:.6g} in direction {alpha:g} deg"
+        lmax = f"lambda_max = {lim.lambda_max:.6g} {where}"
         if reached is not None and lim.lambda_max > reached:
             return NoLimit("beyond_cap", f"the direct limit {lmax} lies beyond the largest load tried "
                            f"(lambda = {reached:g}); raise [loads] lambda_cap")
@@ -168,34 +177,36 @@ def explain_no_limit(analysis: Analysis, alpha: float = 0.0, reached: float | No
     if lim.status != "unbounded":
         return NoLimit(
             "undecided",
-            f"no collapse found, and the direct limit analysis in direction {alpha:g} deg is {lim.status} ({lim.message})",
+            f"no collapse found, and the direct limit analysis {where} is {lim.status} ({lim.message})",
         )
     a = analysis.assembly
     model = analysis.model(lim.model)
     solver = LimitSolver(model, analysis.material)
     sup = set(a.support_indices)
     touches = np.array([a.interfaces[k].a in sup or a.interfaces[k].b in sup for k in model.contact_interface], bool)
-    ray = solver.lateral_ray(alpha, touches)
+    ray = solver.lateral_ray(contacts=touches, loads=pattern)
     reason = "into_support" if ray is not None else "locked"
     if ray is None:
-        ray = solver.lateral_ray(alpha)
+        ray = solver.lateral_ray(loads=pattern)
     if ray is None:
-        return NoLimit("undecided", f"the direct limit in direction {alpha:g} deg is unbounded, but no force state "
-                       "carrying the lateral load alone was found")
+        return NoLimit("undecided", f"the direct limit {where} is unbounded, but no force state "
+                       f"carrying the {what} alone was found")
     load = np.zeros(len(a.interfaces))
     np.add.at(load, model.contact_interface, np.linalg.norm(ray, axis=1))
     carried = [int(k) for k in np.argsort(-load, kind="stable") if load[k] > 1e-6 * load.max()]
     names = list(dict.fromkeys(f"{a.names[a.interfaces[k].a]}|{a.names[a.interfaces[k].b]}" for k in carried))
     direct = {i.a if i.b in sup else i.b for i in (a.interfaces[k] for k in carried) if (i.a in sup) != (i.b in sup)}
     bearing = [a.names[i] for i in a.free_indices if i in direct]
-    held = [a.names[i] for i in a.free_indices if i not in direct]
+    # the blocks the ray passes the load through (all of them for the lateral pattern)
+    involved = {b for k in carried for b in (a.interfaces[k].a, a.interfaces[k].b)}
+    held = [a.names[i] for i in a.free_indices if i not in direct and i in involved]
     supports = [a.names[i] for i in a.support_indices if any(i in (a.interfaces[k].a, a.interfaces[k].b) for k in carried)]
     listed = _names(names[:NAMED] + ([f"{len(names) - NAMED} more"] if len(names) > NAMED else []))
     s_sup = f"support{'s' if len(supports) > 1 else ''} {_names(supports)}"
     heyman = " (the contacts have no friction limit: Heyman material)" if analysis.material.friction is None else ""
     if reason == "into_support":
         summary = (
-            f"no finite collapse load in direction {alpha:g} deg: the lateral load goes straight into the {s_sup}: "
+            f"no finite collapse load {where}: the {what} goes straight into the {s_sup}: "
             f"{'block' if len(bearing) == 1 else 'blocks'} {_names(bearing)} "
             f"{'bears' if len(bearing) == 1 else 'bear'} on {'it' if len(supports) == 1 else 'them'} through "
             f"{listed}, which carry any multiple of it under rigid contacts{heyman}"
@@ -211,8 +222,8 @@ def explain_no_limit(analysis: Analysis, alpha: float = 0.0, reached: float | No
                 f"{'is' if len(held) == 1 else 'are'} held between {'its' if len(held) == 1 else 'their'} neighbours"
             )
         summary = (
-            f"no finite collapse load in direction {alpha:g} deg: the blocks lock under rigid contacts: {who}, "
-            f"so any multiple of the lateral load is carried through {listed}; no collapse mechanism exists{heyman}"
+            f"no finite collapse load {where}: the blocks lock under rigid contacts: {who}, "
+            f"so any multiple of the {what} is carried through {listed}; no collapse mechanism exists{heyman}"
         )
     return NoLimit(reason, summary, names, bearing)
 
@@ -229,17 +240,20 @@ def no_limit_reason(analysis: Analysis, lp: LoadPathResult) -> str:
     if lp.outcome != "no_limit":
         return ""
     reached = max((r.lam for r in lp.steps if r.ok), default=None)
-    return explain_no_limit(analysis, lp.alpha, reached).summary
+    return explain_no_limit(analysis, reached=reached, loads=lp.loads).summary
 
 
 def diagnose(
     analysis: Analysis,
     lam: float = 0.0,
-    alpha: float = 0.0,
+    alpha: float | None = None,
     settlements: Mapping[str, ArrayLike] | None = None,
+    loads: LoadPattern | None = None,
 ) -> Diagnosis:
-    """Solve one scene and explain its status (see module docstring)."""
+    """Solve one scene (multiplier ``lam`` of the pattern ``loads``, or of the lateral pattern
+    in direction ``alpha``) and explain its status (see module docstring)."""
     t0 = time.perf_counter()
+    pattern = as_pattern(alpha, loads)
     solved: list[Result] = []
 
     def done(
@@ -251,22 +265,22 @@ def diagnose(
             solve_time=sum(r.solve_time for r in solved), wall_time=time.perf_counter() - t0,
         )
 
-    result = analysis.solve(lam, alpha, settlements)
+    result = analysis.solve(lam, settlements=settlements, loads=pattern)
     solved.append(result)
     mu = analysis.material.friction
     a = analysis.assembly
     if result.status == "optimal":
         bind = binding_interfaces(result, a, mu)
         summary = f"admissible at lambda = {lam:g}; {len(bind)} interface limit(s) reached"
-        if analysis.limit(alpha).status == "unbounded":
-            why = explain_no_limit(analysis, alpha)
+        if analysis.limit(loads=pattern).status == "unbounded":
+            why = explain_no_limit(analysis, loads=pattern)
             return done("optimal", f"{summary}; {why.summary}", bind, no_limit=why)
         return done("optimal", summary, bind)
     if result.status == "infeasible":
-        lim = analysis.limit(alpha)
+        lim = analysis.limit(loads=pattern)
         solved.append(lim)
         if lim.status == "optimal" and lam > lim.lambda_max:
-            at = analysis.solve(lim.lambda_max * (1 - 1e-9), alpha, settlements)
+            at = analysis.solve(lim.lambda_max * (1 - 1e-9), settlements=settlements, loads=pattern)
             solved.append(at)
             bind = binding_interfaces(at, a, mu, tol=1e-5)
             slots = analysis.model(lim.model).interfaces
@@ -277,8 +291,9 @@ def diagnose(
             )
             return done(
                 "infeasible",
-                f"lambda = {lam:g} exceeds lambda_max = {lim.lambda_max:.6g} in direction {alpha:g} deg; "
-                f"the collapse mechanism: {what}",
+                f"lambda = {lam:g} exceeds lambda_max = {lim.lambda_max:.6g} "
+                + (f"in direction {pattern.alpha:g} deg" if pattern.default else "of the load pattern's live part")
+                + f"; the collapse mechanism: {what}",
                 bind,
                 lim.mechanism,
             )
@@ -290,7 +305,7 @@ def diagnose(
             lim.mechanism,
         )
     if result.status == "unbounded":
-        kind = analysis.model_kind(alpha, settlements)
+        kind = analysis.model_kind(settlements=settlements, loads=pattern)
         solver = analysis.solver(kind)
         d = solver.recession_direction(result.settlements)
         model = solver.model

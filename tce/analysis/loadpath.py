@@ -1,28 +1,39 @@
 """Load-path driver: raise lambda until the TCE has no admissible answer, then bisect.
 
-For one scenario (support motions, possibly none), a lateral direction ``alpha`` and the
-analysis' material, :func:`load_path` solves the TCE at ``lam = 0, step, 2 step, ...``
+For one scenario (support motions, possibly none), a load pattern (the lateral direction
+``alpha``, or a :class:`tce.core.loads.LoadPattern` whose live part lambda multiplies) and
+the analysis' material, :func:`load_path` solves the TCE at ``lam = 0, step, 2 step, ...``
 until the first step whose status is not ``optimal`` (``numerical`` steps are kept,
 reported and stepped over: they are never taken as the limit). When that step is
-``infeasible``, it bisects between the last ``optimal`` and the first ``infeasible``
-multiplier until ``hi - lo <= max(atol, rtol * hi)`` or until no float lies between them
-(so any tolerance ends); ``lambda_max`` is the last ``optimal`` multiplier (a safe lower
-bound). A path never takes more than :data:`MAX_INCREMENTS` increments. Every run also reports the direct
-lambda_max (:mod:`tce.limit`) and the gap, so the bisection is checked each time.
+``infeasible``, it narrows the bracket between the last ``optimal`` and the first
+``infeasible`` multiplier until ``hi - lo <= max(atol, rtol * hi)`` or until no float lies
+between them (so any tolerance ends); ``lambda_max`` is the last ``optimal`` multiplier (a
+safe lower bound). A path never takes more than :data:`MAX_INCREMENTS` increments. Every run
+also reports the direct lambda_max (:mod:`tce.limit`) and the gap, so the answer is checked
+each time.
+
+Narrowing (``bracket``): ``"direct"`` (default) first solves the two ends of a bracket
+narrower than the tolerance around the direct lambda_max (:func:`_confirm_direct`): an
+``optimal`` lower end and an ``infeasible`` upper end confirm it in two solves; otherwise
+what they showed narrows the bracket and bisection goes on from there. ``"bisection"``
+halves the bracket from the last increment. Both give a verified admissible ``lambda_max``
+within the tolerance of the limit; the direct bracket takes about half the solves.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..core.analysis import Analysis
 from ..core.limit import LimitResult
+from ..core.loads import LoadPattern, as_pattern
 from ..core.result import Result
 from ..core.solve import TCEResult
 
@@ -47,7 +58,9 @@ class LoadPathResult(Result):
         not be decided, or no optimal step lies within the tolerance of the first
         inadmissible one).
     alpha : float
-        Direction of the lateral loads (degrees).
+        Direction of the lateral loads (degrees; NaN when the pattern has no lateral part).
+    loads : LoadPattern
+        The load pattern.
     settlements : dict
         Support motions of the scenario ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad).
     steps : list of TCEResult
@@ -57,7 +70,7 @@ class LoadPathResult(Result):
     lambda_upper : float
         Smallest multiplier found inadmissible (NaN if none).
     limit : LimitResult
-        The direct limit analysis in the same direction.
+        The direct limit analysis of the same pattern.
     n_solves : int
     solve_time : float
         Wall time inside the solver's solve calls, summed over the steps (s).
@@ -68,6 +81,7 @@ class LoadPathResult(Result):
     OK = ("limit",)
 
     alpha: float
+    loads: LoadPattern = field(repr=False)
     settlements: dict
     steps: list[TCEResult] = field(repr=False)
     lambda_max: float
@@ -102,6 +116,39 @@ class LoadPathResult(Result):
         return ok[0] if ok else None
 
 
+def _confirm_direct(
+    run: Callable[[float], TCEResult], lo: float, hi: float, direct: float, atol: float, rtol: float
+) -> tuple[float, float]:
+    """Narrow the bracket ``(lo, hi)`` (``lo`` optimal, ``hi`` infeasible) around ``direct``.
+
+    Solves the TCE at ``direct -+ 0.49 w`` (``w = max(atol, rtol * direct)``, the bisection's
+    tolerance; ends outside ``(lo, hi)`` are not solved): an ``optimal`` lower end and an
+    ``infeasible`` upper end confirm the limit. Either way the bracket becomes the narrowest
+    one the solved ends support (a ``numerical`` end tells nothing), so bisection can go on
+    from it. With no finite direct value, ``(lo, hi)`` is returned unchanged.
+
+    Returns
+    -------
+    (float, float)
+        The last ``optimal`` multiplier and the first ``infeasible`` one.
+    """
+    if not (math.isfinite(direct) and lo < direct < hi):
+        return lo, hi
+    half = 0.49 * max(atol, rtol * abs(direct))
+    for lam in (direct - half, direct + half):
+        if not lo < lam < hi:
+            continue
+        status = run(lam).status
+        if status == "optimal":
+            lo = lam
+        elif status == "infeasible":
+            hi = lam
+            break  # nothing above it is admissible
+        else:
+            break  # undecided: bisection decides
+    return lo, hi
+
+
 def _first_inadmissible(lo: float | None, steps: list[TCEResult]) -> str:
     """Outcome when an increment is infeasible: ``limit`` above an admissible step;
     ``infeasible`` only when every step before it was decided too (at lambda = 0, nothing
@@ -113,20 +160,22 @@ def _first_inadmissible(lo: float | None, steps: list[TCEResult]) -> str:
 
 def load_path(
     analysis: Analysis,
-    alpha: float = 0.0,
+    alpha: float | None = None,
     settlements: Mapping[str, ArrayLike] | None = None,
     step: float = 0.02,
     atol: float = 1e-6,
     rtol: float = 0.0,
     lam_cap: float = 100.0,
+    loads: LoadPattern | None = None,
+    bracket: Literal["direct", "bisection"] = "direct",
 ) -> LoadPathResult:
-    """Increment lambda by ``step`` from 0, then bisect the first inadmissible increment.
+    """Increment lambda by ``step`` from 0, then narrow the first inadmissible increment.
 
     Parameters
     ----------
     analysis : Analysis
-    alpha : float
-        Lateral direction (degrees, from +x towards +y).
+    alpha : float, optional
+        Lateral direction (degrees, from +x towards +y) of the default pattern (0 when None).
     settlements : dict, optional
         Support motions (m, rad) about each support centroid.
     step : float
@@ -136,6 +185,11 @@ def load_path(
     lam_cap : float
         Largest multiplier tried before the path gives up (``outcome = "no_limit"``);
         ``lam_cap / step`` may not exceed :data:`MAX_INCREMENTS`.
+    loads : LoadPattern, optional
+        The load pattern instead of ``alpha`` (its live part is multiplied by lambda).
+    bracket : {"direct", "bisection"}
+        How the last increment is narrowed (module docstring): first a bracket around the
+        direct lambda_max, or bisection alone.
 
     Returns
     -------
@@ -145,15 +199,18 @@ def load_path(
         raise ValueError(f"step must be a finite number > 0, got {step!r}")
     if not (atol >= 0 and rtol >= 0 and (atol > 0 or rtol > 0)):
         raise ValueError(f"tolerances must be >= 0 and not both 0, got atol={atol!r}, rtol={rtol!r}")
+    if bracket not in ("direct", "bisection"):
+        raise ValueError(f"bracket must be 'direct' or 'bisection', got {bracket!r}")
     if not lam_cap / step <= MAX_INCREMENTS:
         raise ValueError(
             f"lam_cap / step = {lam_cap / step:.3g} load increments, more than {MAX_INCREMENTS}: "
             "use a larger step or a smaller lam_cap"
         )
     t0 = time.perf_counter()
+    pattern = as_pattern(alpha, loads)
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in (settlements or {}).items()}
     steps: list[TCEResult] = []
-    solve_at = analysis.path(alpha, sett)
+    solve_at = analysis.path(settlements=sett, loads=pattern)
 
     def run(lam: float) -> TCEResult:
         r = solve_at(lam)
@@ -181,13 +238,15 @@ def load_path(
         outcome = "numerical"  # the last steps up to lam_cap are undecided: not known to stand
     if outcome == "limit":
         assert lo is not None and hi is not None
+        if bracket == "direct":
+            lo, hi = _confirm_direct(run, lo, hi, analysis.limit(loads=pattern).lambda_max, atol, rtol)
         lo_bracket = lo  # admissible end of the bracket; `lo` stays the last optimal step
         while hi - lo_bracket > max(atol, rtol * abs(hi)):
             mid = 0.5 * (lo_bracket + hi)
             if not lo_bracket < mid < hi:
                 break  # the bracket is two neighbouring floats: no multiplier lies between them
             r = run(mid)
-            direct = analysis.limit(alpha).lambda_max
+            direct = analysis.limit(loads=pattern).lambda_max
             if r.status == "optimal":
                 lo = lo_bracket = mid
             elif r.status == "infeasible":
@@ -210,12 +269,13 @@ def load_path(
     return LoadPathResult(
         status=outcome,
         message=f"{outcome} after {len(steps)} solves",
-        alpha=float(alpha),
+        alpha=pattern.direction,
+        loads=pattern,
         settlements=sett,
         steps=steps,
         lambda_max=float(lam_max),
         lambda_upper=float(hi) if hi is not None else float("nan"),
-        limit=analysis.limit(alpha),
+        limit=analysis.limit(loads=pattern),
         n_solves=len(steps),
         solve_time=float(sum(s.solve_time for s in steps)),
         wall_time=time.perf_counter() - t0,

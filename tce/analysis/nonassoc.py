@@ -56,8 +56,9 @@ from numpy.typing import NDArray
 from ..core.analysis import Analysis
 from ..core.conic import cone_rows, cone_violation
 from ..core.limit import LimitResult, LimitSolver, Mechanism
+from ..core.loads import LoadPattern, as_pattern, scene_vectors
 from ..core.material import Material
-from ..core.model import Model, lateral_direction
+from ..core.model import Model
 from ..core.result import Result
 
 __all__ = ["NonAssocResult", "NonAssocSolver", "nonassociative_limit"]
@@ -183,13 +184,14 @@ class NonAssocSolver:
             compressive_strength=material.compressive_strength,
         )
 
-    def solve(self, alpha: float = 0.0, start: LimitResult | None = None) -> NonAssocResult:
-        """The bracket for lateral loads in direction ``alpha`` (degrees); ``start`` is the
-        associative answer when the caller has it (:meth:`tce.core.analysis.Analysis.limit`)."""
-        model = self.model
-        if model.kind == "planar" and abs(lateral_direction(alpha) @ model.plane.m) > 1e-12:
-            raise ValueError("lateral direction out of the planar model's plane: use the spatial model")
-        return self.solve_loads(model.b_dead, model.b_lateral(alpha), alpha, start)
+    def solve(
+        self, alpha: float | None = None, start: LimitResult | None = None, loads: LoadPattern | None = None
+    ) -> NonAssocResult:
+        """The bracket for lateral loads in direction ``alpha`` (degrees), or for the live
+        loads of the pattern ``loads``; ``start`` is the associative answer when the caller
+        has it (:meth:`tce.core.analysis.Analysis.limit`)."""
+        pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
+        return self.solve_loads(b_fixed, b_live, pattern.direction, start)
 
     def solve_loads(
         self,
@@ -273,11 +275,18 @@ class NonAssocSolver:
 
 
 def nonassociative_limit(
-    analysis: Analysis, alpha: float = 0.0, max_iter: int = 100, tol: float = 1e-6, relaxation: float = 0.5
+    analysis: Analysis,
+    alpha: float | None = None,
+    max_iter: int = 100,
+    tol: float = 1e-6,
+    relaxation: float = 0.5,
+    loads: LoadPattern | None = None,
 ) -> NonAssocResult:
     """The associative/non-associative bracket of ``analysis`` for lateral loads in direction
-    ``alpha`` (degrees), on the model the scene runs on; iteration 0 is
-    :meth:`tce.core.analysis.Analysis.limit` (cached). See :class:`NonAssocSolver`."""
-    kind = analysis.model_kind(alpha)
+    ``alpha`` (degrees), or for the live loads of the pattern ``loads``, on the model the
+    scene runs on; iteration 0 is :meth:`tce.core.analysis.Analysis.limit` (cached). See
+    :class:`NonAssocSolver`."""
+    pattern = as_pattern(alpha, loads)
+    kind = analysis.model_kind(loads=pattern)
     solver = NonAssocSolver(analysis.model(kind), analysis.material, max_iter=max_iter, tol=tol, relaxation=relaxation)
-    return solver.solve(alpha, start=analysis.limit(alpha))
+    return solver.solve(start=analysis.limit(loads=pattern), loads=pattern)

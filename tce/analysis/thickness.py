@@ -1,8 +1,9 @@
 """Minimum thickness: the geometric safety factor of an arch (or any family of structures).
 
 :func:`minimum_thickness` bisects a geometric parameter ``t`` between a value where the
-structure stands under self-weight and one where it does not; "stands" means the TCE at
-``lam = 0`` with no support motion is ``optimal`` (an admissible force state exists).
+structure stands and one where it does not; "stands" means the TCE with no support motion
+is ``optimal`` (an admissible force state exists) under self-weight, or under a fixed load
+pattern (:class:`tce.core.loads.LoadPattern`) at a fixed multiplier ``lam`` of its live part.
 :func:`arch_minimum_thickness` applies it to the semicircular arch with a fixed centreline
 radius ``R`` and number of voussoirs, and reports ``t / R`` (Milankovitch's continuous
 value for a semicircular arch under self-weight is ``t/R = 0.1075``).
@@ -10,11 +11,13 @@ value for a semicircular arch under self-weight is ``t/R = 0.1075``).
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..core.analysis import Analysis
+from ..core.loads import LoadPattern
 from ..structures.arch import semicircular_arch
 from ..structures.params import check_positive, check_whole
 from ..structures.assembly import Assembly
@@ -56,8 +59,12 @@ def minimum_thickness(
     material: Material | None = None,
     tol: float = 1e-6,
     reference: float = 1.0,
+    loads: LoadPattern | None = None,
+    lam: float = 0.0,
+    progress: Callable[[int, int], None] | None = None,
 ) -> ThicknessResult:
-    """Bisect the thinnest ``t`` in ``[lo, hi]`` for which ``build(t)`` stands under self-weight.
+    """Bisect the thinnest ``t`` in ``[lo, hi]`` for which ``build(t)`` stands under self-weight
+    (or the pattern ``loads`` at multiplier ``lam``).
 
     Parameters
     ----------
@@ -71,13 +78,24 @@ def minimum_thickness(
         Relative width of the final bracket, ``(hi - lo) / hi``.
     reference : float
         Length that ``ratio`` divides by (m).
+    loads : LoadPattern, optional
+        Loads beside the self-weight, resolved against each structure built (block names
+        and ``on_top`` points must fit every thickness tried); default: self-weight alone.
+    lam : float
+        Multiplier of the pattern's live part (>= 0; default 0: its fixed part only).
+    progress : callable, optional
+        ``progress(solves done, solves expected)`` after each solve (the expected count is
+        an upper bound until the last call, where both are equal); e.g. a
+        :class:`tce.study.progress.Progress`.
 
     Raises
     ------
     ValueError
-        When ``hi`` does not stand or ``lo`` does.
+        When ``hi`` does not stand or ``lo`` does, or ``lam`` is negative or not finite.
     """
     check_positive(lo=lo, hi=hi, tol=tol, reference=reference)
+    if not (math.isfinite(lam) and lam >= 0):
+        raise ValueError(f"lam must be a finite number >= 0, got {lam!r}")
     if not lo < hi:
         raise ValueError(f"need lo < hi, got lo={lo}, hi={hi}")
     material = material or Material()
@@ -85,12 +103,17 @@ def minimum_thickness(
     n = undecided = 0
     solve_time = 0.0
 
+    # solves: the two ends, then one per halving of the bracket down to tol * lo (an upper bound)
+    expected = 2 + max(0, math.ceil(math.log2((hi - lo) / (tol * lo))))
+
     def stands(t: float) -> bool:
         nonlocal n, undecided, solve_time
         n += 1
-        r = Analysis(build(t), material).solve(0.0)
+        r = Analysis(build(t), material).solve(lam, loads=loads)
         undecided += r.status == "numerical"
         solve_time += r.solve_time
+        if progress is not None:
+            progress(n, max(expected, n))
         return r.status == "optimal"
 
     if not stands(hi):
@@ -103,6 +126,8 @@ def minimum_thickness(
             hi = mid
         else:
             lo = mid
+    if progress is not None:
+        progress(n, n)
     return ThicknessResult(
         status="optimal", message=f"bracket [{lo:.9g}, {hi:.9g}] m after {n} solves ({undecided} undecided)",
         solve_time=solve_time, wall_time=time.perf_counter() - t0,
@@ -116,10 +141,14 @@ def arch_minimum_thickness(
     depth: float = 0.25,
     material: Material | None = None,
     tol: float = 1e-6,
+    loads: LoadPattern | None = None,
+    lam: float = 0.0,
+    progress: Callable[[int, int], None] | None = None,
 ) -> ThicknessResult:
     """Minimum thickness of a semicircular arch with fixed centreline radius (m).
 
-    The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``.
+    The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``;
+    ``loads``, ``lam`` and ``progress`` as in :func:`minimum_thickness`.
     """
     check_positive(centre_radius=centre_radius, depth=depth)
     n = check_whole(voussoirs, "voussoirs")
@@ -128,5 +157,6 @@ def arch_minimum_thickness(
         return semicircular_arch(centre_radius - t / 2, t, depth, n)
 
     return minimum_thickness(
-        build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius
+        build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius, loads=loads,
+        lam=lam, progress=progress,
     )

@@ -2,9 +2,12 @@
 
 :class:`Analysis` builds the operators of the spatial and (when the geometry allows) the
 planar model once, keeps one warm solver per model, and routes each scene: ``auto`` uses
-the planar LP when the geometry has a vertical symmetry plane and the scene's lateral
-direction and support motions lie in it (``docs/conventions.md``, "model only what a scene needs"),
-the spatial model otherwise. Every answer records the model that ran.
+the planar LP when the geometry has a vertical symmetry plane and the scene's loads (the
+lateral direction, and every block's wrench of the other loads of its
+:class:`tce.core.loads.LoadPattern`) and support motions lie in it (``docs/conventions.md``,
+"model only what a scene needs"), the spatial model otherwise. Every answer records the
+model that ran. Every method takes a lateral direction ``alpha`` (the paper's pattern) or a
+load pattern ``loads``.
 """
 
 from __future__ import annotations
@@ -18,8 +21,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..structures.assembly import Assembly
 from .limit import LimitResult, LimitSolver
+from .loads import AppliedLoads, LoadPattern, as_pattern, resolve
 from .material import Material
-from .model import Model, build_model, find_plane, scene_in_plane
+from .model import Model, build_model, find_plane, motions_in_plane
 from .solve import SolverOptions, TCEResult, TCESolver, check_settlements
 
 __all__ = ["Analysis"]
@@ -58,7 +62,7 @@ class Analysis:
             raise ValueError("model='planar' asked for an assembly that is not planar")
         self._models: dict[str, Model] = {}
         self._solvers: dict[str, TCESolver] = {}
-        self._limits: dict[tuple[str, float], LimitResult] = {}
+        self._limits: dict[tuple[str, LoadPattern], LimitResult] = {}
         self._limit_solvers: dict[str, LimitSolver] = {}
 
     def reset_solvers(self) -> None:
@@ -66,21 +70,35 @@ class Analysis:
         depend on what was solved before (Clarabel keeps the first problem's scaling)."""
         self._solvers.clear()
 
-    def model_kind(self, alpha: float = 0.0, settlements: Settlements = None) -> str:
-        """The model a scene runs on (see module docstring)."""
-        return self.scene(alpha, settlements)[0]
+    def applied_loads(self, alpha: float | None = None, loads: LoadPattern | None = None) -> AppliedLoads:
+        """The pattern ``loads`` (or the default one in direction ``alpha``) resolved against
+        the assembly: the point forces it applies (:func:`tce.core.loads.resolve`).
 
-    def scene(self, alpha: float = 0.0, settlements: Settlements = None) -> tuple[str, NDArray[np.float64]]:
+        Raises
+        ------
+        ValueError
+            A non-finite ``alpha``, both ``alpha`` and a pattern with another one, or a load
+            that cannot be applied (:class:`tce.core.loads.LoadError`, naming its key).
+        """
+        return resolve(as_pattern(alpha, loads), self.assembly)
+
+    def model_kind(self, alpha: float | None = None, settlements: Settlements = None, loads: LoadPattern | None = None) -> str:
+        """The model a scene runs on (see module docstring)."""
+        return self.scene(alpha, settlements, loads)[0]
+
+    def scene(
+        self, alpha: float | None = None, settlements: Settlements = None, loads: LoadPattern | None = None
+    ) -> tuple[str, NDArray[np.float64]]:
         """The model a scene runs on and its stacked support motions ``U`` (m, rad), checked.
 
         Raises
         ------
         ValueError
-            A non-finite ``alpha``, an unknown support, a motion that is not 6 finite
-            numbers, or a scene out of plane when ``model='planar'`` was asked for.
+            A non-finite ``alpha``, loads that cannot be applied, an unknown support, a
+            motion that is not 6 finite numbers, or a scene out of plane when
+            ``model='planar'`` was asked for.
         """
-        if not np.isfinite(alpha):
-            raise ValueError(f"alpha must be a finite number, got {alpha!r}")
+        applied = self.applied_loads(alpha, loads)
         names = self.assembly.support_names
         sett = check_settlements(names, settlements)
         U = np.zeros((len(names), 6))
@@ -88,7 +106,7 @@ class Analysis:
             U[names.index(name)] = v
         if self.choice == "spatial" or self.plane is None:
             return "spatial", U.ravel()
-        inplane = scene_in_plane(self.plane, alpha, sett)
+        inplane = applied.in_plane(self.plane) and motions_in_plane(self.plane, sett)
         if self.choice == "planar" and not inplane:
             raise ValueError("model='planar' but the scene's loads or support motions leave the plane")
         return ("planar" if inplane else "spatial"), U.ravel()
@@ -105,34 +123,42 @@ class Analysis:
             self._solvers[kind] = TCESolver(self.model(kind), self.material, self.options)
         return self._solvers[kind]
 
-    def solve(self, lam: float = 0.0, alpha: float = 0.0, settlements: Settlements = None) -> TCEResult:
+    def solve(
+        self, lam: float = 0.0, alpha: float | None = None, settlements: Settlements = None, loads: LoadPattern | None = None
+    ) -> TCEResult:
         """Minimise the TCE for one scene (checked once, :meth:`scene`); see
         :meth:`tce.core.solve.TCESolver.solve`."""
         t0 = time.perf_counter()
         if not np.isfinite(lam):
             raise ValueError(f"lam must be a finite number, got {lam!r}")
-        kind, U = self.scene(alpha, settlements)
-        return self.solver(kind).solve_scene(lam, alpha, U, t0)
+        pattern = as_pattern(alpha, loads)
+        kind, U = self.scene(settlements=settlements, loads=pattern)
+        return self.solver(kind).solve_scene(lam, pattern, U, t0)
 
-    def path(self, alpha: float = 0.0, settlements: Settlements = None) -> Callable[[float], TCEResult]:
+    def path(
+        self, alpha: float | None = None, settlements: Settlements = None, loads: LoadPattern | None = None
+    ) -> Callable[[float], TCEResult]:
         """``solve(lam)`` for one scene at many multipliers: the scene is checked once, here
         (the load path's hot loop; each call is :meth:`solve` without the checks)."""
-        kind, U = self.scene(alpha, settlements)
+        pattern = as_pattern(alpha, loads)
+        kind, U = self.scene(settlements=settlements, loads=pattern)
 
         def solve(lam: float) -> TCEResult:
             t0 = time.perf_counter()
             if not np.isfinite(lam):
                 raise ValueError(f"lam must be a finite number, got {lam!r}")
-            return self.solver(kind).solve_scene(lam, alpha, U, t0)
+            return self.solver(kind).solve_scene(lam, pattern, U, t0)
 
         return solve
 
-    def limit(self, alpha: float = 0.0) -> LimitResult:
-        """Direct lambda_max in direction ``alpha`` (degrees), cached per direction."""
-        kind = self.model_kind(alpha)
-        key = (kind, float(alpha))
+    def limit(self, alpha: float | None = None, loads: LoadPattern | None = None) -> LimitResult:
+        """Direct lambda_max of the live part of the pattern ``loads`` (default: the lateral
+        pattern in direction ``alpha``, degrees), cached per pattern."""
+        pattern = as_pattern(alpha, loads)
+        kind = self.model_kind(loads=pattern)
+        key = (kind, pattern)
         if key not in self._limits:
             if kind not in self._limit_solvers:
                 self._limit_solvers[kind] = LimitSolver(self.model(kind), self.material)
-            self._limits[key] = self._limit_solvers[kind].solve(alpha)
+            self._limits[key] = self._limit_solvers[kind].solve(loads=pattern)
         return self._limits[key]

@@ -4,10 +4,11 @@ It states, from the model's operators and in physical units scaled by the total 
 ``W`` (forces ``F = W f``)::
 
     minimise    1/2 F' D F - U' B_sup F
-    subject to  A_eq F + b_dead + lx * b_lat_x + ly * b_lat_y = 0
+    subject to  A_eq F + rhs = 0
                 fn >= 0, ||ft|| <= mu fn  (spatial: second-order cones; planar: |ft| <= mu fn)
 
-with ``(lx, ly) = lam (cos alpha, sin alpha)``. The load and the support motions are cvxpy
+with ``rhs = b_fixed + lam * b_live`` of the load pattern (:mod:`tce.core.loads`; by default
+``b_dead + lam * b_lat(alpha)``). The right-hand side and the support motions are cvxpy
 Parameters, so one :class:`CvxTCE` can be re-solved (DPP), or rebuilt for every solve.
 Any solver cvxpy offers for the problem class can be used (CLARABEL, ECOS, SCS; HIGHS for
 rigid planar LPs).
@@ -23,10 +24,11 @@ import cvxpy as cp
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import Model
 from .result import Result
-from .solve import settlement_vector
+from .solve import check_settlements, settlement_vector
 
 __all__ = ["CvxResult", "CvxTCE"]
 
@@ -76,11 +78,11 @@ class CvxTCE:
         n = model.n_vars
         nc, dim = model.n_contacts, model.dim
         self.f = cp.Variable(n)
-        self.lxy = cp.Parameter(2)
+        self.rhs = cp.Parameter(model.A_eq.shape[0])
         self.U = cp.Parameter(model.B_sup.shape[0])
         F = W * self.f
         fr = cp.reshape(self.f, (nc, dim), order="C")
-        cons = [model.A_eq @ F + model.b_dead + model.b_lat @ self.lxy == 0, fr[:, 0] >= 0]
+        cons = [model.A_eq @ F + self.rhs == 0, fr[:, 0] >= 0]
         mu = material.friction
         if mu is not None:
             if mu == 0.0:
@@ -100,15 +102,25 @@ class CvxTCE:
     def solve(
         self,
         lam: float = 0.0,
-        alpha: float = 0.0,
+        alpha: float | None = None,
         settlements: Mapping[str, ArrayLike] | None = None,
         solver: str = "CLARABEL",
+        loads: LoadPattern | None = None,
         **solver_options,
     ) -> CvxResult:
-        """Solve for one scene with cvxpy solver ``solver`` (statuses: ``docs/conventions.md``)."""
+        """Solve for one scene (multiplier ``lam`` of the pattern ``loads``, or of the lateral
+        pattern in direction ``alpha``) with cvxpy solver ``solver`` (statuses:
+        ``docs/conventions.md``).
+
+        Raises
+        ------
+        ValueError
+            Loads that cannot be applied, a bad settlement, or a scene out of a planar model's plane.
+        """
         t0 = time.perf_counter()
-        a = np.deg2rad(alpha)
-        self.lxy.value = lam * np.array([np.cos(a), np.sin(a)])
+        sett = check_settlements(self.model.assembly.support_names, settlements)
+        _, b_fixed, b_live = scene_vectors(self.model, alpha, loads, sett)
+        self.rhs.value = b_fixed + lam * b_live
         self.U.value = settlement_vector(self.model, settlements)
         t1 = time.perf_counter()
         try:

@@ -33,8 +33,18 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
+from ..structures.geometry import cross
 
-__all__ = ["InterfaceMap", "Model", "Plane", "build_model", "find_plane", "lateral_direction"]
+__all__ = [
+    "InterfaceMap",
+    "Model",
+    "Plane",
+    "build_model",
+    "find_plane",
+    "lateral_direction",
+    "motions_in_plane",
+    "scene_in_plane",
+]
 
 ModelKind = Literal["spatial", "planar"]
 EZ = np.array([0.0, 0.0, 1.0])
@@ -44,19 +54,6 @@ def lateral_direction(alpha: float) -> NDArray[np.float64]:
     """Unit horizontal vector at ``alpha`` degrees from +x towards +y."""
     a = np.deg2rad(alpha)
     return np.array([np.cos(a), np.sin(a), 0.0])
-
-
-def _skew(r: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Stack of cross-product matrices: ``_skew(r)[k] @ v == cross(r[k], v)``."""
-    z = np.zeros(len(r))
-    return np.stack(
-        [
-            np.stack([z, -r[:, 2], r[:, 1]], axis=1),
-            np.stack([r[:, 2], z, -r[:, 0]], axis=1),
-            np.stack([-r[:, 1], r[:, 0], z], axis=1),
-        ],
-        axis=1,
-    )
 
 
 @dataclass(frozen=True)
@@ -72,37 +69,38 @@ class Plane:
         return np.cross(self.m, EZ)
 
 
-def _contact_groups(assembly: Assembly, plane: Plane, tol: float) -> list[list[np.ndarray]] | None:
-    """For each interface, the two groups of vertex indices projecting on each end of its trace.
+def _contact_groups(assembly: Assembly, plane: Plane, tol: float) -> tuple[NDArray[np.bool_], NDArray[np.bool_]] | None:
+    """Which interface vertices project on the low and on the high end of their interface's trace.
 
-    Returns None if some interface cannot be reduced exactly (normal out of plane, a vertex
+    Returns the masks ``(at_lo, at_hi)`` over all interface vertices
+    (:attr:`tce.structures.assembly.InterfaceTable.points` order), or None if some interface
+    cannot be reduced exactly (normal out of plane, a trace of no length, a vertex
     projecting inside the trace, or a group not balanced about the plane).
     """
-    groups = []
-    for itf in assembly.interfaces:
-        if abs(itf.normal @ plane.m) > tol:
+    t = assembly.interface_table
+    if not len(t):
+        return np.zeros(0, dtype=bool), np.zeros(0, dtype=bool)
+    if np.any(np.abs(t.normal @ plane.m) > tol):
+        return None
+    owner, start = t.vertex_interface, t.start[:-1]
+    eps = tol * assembly.size
+    rel = t.points - plane.origin
+    off = rel @ plane.m
+    s = np.einsum("ij,ij->i", rel, cross(plane.m[None, :], t.normal)[owner])
+    lo, hi = np.minimum.reduceat(s, start), np.maximum.reduceat(s, start)
+    if np.any(hi - lo <= eps):
+        return None
+    at_lo = np.abs(s - lo[owner]) <= eps
+    at_hi = np.abs(s - hi[owner]) <= eps
+    if not np.all(at_lo | at_hi):
+        return None
+    w = t.tributary
+    for mask in (at_lo, at_hi):
+        moment = np.bincount(owner[mask], weights=(w * off)[mask], minlength=len(t))
+        area = np.bincount(owner[mask], weights=w[mask], minlength=len(t))
+        if np.any(np.abs(moment) > eps * np.maximum(area, 1e-300)):
             return None
-        rel = itf.points - plane.origin
-        off = rel @ plane.m
-        t = np.cross(plane.m, itf.normal)
-        s = rel @ t
-        lo, hi = s.min(), s.max()
-        span = hi - lo
-        if span <= tol * assembly.size:
-            return None
-        at_lo = np.abs(s - lo) <= tol * assembly.size
-        at_hi = np.abs(s - hi) <= tol * assembly.size
-        if not np.all(at_lo | at_hi):
-            return None
-        w = itf.tributary
-        pair = []
-        for mask in (at_lo, at_hi):
-            idx = np.flatnonzero(mask)
-            if abs((w[idx] * off[idx]).sum()) > tol * assembly.size * max(w[idx].sum(), 1e-300):
-                return None
-            pair.append(idx)
-        groups.append(pair)
-    return groups
+    return at_lo, at_hi
 
 
 def find_plane(assembly: Assembly, tol: float = 1e-9) -> Plane | None:
@@ -224,18 +222,19 @@ class Model:
     @cached_property
     def vertex_frames(self) -> NDArray[np.float64]:
         """Interface frame of every 3D vertex, (nv, 3, 3), rows ``(n, t1, t2)``."""
-        return np.stack([self.assembly.interfaces[k].frame for k in self.vertex_interface])
+        return self.assembly.interface_table.frame[self.vertex_interface]
 
     @cached_property
     def vertex_slot(self) -> NDArray[np.int64]:
         """Position in ``interfaces`` of each 3D vertex's interface."""
-        slot = {k: i for i, k in enumerate(self.interfaces)}
-        return np.array([slot[k] for k in self.vertex_interface], dtype=np.int64)
+        slot = np.full(len(self.assembly.interfaces), -1, dtype=np.int64)
+        slot[list(self.interfaces)] = np.arange(len(self.interfaces))
+        return slot[self.vertex_interface]
 
     @cached_property
     def interface_map(self) -> InterfaceMap:
         """The arrays results need to report vertex forces, resultants and support wrenches."""
-        normals = np.array([self.assembly.interfaces[k].normal for k in self.interfaces]).reshape(-1, 3)
+        normals = self.assembly.interface_table.normal[list(self.interfaces)].reshape(-1, 3)
         return InterfaceMap(
             self.interfaces, self.lift, self.vertex_slot, self.vertex_points, self.vertex_frames, normals, self.B_sup
         )
@@ -271,7 +270,7 @@ class Model:
         ``shear_stiffness`` for the tangential components, ``s`` the interface's own
         stiffness multiplier (:attr:`tce.assembly.Interface.stiffness`).
         """
-        factor = np.array([i.stiffness for i in self.assembly.interfaces])[self.contact_interface]
+        factor = self.assembly.interface_table.stiffness[self.contact_interface]
         area = np.maximum(self.contact_area * factor, np.finfo(float).tiny)
         k = np.array([normal_stiffness] + [shear_stiffness] * (self.dim - 1))
         return (1.0 / (area[:, None] * k[None, :])).ravel()
@@ -284,13 +283,17 @@ class Model:
 
 
 def scene_in_plane(plane: Plane, alpha: float, settlements: dict[str, np.ndarray] | None, tol: float = 1e-12) -> bool:
-    """True when the lateral direction ``alpha`` and every support motion lie in ``plane``.
-
-    A motion ``(u, omega)`` is in plane when ``u . m = 0`` and ``omega`` is parallel to ``m``.
-    """
+    """True when the lateral direction ``alpha`` and every support motion lie in ``plane``
+    (:func:`motions_in_plane`; other loads: :meth:`tce.core.loads.AppliedLoads.in_plane`)."""
     d = lateral_direction(alpha)
     if abs(d @ plane.m) > 1e-12:
         return False
+    return motions_in_plane(plane, settlements, tol)
+
+
+def motions_in_plane(plane: Plane, settlements: dict[str, np.ndarray] | None, tol: float = 1e-12) -> bool:
+    """True when every support motion lies in ``plane``: a motion ``(u, omega)`` is in plane
+    when ``u . m = 0`` and ``omega`` is parallel to ``m`` (relative to its largest entry)."""
     for u in (settlements or {}).values():
         u = np.asarray(u, dtype=float)
         scale = max(np.abs(u).max(), 1e-300)
@@ -302,39 +305,65 @@ def scene_in_plane(plane: Plane, alpha: float, settlements: dict[str, np.ndarray
     return True
 
 
-def _block_wrench_matrix(
+def _wrench_operators(
     assembly: Assembly,
-    points: np.ndarray,
-    directions: np.ndarray,
-    contact_interface: np.ndarray,
-) -> sp.csr_matrix:
-    """Wrench on every block (6 rows each, about its centroid) of unit force components.
+    points: NDArray[np.float64],
+    directions: NDArray[np.float64],
+    contact_interface: NDArray[np.int64],
+    basis: NDArray[np.float64] | None = None,
+) -> tuple[sp.csc_matrix, sp.csr_matrix]:
+    """Equilibrium rows of the free blocks and support wrenches of unit force components.
 
     ``directions[k, j]`` is the global direction of force component ``j`` of contact ``k``
-    (on interface ``contact_interface[k]``); the force acts with + on block B and - on
-    block A of that interface.
+    (at ``points[k]``, on interface ``contact_interface[k]``); the force acts with + on
+    block B and - on block A of that interface. The wrench ``(F, M)`` on a block is about
+    its centroid. ``A_eq`` stacks, per free block, the wrench projected on ``basis`` (rows;
+    identity for the spatial model); ``B_sup``, per support, minus the full wrench on it (the
+    wrench the support exerts on the structure). Both are assembled in one call each.
+
+    Returns
+    -------
+    A_eq : (r * n_free, nc * dim) CSC
+    B_sup : (6 * n_sup, nc * dim) CSR
     """
     nc, dim = directions.shape[:2]
-    a = np.array([i.a for i in assembly.interfaces])[contact_interface]
-    b = np.array([i.b for i in assembly.interfaces])[contact_interface]
-    rows, cols, vals = [], [], []
-    col = (np.arange(nc)[:, None] * dim + np.arange(dim)[None, :])  # (nc, dim)
-    for block, sign in ((b, 1.0), (a, -1.0)):
-        r = points - assembly.centroids[block]
-        moment = np.einsum("kij,kdj->kdi", _skew(r), directions)  # (nc, dim, 3)
-        wrench = sign * np.concatenate([directions, moment], axis=2)  # (nc, dim, 6)
-        rr = block[:, None, None] * 6 + np.arange(6)[None, None, :]
-        rows.append(np.broadcast_to(rr, wrench.shape).ravel())
-        cols.append(np.broadcast_to(col[:, :, None], wrench.shape).ravel())
-        vals.append(wrench.ravel())
-    return sp.csr_matrix(
-        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-        shape=(6 * len(assembly.blocks), nc * dim),
-    )
+    t = assembly.interface_table
+    nb = len(assembly.blocks)
+    is_sup = np.zeros(nb, dtype=bool)
+    is_sup[list(assembly.support_indices)] = True
+    rank = np.empty(nb, dtype=np.int64)  # position among the free blocks, or among the supports
+    rank[~is_sup] = np.arange(nb - is_sup.sum())
+    rank[is_sup] = np.arange(is_sup.sum())
+    r = 6 if basis is None else len(basis)
+    col = np.broadcast_to((np.arange(nc)[:, None] * dim + np.arange(dim)[None, :])[:, :, None], (nc, dim, 6))
+    eq: list[tuple[NDArray, NDArray, NDArray]] = []
+    sup: list[tuple[NDArray, NDArray, NDArray]] = []
+    for block, sign in ((t.b[contact_interface], 1.0), (t.a[contact_interface], -1.0)):
+        arm = points - assembly.centroids[block]
+        wrench = sign * np.concatenate([directions, cross(arm[:, None, :], directions)], axis=2)  # (nc, dim, 6)
+        free, on_sup = ~is_sup[block], is_sup[block]
+        w6 = wrench[on_sup]
+        rows6 = rank[block[on_sup]][:, None, None] * 6 + np.arange(6)
+        sup.append((np.broadcast_to(rows6, w6.shape).ravel(), col[on_sup].ravel(), -w6.ravel()))
+        wf = wrench[free] if basis is None else wrench[free] @ basis.T  # (k, dim, r)
+        rows = rank[block[free]][:, None, None] * r + np.arange(r)
+        eq.append((np.broadcast_to(rows, wf.shape).ravel(), col[free][:, :, :r].ravel(), wf.ravel()))
+
+    def assemble(parts: list, shape: tuple[int, int], fmt: type) -> sp.spmatrix:
+        rows, cols, vals = (np.concatenate(x) for x in zip(*parts))
+        keep = vals != 0.0  # exact zeros (components along a zero axis) would only widen the KKT system
+        return fmt((vals[keep], (rows[keep], cols[keep])), shape=shape)
+
+    A_eq = assemble(eq, (r * int((~is_sup).sum()), nc * dim), sp.csc_matrix)
+    B_sup = assemble(sup, (6 * int(is_sup.sum()), nc * dim), sp.csr_matrix)
+    return A_eq, B_sup
 
 
 def build_model(assembly: Assembly, kind: ModelKind | Literal["auto"] = "auto", tol: float = 1e-9) -> Model:
     """Build the discrete operators of ``assembly``.
+
+    Every operator is computed over all interfaces and contacts at once and assembled as a
+    sparse matrix in one call (cost linear in the number of contacts).
 
     Parameters
     ----------
@@ -359,17 +388,16 @@ def build_model(assembly: Assembly, kind: ModelKind | Literal["auto"] = "auto", 
             "the assembly is not planar (no vertical symmetry plane with all centroids, interface "
             "normals and contact pairs in it): use the spatial model"
         )
-    supports = set(assembly.support_indices)
-    used = [
-        k for k, i in enumerate(assembly.interfaces) if not (i.a in supports and i.b in supports)
-    ]
+    t = assembly.interface_table
+    is_sup = np.zeros(len(assembly.blocks), dtype=bool)
+    is_sup[list(assembly.support_indices)] = True
+    used = np.flatnonzero(~(is_sup[t.a] & is_sup[t.b]))  # interfaces between two supports carry nothing
     # all 3D vertices of the used interfaces
-    v_itf = np.concatenate(
-        [np.full(len(assembly.interfaces[k].points), k) for k in used]
-    ).astype(np.int64)
-    v_pts = np.vstack([assembly.interfaces[k].points for k in used])
-    v_area = np.concatenate([assembly.interfaces[k].tributary for k in used])
-    v_frame = np.stack([assembly.interfaces[k].frame for k in v_itf])  # (nv, 3, 3) rows n,t1,t2
+    v_sel = np.flatnonzero(np.isin(t.vertex_interface, used))
+    v_itf = t.vertex_interface[v_sel]
+    v_pts = t.points[v_sel]
+    v_area = t.tributary[v_sel]
+    v_frame = t.frame[v_itf]  # (nv, 3, 3) rows n, t1, t2
     nv = len(v_itf)
 
     if plane is None:
@@ -379,80 +407,78 @@ def build_model(assembly: Assembly, kind: ModelKind | Literal["auto"] = "auto", 
         tangents = v_frame[:, 1:, :]
         lift = sp.identity(3 * nv, format="csr")
         model_kind: ModelKind = "spatial"
+        basis = None
     else:
         dim = 2
         groups = _contact_groups(assembly, plane, tol)
         assert groups is not None
-        first = np.concatenate([[0], np.cumsum([len(assembly.interfaces[k].points) for k in used])])
-        c_itf, c_pts, c_area, dirs, lr, lc, lv = [], [], [], [], [], [], []
-        for pos, k in enumerate(used):
-            itf = assembly.interfaces[k]
-            n = itf.normal
-            t = np.cross(plane.m, n)
-            t /= np.linalg.norm(t)
-            for idx in groups[k]:
-                c = len(c_itf)
-                w = itf.tributary[idx]
-                share = w / w.sum() if w.sum() > 0 else np.full(len(idx), 1.0 / len(idx))
-                c_itf.append(k)
-                c_pts.append(itf.points[idx].mean(axis=0))
-                c_area.append(w.sum())
-                dirs.append(np.vstack([n, t]))
-                # vertex force (fn, ft1, ft2) = share * (fn_c, ft_c * (t . t1), ft_c * (t . t2))
-                proj = itf.frame[1:] @ t
-                for vi, s in zip(first[pos] + idx, share):
-                    lr += [3 * vi, 3 * vi + 1, 3 * vi + 2]
-                    lc += [2 * c, 2 * c + 1, 2 * c + 1]
-                    lv += [s, s * proj[0], s * proj[1]]
-        c_itf = np.array(c_itf, dtype=np.int64)
-        c_pts, c_area, directions = np.array(c_pts), np.array(c_area), np.array(dirs)
+        slot = np.full(len(t), -1)
+        slot[used] = np.arange(len(used))
+        # memberships (vertex among v_sel, contact): contact 2 * slot + 0 (low end) or + 1 (high end)
+        member_v, member_c = [], []
+        for g, mask in enumerate(groups):
+            vi = np.flatnonzero(mask[v_sel])
+            member_v.append(vi)
+            member_c.append(2 * slot[v_itf[vi]] + g)
+        mv, mc = np.concatenate(member_v), np.concatenate(member_c)
+        order = np.lexsort((mv, mc))  # contact by contact, vertices in order
+        mv, mc = mv[order], mc[order]
+        nc = 2 * len(used)
+        count = np.bincount(mc, minlength=nc)
+        w = v_area[mv]
+        c_area = np.bincount(mc, weights=w, minlength=nc)
+        c_pts = np.stack([np.bincount(mc, weights=v_pts[mv, j], minlength=nc) for j in range(3)], axis=1) / count[:, None]
+        share = np.where(c_area[mc] > 0, w / np.where(c_area[mc] > 0, c_area[mc], 1.0), 1.0 / count[mc])
+        c_itf = np.repeat(used, 2)
+        n = t.normal[c_itf]
+        tan = cross(plane.m[None, :], n)
+        tan /= np.linalg.norm(tan, axis=1)[:, None]
+        directions = np.stack([n, tan], axis=1)  # (nc, 2, 3)
         tangents = directions[:, 1:, :]
-        lift = sp.csr_matrix((lv, (lr, lc)), shape=(3 * nv, 2 * len(c_itf)))
+        # vertex force (fn, ft1, ft2) = share * (fn_c, ft_c * (t . t1), ft_c * (t . t2))
+        proj = np.einsum("kij,kj->ki", t.frame[c_itf][:, 1:, :], tan)  # (nc, 2)
+        lr = (3 * mv[:, None] + np.arange(3)).ravel()
+        lc = np.stack([2 * mc, 2 * mc + 1, 2 * mc + 1], axis=1).ravel()
+        lv = np.stack([share, share * proj[mc, 0], share * proj[mc, 1]], axis=1).ravel()
+        lift = sp.csr_matrix((lv, (lr, lc)), shape=(3 * nv, 2 * nc))
         model_kind = "planar"
+        basis = np.zeros((3, 6))
+        basis[0, :3] = plane.e
+        basis[1, :3] = EZ
+        basis[2, 3:] = plane.m
 
-    W = _block_wrench_matrix(assembly, c_pts, directions, c_itf)
+    A_eq, B_sup = _wrench_operators(assembly, c_pts, directions, c_itf, basis)
     free = np.array(assembly.free_indices)
-    sup = np.array(assembly.support_indices)
-    weights = assembly.weights
+    weights = assembly.weights[free]
     if model_kind == "spatial":
-        sel = (free[:, None] * 6 + np.arange(6)).ravel()
-        A_eq = W[sel]
         b_dead = np.zeros((len(free), 6))
-        b_dead[:, 2] = -weights[free]
+        b_dead[:, 2] = -weights
         b_lat = np.zeros((len(free), 6, 2))
-        b_lat[:, 0, 0] = weights[free]
-        b_lat[:, 1, 1] = weights[free]
+        b_lat[:, 0, 0] = weights
+        b_lat[:, 1, 1] = weights
         # lateral loads act at the centroid: no moment about it
     else:
         e = plane.e
-        basis = np.zeros((3, 6))
-        basis[0, :3] = e
-        basis[1, :3] = EZ
-        basis[2, 3:] = plane.m
-        blocks6 = W[(free[:, None] * 6 + np.arange(6)).ravel()]
-        proj = sp.kron(sp.identity(len(free)), sp.csr_matrix(basis))
-        A_eq = proj @ blocks6
         b_dead = np.zeros((len(free), 3))
-        b_dead[:, 1] = -weights[free]
+        b_dead[:, 1] = -weights
         b_lat = np.zeros((len(free), 3, 2))
-        b_lat[:, 0, 0] = weights[free] * e[0]
-        b_lat[:, 0, 1] = weights[free] * e[1]
-    B_sup = -W[(sup[:, None] * 6 + np.arange(6)).ravel()]
+        b_lat[:, 0, 0] = weights * e[0]
+        b_lat[:, 0, 1] = weights * e[1]
     return Model(
         kind=model_kind,
         assembly=assembly,
         plane=plane,
         dim=dim,
-        interfaces=tuple(used),
+        interfaces=tuple(used.tolist()),
         contact_interface=c_itf,
         contact_points=c_pts,
         contact_area=c_area,
         tangents=tangents,
-        A_eq=sp.csc_matrix(A_eq),
+        A_eq=A_eq,
         b_dead=b_dead.ravel(),
         b_lat=b_lat.reshape(-1, 2),
-        B_sup=sp.csr_matrix(B_sup),
-        lift=sp.csr_matrix(lift),
+        B_sup=B_sup,
+        lift=lift,
         vertex_interface=v_itf,
         vertex_points=v_pts,
     )

@@ -1,20 +1,24 @@
 """The Total Complementary Energy solver: one model and material, Clarabel called directly.
 
 For a model (:mod:`tce.core.model`), a material (:class:`tce.core.material.Material`), a load
-multiplier ``lam``, a lateral direction ``alpha`` (degrees) and prescribed support motions
-``U_s = (ux, uy, uz, rx, ry, rz)`` (m, rad, about each support centroid), it solves the
-discretised minimum of the Total Complementary Energy (problem (11) of the paper, *3D
-exploration of internal stresses due to lateral loads and foundation movements in a
-semicircular arch*)::
+multiplier ``lam``, a load pattern (:class:`tce.core.loads.LoadPattern`; by default the
+paper's: self-weight plus ``lam`` times the weights in direction ``alpha``, degrees) and
+prescribed support motions ``U_s = (ux, uy, uz, rx, ry, rz)`` (m, rad, about each support
+centroid), it solves the discretised minimum of the Total Complementary Energy (problem (11)
+of the paper, *3D exploration of internal stresses due to lateral loads and foundation
+movements in a semicircular arch*)::
 
     minimise    1/2 F' D F  -  sum_s (R_s . U_s + M_s . Omega_s)
-    subject to  A_eq F + b_dead + lam * b_lat(alpha) = 0
+    subject to  A_eq F + b_fixed + lam * b_live = 0
                 fn >= 0 and ||ft|| <= mu fn at every contact  (fn >= 0 only if mu is None)
+
+(``b_fixed = b_dead`` and ``b_live = b_lat(alpha)`` for the default pattern,
+:func:`tce.core.loads.load_vectors` otherwise)
 
 where ``(R_s, M_s) = B_s F`` is the wrench support ``s`` exerts on the structure and ``D``
 the diagonal compliance (zero for rigid contacts): an LP (planar, rigid), a QP, an SOCP
 (spatial with friction) or a QP with cones. The problem is built once per solver
-(:func:`tce.core.problem.tce_problem`); a new ``lam``, ``alpha`` or settlement only updates
+(:func:`tce.core.problem.tce_problem`); a new ``lam``, load pattern or settlement only updates
 the vectors ``q`` and ``b`` of the warm Clarabel solver (:mod:`tce.core.clarabel_solver`).
 
 Statuses (``docs/conventions.md``):
@@ -51,8 +55,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .clarabel_solver import SOLVER_NAME, ClarabelSolver, Solution, SolverOptions, solve_once
+from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
 from .material import Material
-from .model import InterfaceMap, Model, scene_in_plane
+from .model import InterfaceMap, Model
 from .problem import Formulation, phase1_b, phase1_problem, q_scale, recession_problem, tce_b, tce_problem
 from .result import STATUSES, Result
 
@@ -108,7 +113,10 @@ class TCEResult(Result):
     Attributes
     ----------
     lam, alpha : float
-        Load multiplier and its direction (degrees).
+        Load multiplier and the direction of the lateral pattern (degrees; NaN when the
+        pattern has no lateral part).
+    loads : LoadPattern
+        The load pattern solved.
     model : str
         ``"spatial"`` or ``"planar"``: the model that ran.
     settlements : (6 ns,) ndarray
@@ -138,6 +146,7 @@ class TCEResult(Result):
 
     lam: float
     alpha: float
+    loads: LoadPattern = field(repr=False)
     model: str
     settlements: NDArray[np.float64] = field(repr=False)
     forces: NDArray[np.float64] = field(repr=False)
@@ -207,11 +216,24 @@ class TCESolver:
         self._q_last: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
         self._feas: ClarabelSolver | None = None
         self._recession_cache: dict[bytes, tuple[float, float, NDArray[np.float64]]] = {}
+        self._vectors_last: tuple[LoadPattern, tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None
 
     # ------------------------------------------------------------ problem vectors
-    def rhs(self, lam: float, alpha: float) -> NDArray[np.float64]:
-        """Physical right-hand side ``b_dead + lam * b_lat(alpha)`` (kN, kN m)."""
-        return self.model.b_dead + lam * self.model.b_lateral(alpha)
+    def vectors(self, loads: LoadPattern) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``(b_fixed, b_live)`` of a load pattern (kN, kN m; :func:`tce.core.loads.load_vectors`);
+        the last pattern's are kept (a load path asks for the same ones at every step)."""
+        last = self._vectors_last
+        if last is not None and (last[0] is loads or last[0] == loads):
+            return last[1]
+        v = load_vectors(self.model, loads)
+        self._vectors_last = (loads, v)
+        return v
+
+    def rhs(self, lam: float, alpha: float | None = None, loads: LoadPattern | None = None) -> NDArray[np.float64]:
+        """Physical right-hand side ``b_fixed + lam * b_live`` (kN, kN m) of the pattern
+        ``loads``, or of the default pattern in direction ``alpha``: ``b_dead + lam * b_lat(alpha)``."""
+        b_fixed, b_live = self.vectors(as_pattern(alpha, loads))
+        return b_fixed + lam * b_live
 
     def _q(self, U: NDArray[np.float64]) -> NDArray[np.float64]:
         """Scaled linear objective for support motions ``U``; the last one is kept, so a load
@@ -224,15 +246,9 @@ class TCESolver:
         self._q_last = (np.array(U, dtype=float), q)
         return q
 
-    def _check_scene(self, alpha: float, U: NDArray[np.float64]) -> None:
-        if self.model.kind == "planar":
-            names = self.model.assembly.support_names
-            sett = {n: U[6 * i : 6 * i + 6] for i, n in enumerate(names)}
-            if not scene_in_plane(self.model.plane, alpha, sett):
-                raise ValueError(
-                    "this scene has loads or support motions out of the model's plane: "
-                    "solve it with the spatial model"
-                )
+    def _check_scene(self, loads: LoadPattern, U: NDArray[np.float64]) -> None:
+        names = self.model.assembly.support_names
+        check_in_plane(self.model, loads, {n: U[6 * i : 6 * i + 6] for i, n in enumerate(names)})
 
     # ------------------------------------------------------------ clarabel calls
     def _main(self, U: NDArray[np.float64], rhs: NDArray[np.float64]) -> Solution:
@@ -250,8 +266,9 @@ class TCESolver:
         self._warm_q = q
         return self._warm.solve()
 
-    def phase1(self, lam: float, alpha: float) -> tuple[float, float, str]:
-        """Smallest equilibrium residual reachable by admissible forces.
+    def phase1(self, lam: float, alpha: float | None = None, loads: LoadPattern | None = None) -> tuple[float, float, str]:
+        """Smallest equilibrium residual reachable by admissible forces at multiplier ``lam``
+        of the pattern ``loads`` (or the default pattern in direction ``alpha``).
 
         Solves :func:`tce.core.problem.phase1_problem` (always feasible and bounded).
         Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol`` means the load is
@@ -259,7 +276,11 @@ class TCESolver:
         ``feas_tol`` is decided again with tight tolerances
         (:meth:`SolverOptions.settings`); the status then ends with ``tight: ...``.
         """
-        f, rhs = self.formulation, self.rhs(lam, alpha)
+        return self._phase1(self.rhs(lam, alpha, loads))
+
+    def _phase1(self, rhs: NDArray[np.float64]) -> tuple[float, float, str]:
+        """:meth:`phase1` for a right-hand side ``rhs``."""
+        f = self.formulation
         if self._feas is None:
             self._feas = ClarabelSolver(phase1_problem(f, rhs), self.options.settings())
         else:
@@ -303,35 +324,42 @@ class TCESolver:
     def solve(
         self,
         lam: float = 0.0,
-        alpha: float = 0.0,
+        alpha: float | None = None,
         settlements: Mapping[str, ArrayLike] | NDArray[np.float64] | None = None,
+        loads: LoadPattern | None = None,
     ) -> TCEResult:
-        """Minimise the TCE for load multiplier ``lam`` in direction ``alpha`` (degrees) with
-        support motions ``settlements`` (``{support: [ux, uy, uz, rx, ry, rz]}`` in m and rad,
-        or the stacked vector). Returns a :class:`TCEResult`; never raises on solver trouble.
+        """Minimise the TCE for load multiplier ``lam`` of the load pattern ``loads`` (default:
+        the paper's pattern in direction ``alpha``, degrees; 0 when None) with support motions
+        ``settlements`` (``{support: [ux, uy, uz, rx, ry, rz]}`` in m and rad, or the stacked
+        vector). Returns a :class:`TCEResult`; never raises on solver trouble.
 
         Raises
         ------
         ValueError
-            A non-finite ``lam`` or ``alpha``, an unknown support or a bad motion vector, or
-            a scene out of a planar model's plane.
+            A non-finite ``lam`` or ``alpha``, ``alpha`` and a pattern with another one, an
+            unknown support or a bad motion vector, loads that cannot be applied
+            (:class:`tce.core.loads.LoadError`), or a scene out of a planar model's plane.
         """
         t0 = time.perf_counter()
-        if not np.isfinite(lam) or not np.isfinite(alpha):
-            raise ValueError(f"lam and alpha must be finite numbers, got lam={lam!r}, alpha={alpha!r}")
+        if not np.isfinite(lam):
+            raise ValueError(f"lam must be a finite number, got lam={lam!r}")
+        pattern = as_pattern(alpha, loads)
         if isinstance(settlements, np.ndarray):
             U = np.asarray(settlements, dtype=float)
         else:
             U = settlement_vector(self.model, settlements)
-        self._check_scene(alpha, U)
-        return self.solve_scene(lam, alpha, U, t0)
+        self._check_scene(pattern, U)
+        return self.solve_scene(lam, pattern, U, t0)
 
-    def solve_scene(self, lam: float, alpha: float, U: NDArray[np.float64], t0: float | None = None) -> TCEResult:
-        """:meth:`solve` for a scene already checked: finite ``lam`` and ``alpha``, ``U`` the
-        stacked motions (m, rad) of a scene this model can carry (the hot path of a load
-        path; :class:`tce.core.analysis.Analysis` checks each scene once)."""
+    def solve_scene(self, lam: float, loads: LoadPattern | float, U: NDArray[np.float64], t0: float | None = None) -> TCEResult:
+        """:meth:`solve` for a scene already checked: finite ``lam``, a load pattern (or the
+        direction ``alpha`` of the default one) and ``U`` the stacked motions (m, rad) of a
+        scene this model can carry (the hot path of a load path;
+        :class:`tce.core.analysis.Analysis` checks each scene once)."""
         t0 = time.perf_counter() if t0 is None else t0
-        rhs = self.rhs(lam, alpha)
+        pattern = loads if isinstance(loads, LoadPattern) else as_pattern(loads)
+        b_fixed, b_live = self.vectors(pattern)
+        rhs = b_fixed + lam * b_live
         sol = self._main(U, rhs)
         stime, setup = sol.solve_time, sol.setup_time
         notes = [f"clarabel: {sol.status}"]
@@ -348,7 +376,7 @@ class TCESolver:
             status = "infeasible"
         if status == "numerical" and sol.status != "PrimalInfeasible":
             # Clarabel's verdict is not clean (or claims unboundedness): decide feasibility first.
-            r, t, fstat = self.phase1(lam, alpha)
+            r, t, fstat = self._phase1(rhs)
             stime += t
             notes.append(f"phase-1 residual {r:.3g} ({fstat})")
             rigid = self.formulation.D is None
@@ -381,7 +409,7 @@ class TCESolver:
                         status, retry, F = "optimal", name, F2
         if status != "optimal":
             F = res = None
-        return self._result(status, lam, alpha, U, F, res, stime, setup, time.perf_counter() - t0,
+        return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,
                             sol.iterations, retry, "; ".join(notes))
 
     # ------------------------------------------------------------ checks and results
@@ -393,7 +421,7 @@ class TCESolver:
         self,
         status: str,
         lam: float,
-        alpha: float,
+        loads: LoadPattern,
         U: NDArray[np.float64],
         F: NDArray[np.float64] | None,
         res: tuple[float, float] | None,
@@ -422,14 +450,15 @@ class TCESolver:
         else:
             unique = None
         if retry:
-            log.debug("solve at lam=%g alpha=%g: %s decided by %s (%s)", lam, alpha, status, retry, message)
+            log.debug("solve at lam=%g of %s: %s decided by %s (%s)", lam, loads, status, retry, message)
         return TCEResult(
             status=status,
             message=message,
             solve_time=solve_time,
             wall_time=wall,
             lam=float(lam),
-            alpha=float(alpha),
+            alpha=loads.direction,
+            loads=loads,
             model=model.kind,
             settlements=U,
             forces=forces,

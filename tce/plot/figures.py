@@ -1,705 +1,982 @@
-"""Figures of a results dataset: what a masonry engineer reads at a glance.
+"""Figures of a results dataset: what each of the paper's figures shows, legible at any size.
 
-Every function takes a results dataset (``docs/results.md``), never a solver object, and
-returns a :class:`matplotlib.figure.Figure` built without pyplot (no display, no global
-state; ``savefig`` renders with Agg). The geometry comes from ``ds.attrs["assembly"]``
-(JSON of :meth:`tce.assembly.Assembly.to_dict`), so a results file copied anywhere redraws
-its figures without recomputing anything.
+Every function takes a results dataset (``docs/results.md``) and returns a
+:class:`matplotlib.figure.Figure` built without pyplot, with a fixed layout computed from
+its content (no constrained layout), so that legends are never clipped and the cost of a
+figure does not depend on a layout solver. The geometry comes from the ``assembly``
+attr; which states and scenarios are drawn from the arguments (see :mod:`tce.plot.output`
+for the study's ``[plots]`` table).
 
-Conventions of the pictures
----------------------------
-- Units as in the dataset: m, kN, kN m; lambda is dimensionless.
-- Thrust curves (the paper's Fig. 8): ``H = sqrt(Fx^2 + Fy^2)`` is the magnitude of the
-  horizontal reaction a support exerts on the structure (its thrust), ``V = Fz`` the
-  vertical one (positive upwards). Only ``optimal`` steps are drawn.
-- Interface resultants are arrows **centred** on their pressure points (the force acts on
-  block B, the block the interface normal points into), all to one scale stated in the
-  legend (``1 kN = x m``). Torques about the interface normal are arcs around the pressure
-  point, radius proportional to the magnitude, arrow head by the right-hand rule.
-- Geometry is drawn in orthographic projection with equal scales on every axis.
-- The default step of a scenario is the optimal step at ``lambda_max``, else its last
-  optimal step.
-- Optional variables beyond the contract: ``vertex_force`` (scenario, step, vertex, xyz;
-  kN, global frame, on block B) with ``vertex_point`` (vertex, xyz; m) for
-  ``assembly_view(..., vertex_forces=True)``.
+Figures
+-------
+:func:`thrust_curves`
+    Forces on the supports against lambda (the paper's Fig. 8): ``H`` along the span,
+    ``S`` across it and the moment ``M`` about it when a scenario leaves the plane, ``V``
+    vertical, each with its sign in the axis label (:mod:`tce.plot.data`). Colour: one
+    swept parameter (or the settlement case); line style: the settlement case; marker:
+    the support; one row of panels per value of the other swept parameters when there
+    are more than :data:`FACET_AT` scenarios. Coincident curves are drawn once and named
+    together under the panel title.
+:func:`states_figure`
+    The interface resultants (arrows centred on their pressure points, one scale per
+    figure stated in the legend), torques about the normals (arcs), the line of thrust
+    (structures that are one line of blocks) and, at lambda_max, the hinges; one panel per
+    scenario and drawn state (Figs. 3-7, 9, 10). Planar scenarios are drawn in elevation,
+    spatial ones in an axonometric projection. At most :data:`MAX_ARROWS` arrows per panel,
+    the largest.
+:func:`thrust_lines`
+    One elevation per drawn state with the line of thrust of every scenario (Figs. 3b, 7).
+:func:`base_figure`
+    The support interfaces seen along their normals with the pressure points of every
+    scenario (Fig. 9: the base pressure points on the edge about which the arch rocks).
+:func:`mechanism_view`
+    The collapse mechanism of the scenarios that share it, exaggerated, with its hinge
+    lines.
+:func:`summary_figure`
+    lambda_max against each swept parameter, one row per settlement case (cases with the
+    same answers share a row).
+
+A state that is not necessarily unique (rigid, no support motion) or a scenario whose
+outcome is not ``limit`` carries a note on every figure that draws it.
 """
 
 from __future__ import annotations
 
-import json
 import math
-import re
 import textwrap
 from collections.abc import Sequence
-from pathlib import Path
-from typing import Literal
+from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
 from matplotlib.axes import Axes
-from matplotlib.figure import Figure, SubFigure
+from matplotlib.collections import LineCollection
+from matplotlib.colors import to_hex
+from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon
-from matplotlib.ticker import FixedLocator, MaxNLocator
-from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+from matplotlib.ticker import MaxNLocator
 from numpy.typing import NDArray
-from scipy.spatial import ConvexHull
 
 from ..structures.assembly import Assembly
+from . import draw
+from .load_arrows import LOAD_COLOUR, declared_loads
+from .data import (
+    MAX_COLUMNS,
+    SWEPT,
+    State,
+    assembly,
+    chain_interfaces,
+    find_state,
+    group_identical,
+    hinge_segments,
+    is_planar,
+    join_names,
+    optimal_steps,
+    outcome_note,
+    scenarios,
+    structure_frame,
+    support_forces,
+    swept_parameters,
+    text,
+    unique_note,
+    value,
+)
 
 __all__ = [
-    "assembly_view",
-    "default_step",
-    "figure_sheet",
+    "base_figure",
     "mechanism_view",
+    "states_figure",
+    "summary_figure",
     "thrust_curves",
-    "thrust_line",
-    "write_figures",
+    "thrust_lines",
 ]
-
-View = Literal["axo", "elevation", "plan"]
-Canvas = Figure | SubFigure
 
 # Okabe-Ito (colour-blind safe), black first; line styles and markers keep them apart in greyscale
 COLOURS = ("#000000", "#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#F0E442")
 LINESTYLES = ("-", "--", "-.", ":", (0, (5, 1, 1, 1, 1, 1)), (0, (1, 2)), (0, (8, 2)), (0, (3, 1, 3, 4)))
 MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "h")
-BLOCK_COLOUR = "#d8c3a0"  # sandstone
-SUPPORT_COLOUR = "#7f7f7f"
 FORCE_COLOUR = "#c0141e"
 TORQUE_COLOUR = "#000000"
-VERTEX_COLOUR = "#0072B2"
+THRUST_LINE_COLOUR = "#7a0c12"
 HINGE_COLOUR = "#0072B2"
-ARROW_FRACTION = 0.22  # longest resultant arrow, as a fraction of the assembly size
+NOTE_COLOUR = "#8a4b00"
+ARROW_FRACTION = 0.2  # longest resultant arrow, as a fraction of the assembly size
 TORQUE_FRACTION = 0.05  # largest torque arc radius, as a fraction of the assembly size
 MECHANISM_FRACTION = 0.06  # largest drawn mechanism displacement, as a fraction of the size
-HINGE_MARKER = dict(linestyle="none", marker="o", markersize=7, markerfacecolor="white",
-                    markeredgecolor=HINGE_COLOUR, markeredgewidth=1.8, zorder=6)
-TORQUE_TOL = 1e-3  # torques below TORQUE_TOL * max|R| * size are negligible
+TORQUE_TOL = 1e-3  # torques below TORQUE_TOL * max|R| * size are not drawn
+MAX_ARROWS = 40  # resultants drawn per panel (the largest)
+FACET_AT = 8  # more scenarios than this in the thrust curves: one row per value of the other parameters
+FONT = 7.5
 
 
-# ---------------------------------------------------------------------------- dataset access
-def _assembly(ds: xr.Dataset) -> Assembly:
-    """The assembly stored in ``ds.attrs["assembly"]``."""
-    try:
-        data = ds.attrs["assembly"]
-    except KeyError:
-        raise ValueError("the dataset has no 'assembly' attribute: geometry cannot be drawn") from None
-    return Assembly.from_dict(json.loads(data) if isinstance(data, str) else data)
+# ---------------------------------------------------------------------------- layout
+class _Grid:
+    """A fixed layout: ``nrows x ncols`` panels of ``w x h`` inches with margins (inches)."""
 
-
-def _scenarios(ds: xr.Dataset) -> list[str]:
-    """Scenario names in dataset order."""
-    return [str(s) for s in ds["scenario"].values]
-
-
-def _value(ds: xr.Dataset, name: str, scenario: str) -> NDArray:
-    """``ds[name]`` of one scenario as an ndarray."""
-    return np.asarray(ds[name].sel(scenario=scenario).values)
-
-
-def _text(ds: xr.Dataset, name: str, scenario: str, default: str = "") -> str:
-    """A per-scenario string variable (``default`` when absent)."""
-    return str(_value(ds, name, scenario)) if name in ds else default
-
-
-def _no_limit_caption(ds: xr.Dataset, scenario: str, width: int = 80) -> str:
-    """Why the scenario has no finite limit (``no_limit_reason``), wrapped; "" when it has one."""
-    why = _text(ds, "no_limit_reason", scenario)
-    return textwrap.fill(why, width) if why else ""
-
-
-def _lambda_max(ds: xr.Dataset, scenario: str) -> float:
-    return float(_value(ds, "lambda_max", scenario))
-
-
-def _optimal_steps(ds: xr.Dataset, scenario: str) -> NDArray[np.int64]:
-    """Indices of the optimal steps of a scenario, sorted by lambda."""
-    lam = _value(ds, "lam", scenario).astype(float)
-    ok = np.flatnonzero((_value(ds, "status", scenario).astype(str) == "optimal") & np.isfinite(lam))
-    return ok[np.argsort(lam[ok], kind="stable")]
-
-
-def default_step(ds: xr.Dataset, scenario: str) -> int | None:
-    """The step drawn by default: the optimal step at ``lambda_max``, else the last optimal one.
-
-    Returns
-    -------
-    int or None
-        Index along ``step``; None when the scenario has no optimal step.
-    """
-    ok = _optimal_steps(ds, scenario)
-    if ok.size == 0:
-        return None
-    lam = _value(ds, "lam", scenario).astype(float)[ok]
-    lmax = _lambda_max(ds, scenario)
-    at = np.flatnonzero(np.isclose(lam, lmax, rtol=1e-12, atol=1e-12)) if math.isfinite(lmax) else []
-    return int(ok[at[-1]] if len(at) else ok[-1])
-
-
-def _first_and_limit(ds: xr.Dataset, scenario: str) -> list[int] | None:
-    """The first optimal step (the support motion alone) and :func:`default_step` (None if neither)."""
-    ok = _optimal_steps(ds, scenario)
-    return sorted({int(ok[0]), default_step(ds, scenario)}) if ok.size else None
-
-
-def _is_planar(ds: xr.Dataset, scenario: str) -> bool:
-    """True when the scenario ran on the planar model (or, without ``model``, its loads are in plane)."""
-    if "model" in ds:
-        return _text(ds, "model", scenario) == "planar"
-    if "alpha" in ds.coords:
-        return bool(np.isclose(math.sin(math.radians(float(_value(ds, "alpha", scenario)))), 0.0))
-    return False
-
-
-def _mechanism(ds: xr.Dataset, scenario: str, asm: Assembly) -> NDArray[np.float64] | None:
-    """Block velocities ``(n_blocks, 6)`` in assembly order; None when there is no mechanism."""
-    if "mechanism" not in ds:
-        return None
-    m = ds["mechanism"].sel(scenario=scenario).sel(block=list(asm.names))
-    v = np.asarray(m.transpose("block", "dof").values, dtype=float)
-    if not np.all(np.isfinite(v)) or not np.any(v):
-        return None
-    return v
-
-
-def _hinge_points(ds: xr.Dataset, scenario: str) -> NDArray[np.float64]:
-    """Hinge trace points ``(n, 3)`` of the interfaces that hinge at the limit (may be empty)."""
-    if "interface_mode" not in ds or "hinge_point" not in ds:
-        return np.empty((0, 3))
-    mode = _value(ds, "interface_mode", scenario).astype(str)
-    hp = np.asarray(ds["hinge_point"].sel(scenario=scenario).transpose("interface", "xyz").values, float)
-    return hp[(mode == "hinge") & np.all(np.isfinite(hp), axis=1)]
-
-
-def _interface_normals(ds: xr.Dataset, asm: Assembly) -> NDArray[np.float64]:
-    """Unit normal of every dataset interface (``"A|B"`` names looked up in the assembly)."""
-    by_name = {f"{asm.names[i.a]}|{asm.names[i.b]}": i.normal for i in asm.interfaces}
-    return np.array([by_name[str(k)] for k in ds["interface"].values], dtype=float).reshape(-1, 3)
-
-
-def _state(ds: xr.Dataset, scenario: str, step: int) -> tuple[NDArray, NDArray, NDArray]:
-    """Pressure points ``(ni, 3)``, resultants ``(ni, 3)`` and torques ``(ni,)`` of one step."""
-    at = dict(scenario=scenario, step=step)
-    pp = np.asarray(ds["pressure_point"].sel(at).transpose("interface", "xyz").values, dtype=float)
-    res = np.asarray(ds["resultant"].sel(at).transpose("interface", "xyz").values, dtype=float)
-    tq = np.asarray(ds["torque"].sel(at).values, dtype=float)
-    return pp, res, tq
-
-
-def _step_label(ds: xr.Dataset, scenario: str, step: int) -> str:
-    lam = float(_value(ds, "lam", scenario)[step])
-    lmax = _lambda_max(ds, scenario)
-    return f"λ = {lam:.3f}" + (" = λmax" if math.isfinite(lmax) and np.isclose(lam, lmax) else "")
-
-
-# ---------------------------------------------------------------------------- helpers
-def _nice(x: float) -> float:
-    """The 1-2-5 number nearest below ``x`` (> 0)."""
-    e = math.floor(math.log10(x))
-    f = x / 10**e
-    return float((5 if f >= 5 else 2 if f >= 2 else 1) * 10**e)
-
-
-def _fmt(x: float) -> str:
-    return f"{x:.3g}"
-
-
-def _style(i: int) -> dict:
-    """Colour and line style of the ``i``-th scenario."""
-    return dict(color=COLOURS[i % len(COLOURS)], linestyle=LINESTYLES[i % len(LINESTYLES)])
-
-
-def _slug(name: str) -> str:
-    return re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("_") or "scenario"
-
-
-def _canvas(fig: Canvas | None, figsize: tuple[float, float]) -> Canvas:
-    return fig if fig is not None else Figure(figsize=figsize, layout="constrained")
-
-
-def _camera(asm: Assembly, view: View, motion: NDArray[np.float64] | None = None) -> tuple[float, float]:
-    """(elevation, azimuth) in degrees: looking along +y for elevations, down for plans;
-    axonometric views sit lower for long arches than for domes, and turn towards the
-    span when the blocks move mostly across it (``motion``: displacements, (n, 3))."""
-    if view == "elevation":
-        return 0.0, -90.0
-    if view == "plan":
-        return 90.0, -90.0
-    if view != "axo":
-        raise ValueError(f"view must be 'axo', 'elevation' or 'plan', got {view!r}")
-    ext = np.ptp(np.vstack([b.shape.vertices for b in asm.blocks]), axis=0)
-    elongated = ext[0] > 2.5 * max(ext[1], 1e-12)
-    if motion is not None and elongated and np.abs(motion[:, 1]).sum() > np.abs(motion[:, 0]).sum():
-        return 16.0, -32.0
-    return (18.0, -62.0) if elongated else (28.0, -55.0)
-
-
-def _equal_3d(ax: Axes, pts: NDArray[np.float64], size: float, view: View) -> None:
-    """Limits around ``pts`` and a box aspect equal to the data ranges (equal scales)."""
-    lo, hi = np.nanmin(pts, axis=0), np.nanmax(pts, axis=0)
-    pad = 0.03 * size
-    lo, hi = lo - pad, hi + pad
-    ax.set_xlim(lo[0], hi[0])
-    ax.set_ylim(lo[1], hi[1])
-    ax.set_zlim(lo[2], hi[2])
-    ax.set_box_aspect(tuple(hi - lo), zoom=1.3)
-    ax.set_proj_type("ortho")
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
-    ax.set_zlabel("z (m)")
-    hidden = {"elevation": 1, "plan": 2}.get(view)  # the axis pointing at the viewer
-    mid, ranges = 0.5 * (lo + hi), hi - lo
-    for k, axis in enumerate((ax.xaxis, ax.yaxis, ax.zaxis)):
-        axis.set_pane_color((1.0, 1.0, 1.0, 0.0))
-        if k == hidden or (view == "plan" and k == 0):  # seen end-on (or, in plan, on its own ticks)
-            axis.set_label_text("")
-        if k == hidden:  # collapses to a point: no ticks
-            axis.set_major_locator(FixedLocator([]))
-        elif ranges[k] < 0.3 * ranges.max():  # a short axis: one tick, or its labels run together
-            axis.set_major_locator(FixedLocator([float(np.round(mid[k], 1))]))
-        else:
-            axis.set_major_locator(MaxNLocator(nbins=max(2, round(6 * ranges[k] / ranges.max())),
-                                               steps=[1, 2, 2.5, 5, 10]))
-
-
-def _block_vertices(asm: Assembly) -> list[NDArray[np.float64]]:
-    return [np.asarray(b.shape.vertices, dtype=float) for b in asm.blocks]
-
-
-def _draw_blocks_3d(
-    ax: Axes, asm: Assembly, verts: Sequence[NDArray[np.float64]], faint: bool = False
-) -> None:
-    """Blocks as translucent polyhedra (supports in grey); ``faint`` for a ghost outline."""
-    for support, colour, gid in ((False, BLOCK_COLOUR, "blocks"), (True, SUPPORT_COLOUR, "supports")):
-        polys = [
-            verts[k][list(f)] for k, b in enumerate(asm.blocks) if b.support == support for f in b.shape.faces
+    def __init__(self, nrows: int, ncols: int, w: float, h: float, *, left: float = 0.7, right: float = 0.2,
+                 top: float = 0.55, bottom: float = 0.5, wspace: float = 0.6, hspace: float = 0.6,
+                 below: float = 0.0) -> None:
+        self.width = left + ncols * w + (ncols - 1) * wspace + right
+        self.height = top + nrows * h + (nrows - 1) * hspace + bottom + below
+        self.fig = Figure(figsize=(self.width, self.height))
+        self.below = below
+        self.axes = [
+            [self.fig.add_axes(((left + c * (w + wspace)) / self.width,
+                                (self.height - top - (r + 1) * h - r * hspace) / self.height,
+                                w / self.width, h / self.height))
+             for c in range(ncols)]
+            for r in range(nrows)
         ]
-        if not polys:
-            continue
-        coll = Poly3DCollection(
-            polys,
-            facecolor=colour,
-            alpha=0.06 if faint else (0.45 if support else 0.35),
-            edgecolor="#9a9a9a" if faint else "#3c3c3c",
-            linewidths=0.3 if faint else 0.5,
-            linestyle="--" if faint else "-",
-        )
-        coll.set_gid(f"{gid}-ghost" if faint else gid)
-        ax.add_collection3d(coll)
+        for row in self.axes:
+            for ax in row:
+                ax.tick_params(labelsize=FONT - 0.5, length=2.5, pad=1.5)
+                ax.ticklabel_format(useOffset=False)
+                ax.xaxis.set_major_locator(MaxNLocator(5))
+                ax.yaxis.set_major_locator(MaxNLocator(5))
 
 
-def _hull_xz(v: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Outline of a block projected on the x-z plane (convex hull, counter-clockwise)."""
-    xz = v[:, [0, 2]]
-    try:
-        return xz[ConvexHull(xz).vertices]
-    except Exception:  # degenerate projection (a block seen edge-on): its extreme points
-        return xz[[np.argmin(xz[:, 0]), np.argmax(xz[:, 0])]]
+def _legend_rows(labels: Sequence[str], width: float) -> tuple[int, int]:
+    """``(ncols, nrows)`` of a legend of ``labels`` that fits ``width`` inches at :data:`FONT`
+    (every column as wide as the longest line of any label: a safe bound)."""
+    longest = max((len(line) for s in labels for line in s.split("\n")), default=1)
+    entry = 0.55 + 0.062 * longest
+    ncols = max(1, min(len(labels), int((width - 0.3) // entry)))
+    return ncols, math.ceil(len(labels) / ncols)
 
 
-def _draw_blocks_2d(
-    ax: Axes, asm: Assembly, verts: Sequence[NDArray[np.float64]], faint: bool = False
-) -> None:
-    """Blocks projected on the x-z plane (supports in grey); ``faint`` for a ghost outline."""
-    for k, b in enumerate(asm.blocks):
-        colour = SUPPORT_COLOUR if b.support else BLOCK_COLOUR
-        patch = Polygon(
-            _hull_xz(verts[k]),
-            closed=True,
-            facecolor="none" if faint else colour,
-            alpha=None if faint else (0.6 if b.support else 0.5),
-            edgecolor="#9a9a9a" if faint else "#3c3c3c",
-            linewidth=0.6,
-            linestyle="--" if faint else "-",
-            gid=("ghost:" if faint else "block:") + b.name,
-        )
-        ax.add_patch(patch)
+def _legend_height(labels: Sequence[str], width: float) -> float:
+    """Inches a bottom legend of ``labels`` needs (0 without labels)."""
+    if not labels:
+        return 0.0
+    ncols, nrows = _legend_rows(labels, width)
+    lines = sum(max(s.count("\n") + 1 for s in labels[r * ncols:(r + 1) * ncols]) for r in range(nrows))
+    return 0.2 + 0.17 * lines
 
 
-def _equal_2d(ax: Axes, pts: NDArray[np.float64], size: float) -> None:
-    lo, hi = np.nanmin(pts, axis=0), np.nanmax(pts, axis=0)
-    pad = 0.04 * size
-    ax.set_xlim(lo[0] - pad, hi[0] + pad)
-    ax.set_ylim(lo[1] - pad, hi[1] + pad)
-    ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("z (m)")
-    ax.grid(True, linewidth=0.3, alpha=0.5)
+def _bottom_legend(grid: _Grid | _Sheet, handles: list, y: float = 0.04) -> None:
+    if not handles:
+        return
+    labels = [h.get_label() for h in handles]
+    ncols, _ = _legend_rows(labels, grid.width)
+    grid.fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, y / grid.height), ncols=ncols,
+                    fontsize=FONT, frameon=False, handlelength=2.6, columnspacing=1.2)
 
 
-def _torque_arcs(
-    centres: NDArray[np.float64], normals: NDArray[np.float64], torques: NDArray[np.float64], scale: float
-) -> list[NDArray[np.float64]]:
-    """Polylines of 270-degree arcs around each normal (radius ``scale * |T|``), with a head."""
-    segs = []
-    for c, n, t in zip(centres, normals, torques):
-        a = np.cross(n, [0.0, 0.0, 1.0] if abs(n[2]) < 0.9 else [1.0, 0.0, 0.0])
-        a /= np.linalg.norm(a)
-        b = np.cross(n, a)  # (a, b, n) right-handed: positive angle = positive torque
-        r = scale * abs(t)
-        phi = np.linspace(0.0, 1.5 * math.pi, 25) * math.copysign(1.0, t)
-        arc = c + r * (np.outer(np.cos(phi), a) + np.outer(np.sin(phi), b))
-        tip, tangent = arc[-1], arc[-1] - arc[-2]
-        tangent /= np.linalg.norm(tangent)
-        radial = (tip - c) / r
-        head = 0.35 * r
-        segs.append(arc)
-        segs.append(np.array([tip - head * (tangent - 0.6 * radial), tip, tip - head * (tangent + 0.6 * radial)]))
-    return segs
+def _wrap(note: str, width_in: float) -> str:
+    return "\n".join(textwrap.wrap(note, max(20, int(width_in * 17)))) if note else ""
 
 
-# ---------------------------------------------------------------------------- figures
-def thrust_curves(ds: xr.Dataset, fig: Canvas | None = None) -> Canvas:
-    """Horizontal and vertical support reactions against lambda (the paper's Fig. 8).
-
-    One line per scenario and support in each panel (scenario: colour and line style;
-    support: marker); a dotted vertical line at every distinct ``lambda_max``.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        Results dataset (``docs/results.md``).
-    fig : Figure or SubFigure, optional
-        Where to draw; a new figure by default.
-
-    Returns
-    -------
-    Figure or SubFigure
-        Axes 0: ``|H| = sqrt(Fx^2 + Fy^2)`` (kN); axes 1: ``V = Fz`` (kN). Lines carry the
-        gid ``"reaction:<scenario>:<support>"``, lambda_max lines the gid ``"lambda_max"``.
-    """
-    fig = _canvas(fig, (10.0, 4.4))
-    ax_h, ax_v = fig.subplots(1, 2, sharex=True)
-    supports = [str(s) for s in ds["support"].values]
-    scen = _scenarios(ds)
-    for i, s in enumerate(scen):
-        steps = _optimal_steps(ds, s)
-        lam = _value(ds, "lam", s).astype(float)[steps]
-        wrench = np.asarray(ds["reaction"].sel(scenario=s).transpose("step", "support", "component").values)
-        for j, sup in enumerate(supports):
-            f = wrench[steps, j].astype(float)
-            for ax, y in ((ax_h, np.hypot(f[:, 0], f[:, 1])), (ax_v, f[:, 2])):
-                ax.plot(
-                    lam, y, **_style(i), marker=MARKERS[j % len(MARKERS)], markersize=4.5,
-                    markerfacecolor="white" if j % 2 else _style(i)["color"],
-                    markevery=(0.04 * (j % 2) + 0.013 * i, 0.08),  # coincident curves keep both markers
-                    linewidth=1.4, gid=f"reaction:{s}:{sup}",
-                )
-    lmax = sorted({round(v, 9) for v in np.asarray(ds["lambda_max"].values, float) if math.isfinite(v)})
-    for ax in (ax_h, ax_v):
-        for k, v in enumerate(lmax):
-            ax.axvline(v, color="#555555", linestyle=":", linewidth=1.2, gid="lambda_max")
-            ax.annotate(
-                f"λmax = {v:.3f}", (v, 0.5), xycoords=("data", "axes fraction"), xytext=(3, 0),
-                textcoords="offset points", ha="left", va="center", rotation=90, fontsize=8, color="#333333",
-            )
-        ax.set_xlabel("load multiplier λ (–)")
-        ax.grid(True, linewidth=0.3, alpha=0.6)
-        ax.set_xlim(0.0, 1.1 * max([*lmax, ax.get_xlim()[1] / 1.1]))
-    ax_h.set_ylabel("horizontal reaction |H| (kN)")
-    ax_v.set_ylabel("vertical reaction V (kN)")
-    ax_h.set_title("thrust H of each support")
-    ax_v.set_title("vertical reaction V of each support")
-    scen_handles = [Line2D([], [], **_style(i), linewidth=1.4, label=s) for i, s in enumerate(scen)]
-    sup_handles = [
-        Line2D([], [], color="black", linestyle="none", marker=MARKERS[j % len(MARKERS)],
-               markerfacecolor="white" if j % 2 else "black", label=f"support {s}")
-        for j, s in enumerate(supports)
-    ]
-    fig.legend(handles=scen_handles + sup_handles, loc="outside lower center",
-               ncols=min(len(scen) + len(supports), 6), fontsize=8, frameon=False)
-    return fig
+def _min_span(ax: Axes, values: NDArray[np.float64]) -> None:
+    """Limits that make a constant look constant: at least 5 % of the largest magnitude."""
+    v = values[np.isfinite(values)]
+    if not v.size:
+        return
+    lo, hi = float(v.min()), float(v.max())
+    span = max(0.05 * max(abs(lo), abs(hi)), 1e-9)
+    if hi - lo < span:
+        mid = 0.5 * (lo + hi)
+        ax.set_ylim(mid - 0.6 * span, mid + 0.6 * span)
 
 
-def assembly_view(
-    ds: xr.Dataset,
-    scenario: str,
-    step: int | None = None,
-    view: View = "axo",
-    vertex_forces: bool = False,
-    fig: Canvas | None = None,
-) -> Canvas:
-    """3D view of the blocks with the interface resultants and torques of one step.
+# ---------------------------------------------------------------------------- styles of scenarios
+@dataclass(frozen=True)
+class _Styles:
+    """Colour by one swept parameter (else by settlement case), line style by settlement case."""
 
-    Parameters
-    ----------
-    ds : xarray.Dataset
-    scenario : str
-    step : int, optional
-        Index along ``step``; default :func:`default_step`.
-    view : {"axo", "elevation", "plan"}
-        Axonometric (camera set for arches or domes), elevation (looking along +y) or plan.
-    vertex_forces : bool
-        Also draw the force at every interface vertex (needs the optional ``vertex_force``
-        and ``vertex_point`` variables), to the resultants' scale.
-    fig : Figure or SubFigure, optional
+    colour_by: str
+    colours: dict[str, str]
+    styles: dict[str, object]
+    colour_values: dict[str, str]  # legend label -> colour
+    style_values: dict[str, object]  # settlement case -> line style
 
-    Returns
-    -------
-    Figure or SubFigure
-        One 3D axes. Collections: ``"blocks"``, ``"supports"`` (Poly3DCollection),
-        ``"resultants"`` (quiver, centred on the pressure points), ``"torques"``,
-        ``"vertex_forces"``; the pressure points are the line ``"pressure_points"``.
-    """
-    asm = _assembly(ds)
-    fig = _canvas(fig, (8.0, 6.0))
-    ax = fig.add_subplot(projection="3d", computed_zorder=False)  # forces drawn over the blocks
-    _draw_blocks_3d(ax, asm, _block_vertices(asm))
-    pts = [np.vstack(_block_vertices(asm))]
-    step = default_step(ds, scenario) if step is None else step
-    handles = [Patch(facecolor=BLOCK_COLOUR, edgecolor="#3c3c3c", alpha=0.6, label="block"),
-               Patch(facecolor=SUPPORT_COLOUR, edgecolor="#3c3c3c", alpha=0.6, label="support")]
-    if step is None:
-        ax.set_title(f"{scenario}: no admissible state ({_text(ds, 'outcome', scenario, 'no optimal step')})")
-    else:
-        pp, res, tq = _state(ds, scenario, step)
-        ok = np.all(np.isfinite(pp), axis=1) & np.all(np.isfinite(res), axis=1)
-        fmax = float(np.linalg.norm(res[ok], axis=1).max(initial=0.0))
-        scale = _nice(ARROW_FRACTION * asm.size / fmax) if fmax > 0 else 0.0
-        if ok.any():
-            vec = res[ok] * scale
-            ax.quiver(*pp[ok].T, *vec.T, pivot="middle", color=FORCE_COLOUR, linewidth=1.6,
-                      arrow_length_ratio=0.25, zorder=4, gid="resultants")
-            ax.plot(*pp[ok].T, linestyle="none", marker="o", markersize=2.5, color=FORCE_COLOUR,
-                    zorder=5, gid="pressure_points")
-            pts += [pp[ok] + 0.5 * vec, pp[ok] - 0.5 * vec]
-            handles.append(Line2D([], [], color=FORCE_COLOUR, linewidth=1.6, marker=">", markersize=5,
-                                  label=f"interface resultant at pressure point\n(arrow: 1 kN = {_fmt(scale)} m)"))
-        sig = ok & np.isfinite(tq) & (np.abs(np.nan_to_num(tq)) > TORQUE_TOL * fmax * asm.size)
-        if sig.any():
-            tmax = float(np.abs(tq[sig]).max())
-            tscale = _nice(TORQUE_FRACTION * asm.size / tmax)
-            arcs = Line3DCollection(_torque_arcs(pp[sig], _interface_normals(ds, asm)[sig], tq[sig], tscale),
-                                    colors=TORQUE_COLOUR, linewidths=1.2, zorder=4)
-            arcs.set_gid("torques")
-            ax.add_collection3d(arcs)
-            handles.append(Line2D([], [], color=TORQUE_COLOUR, linewidth=1.2,
-                                  label=f"torque about the normal\n(arc radius: 1 kN m = {_fmt(tscale)} m)"))
-        if vertex_forces:
-            if "vertex_force" not in ds or "vertex_point" not in ds:
-                raise ValueError("vertex_forces=True needs the variables 'vertex_force' and 'vertex_point'")
-            vf = np.asarray(ds["vertex_force"].sel(scenario=scenario, step=step).transpose("vertex", "xyz").values)
-            vp = np.asarray(ds["vertex_point"].transpose("vertex", "xyz").values, dtype=float)
-            live = np.all(np.isfinite(vf), axis=1) & (np.linalg.norm(np.nan_to_num(vf), axis=1) > 0)
-            ax.quiver(*vp[live].T, *(vf[live] * scale).T, color=VERTEX_COLOUR, linewidth=0.7,
-                      arrow_length_ratio=0.3, zorder=3, gid="vertex_forces")
-            pts.append(vp[live] + vf[live] * scale)
-            handles.append(Line2D([], [], color=VERTEX_COLOUR, linewidth=0.7,
-                                  label=f"vertex force (1 kN = {_fmt(scale)} m)"))
-        where = {"axo": "", "elevation": ", elevation (x-z, m)", "plan": ", plan (x-y, m)"}[view]
-        caption = _no_limit_caption(ds, scenario, 70)
-        ax.set_title(f"{scenario}: {_step_label(ds, scenario, step)}{where}" + (f"\n{caption}" if caption else ""),
-                     fontsize=10 if not caption else 7)
-    _equal_3d(ax, np.vstack(pts), asm.size, view)
-    ax.view_init(*_camera(asm, view))
-    fig.legend(handles=handles, loc="outside upper center", ncols=2, fontsize=7, frameon=False)
-    return fig
+    @classmethod
+    def of(cls, ds: xr.Dataset, names: Sequence[str]) -> _Styles:
+        swept = swept_parameters(ds, names)
+        cases = [str(ds["settlement"].sel(scenario=s).values) if "settlement" in ds.coords else s for s in names]
+        order = list(dict.fromkeys(cases))
+        style_of = {c: LINESTYLES[k % len(LINESTYLES)] for k, c in enumerate(order)}
+        if swept:
+            key = swept[0]
+            vals = [float(ds[key].sel(scenario=s)) for s in names]
+            uniq = sorted(set(vals))
+            palette = _palette(len(uniq))
+            colour_of = {v: palette[k] for k, v in enumerate(uniq)}
+            colours = {s: colour_of[v] for s, v in zip(names, vals)}
+            labels = {f"{key} = {v:g}": colour_of[v] for v in uniq}
+        else:
+            key = "settlement"
+            palette = _palette(len(order))
+            colours = {s: palette[order.index(c)] for s, c in zip(names, cases)}
+            labels = {}
+        return cls(key, colours, {s: style_of[c] for s, c in zip(names, cases)}, labels,
+                   style_of if len(order) > 1 or not swept else {})
+
+    def handles(self, linewidth: float = 1.4) -> list:
+        """Legend entries: one per colour value, then one per line style."""
+        out: list = [Line2D([], [], color=c, linewidth=linewidth, label=k) for k, c in self.colour_values.items()]
+        if self.colour_by == "settlement":
+            out += [Line2D([], [], color=COLOURS[0] if len(self.style_values) == 1 else self._case_colour(c),
+                           linestyle=st, linewidth=linewidth, label=c) for c, st in self.style_values.items()]
+        else:
+            out += [Line2D([], [], color="#555555", linestyle=st, linewidth=linewidth, label=c)
+                    for c, st in self.style_values.items()]
+        return out
+
+    def _case_colour(self, case: str) -> str:
+        k = list(self.style_values).index(case)
+        return _palette(len(self.style_values))[k]
 
 
-def thrust_line(
-    ds: xr.Dataset, scenario: str, step: int | Sequence[int] | None = None, fig: Canvas | None = None
-) -> Canvas:
-    """Elevation (x-z) of the blocks and the line of thrust through the pressure points.
+def _palette(n: int) -> list[str]:
+    """``n`` colours: Okabe-Ito up to 8, a sequential map (viridis) beyond."""
+    if n <= len(COLOURS):
+        return list(COLOURS[:n])
+    from matplotlib import colormaps
+
+    cmap = colormaps["viridis"]
+    return [to_hex(cmap(0.92 * k / (n - 1))) for k in range(n)]
+
+
+# ---------------------------------------------------------------------------- thrust curves
+def _facets(ds: xr.Dataset, names: Sequence[str], styles: _Styles, by_scenario: bool) -> list[tuple[str, list[str]]]:
+    """Rows of the thrust curves: ``(title, scenarios)``. One row per scenario when the
+    supports are told apart by colour (``by_scenario``); else one row, unless there are
+    more than :data:`FACET_AT` scenarios and other swept parameters to split them by."""
+    if by_scenario:
+        return [(s, [s]) for s in names]
+    others = [p for p in swept_parameters(ds, names) if p != styles.colour_by]
+    if len(names) <= FACET_AT or not others:
+        return [("", list(names))]
+    rows: dict[str, list[str]] = {}
+    for s in names:
+        key = ", ".join(f"{p} = {float(ds[p].sel(scenario=s)):g}" for p in others)
+        rows.setdefault(key, []).append(s)
+    return list(rows.items())
+
+
+def _coincide(groups: Sequence[Sequence[tuple[str, str]]], one_scenario: bool) -> str:
+    """Panel note naming coincident (scenario, support) curves: ``a, b (left, right); ...``.
+
+    Groups with the same scenarios at different supports are named once with all their
+    supports; within one scenario, only the supports are named."""
+    if one_scenario:
+        return "; ".join(", ".join(sup for _, sup in g) for g in groups)
+    merged: dict[tuple[str, ...], list[str]] = {}
+    for g in groups:
+        by_scen: dict[str, list[str]] = {}
+        for s, sup in g:
+            by_scen.setdefault(s, []).append(sup)
+        sups = {tuple(v) for v in by_scen.values()}
+        if len(sups) == 1:
+            merged.setdefault(tuple(by_scen), []).extend(next(iter(sups)))
+        else:
+            merged.setdefault((join_names([f"{s} ({', '.join(v)})" for s, v in by_scen.items()], 3),), [])
+    return "; ".join(join_names(k, 3) + (f" ({', '.join(dict.fromkeys(v))})" if v else "") for k, v in merged.items())
+
+
+def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
+    """Forces on the supports against lambda, in the frame of the structure (Fig. 8).
 
     Parameters
     ----------
     ds : xarray.Dataset
-    scenario : str
-    step : int or sequence of int, optional
-        Index (or indices, drawn together like the paper's Fig. 7) along ``step``;
-        default :func:`default_step`.
-    fig : Figure or SubFigure, optional
-
-    Returns
-    -------
-    Figure or SubFigure
-        One 2D axes with equal aspect. Each line of thrust is the line
-        ``"thrust_line:<step>"`` (x, z of the pressure points in interface order, broken
-        where an interface carries nothing); at ``lambda_max`` the hinges of the mechanism
-        are the line ``"hinges"``; block outlines are patches ``"block:<name>"``.
-    """
-    asm = _assembly(ds)
-    fig = _canvas(fig, (8.0, 5.0))
-    ax = fig.add_subplot()
-    verts = _block_vertices(asm)
-    _draw_blocks_2d(ax, asm, verts)
-    steps = [default_step(ds, scenario)] if step is None else list(np.atleast_1d(step))
-    steps = [int(k) for k in steps if k is not None]
-    lmax = _lambda_max(ds, scenario)
-    lam = _value(ds, "lam", scenario).astype(float)
-    if not steps:
-        ax.set_title(f"{scenario}: no admissible state ({_text(ds, 'outcome', scenario, 'no optimal step')})")
-    for i, k in enumerate(steps):
-        pp, _, _ = _state(ds, scenario, k)
-        ax.plot(pp[:, 0], pp[:, 2], color=FORCE_COLOUR if i == len(steps) - 1 else "#555555",
-                linestyle=LINESTYLES[len(steps) - 1 - i], linewidth=1.8, marker="o", markersize=3.5,
-                gid=f"thrust_line:{k}", label=_step_label(ds, scenario, k))
-    hinges = _hinge_points(ds, scenario)
-    if len(hinges) and math.isfinite(lmax) and any(np.isclose(lam[k], lmax) for k in steps):
-        ax.plot(hinges[:, 0], hinges[:, 2], **HINGE_MARKER, gid="hinges", label="hinge")
-    if steps:
-        fig.legend(loc="outside lower center", ncols=min(len(steps) + 1, 3), fontsize=7, frameon=False,
-                   title="line of thrust (pressure points)", title_fontsize=7)
-        ax.set_title(f"{scenario}: line of thrust", fontsize=10)
-    _equal_2d(ax, np.vstack(verts)[:, [0, 2]], asm.size)
-    return fig
-
-
-def mechanism_view(
-    ds: xr.Dataset, scenario: str, view: View | None = None, fig: Canvas | None = None
-) -> Canvas:
-    """The collapse mechanism: blocks displaced by the (exaggerated) mechanism, hinges marked.
-
-    A vertex ``p`` of a block with centroid ``c`` and velocities ``(v, w)`` moves to
-    ``p + s (v + w x (p - c))``; ``s`` makes the largest vertex displacement
-    ``MECHANISM_FRACTION`` of the assembly size and the title states it.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-    scenario : str
-    view : {"axo", "elevation", "plan"}, optional
-        Default: a 2D elevation (x-z) for planar scenarios, an axonometric 3D view otherwise.
-        ``"elevation"`` is always drawn in 2D.
-    fig : Figure or SubFigure, optional
-
-    Returns
-    -------
-    Figure or SubFigure
-        One axes; hinge markers are the line ``"hinges"`` (at ``hinge_point``), original
-        blocks ghosts (``"ghost:<name>"`` patches in 2D, ``"blocks-ghost"`` in 3D).
-    """
-    asm = _assembly(ds)
-    fig = _canvas(fig, (8.0, 5.6))
-    view = view or ("elevation" if _is_planar(ds, scenario) else "axo")
-    flat = view == "elevation"
-    ax = fig.add_subplot() if flat else fig.add_subplot(projection="3d", computed_zorder=False)
-    verts = _block_vertices(asm)
-    vel = _mechanism(ds, scenario, asm)
-    lmax = _lambda_max(ds, scenario)
-    disp = None
-    if vel is None:
-        why = _no_limit_caption(ds, scenario, 70) or _text(ds, "outcome", scenario, "none")
-        moved, title = verts, f"{scenario}: no collapse mechanism\n{why}"
-    else:
-        cen = asm.centroids
-        disp = [vel[k, :3] + np.cross(vel[k, 3:], v - cen[k]) for k, v in enumerate(verts)]
-        dmax = max(float(np.linalg.norm(d, axis=1).max()) for d in disp)
-        s = MECHANISM_FRACTION * asm.size / dmax
-        moved = [v + s * d for v, d in zip(verts, disp)]
-        lam = f"λmax = {lmax:.3f}" if math.isfinite(lmax) else "direct limit"
-        title = f"{scenario}: collapse mechanism at {lam}\n(exaggerated: largest displacement drawn {s * dmax:.2f} m)"
-    hinges = _hinge_points(ds, scenario) if vel is not None else np.empty((0, 3))
-    marker = HINGE_MARKER | dict(gid="hinges")
-    if flat:
-        _draw_blocks_2d(ax, asm, verts, faint=True)
-        _draw_blocks_2d(ax, asm, moved)
-        ax.plot(hinges[:, 0], hinges[:, 2], **marker)
-        _equal_2d(ax, np.vstack(verts + moved)[:, [0, 2]], asm.size)
-    else:
-        _draw_blocks_3d(ax, asm, verts, faint=True)
-        _draw_blocks_3d(ax, asm, moved)
-        ax.plot(*hinges.T, **marker)
-        _equal_3d(ax, np.vstack(verts + moved), asm.size, view)
-        ax.view_init(*_camera(asm, view, None if disp is None else np.vstack(disp)))
-    fig.legend(
-        handles=[Patch(facecolor="none", edgecolor="#9a9a9a", linestyle="--", label="original position"),
-                 Patch(facecolor=BLOCK_COLOUR, edgecolor="#3c3c3c", alpha=0.6, label="displaced block"),
-                 Line2D([], [], **HINGE_MARKER, label="hinge")],
-        loc="outside lower center" if flat else "outside upper center", ncols=3, fontsize=7, frameon=False,
-    )
-    ax.set_title(title, fontsize=10)
-    return fig
-
-
-def figure_sheet(ds: xr.Dataset, max_columns: int = 4) -> Figure:
-    """One sheet per study: the thrust curves on top, then one column per scenario.
-
-    Each scenario column holds its assembly view at the default step, its line of thrust
-    (planar scenarios) or plan view (spatial ones), and its collapse mechanism when it has
-    one. Columns wrap after ``max_columns``.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-    max_columns : int
+    names : sequence of str, optional
+        Scenarios drawn (default: all).
 
     Returns
     -------
     Figure
+        Panels ``H``, ``V`` (and ``S``, ``M`` when a scenario is spatial; ``M`` not for
+        radial supports; four panels in two rows). With up to two supports: colour and line
+        style per scenario (:class:`_Styles`), marker per support, scenarios faceted beyond
+        :data:`FACET_AT`; with more supports: one row per scenario, colour and marker per
+        support. Each drawn curve is a line with gid
+        ``"reaction:<component>:<scenario>:<support>"`` (the first of its coincident
+        curves, which the panel title names); lambda_max lines have the gid
+        ``"lambda_max"``.
     """
-    scen = _scenarios(ds)
-    asm = _assembly(ds)
-    ncols = max(1, min(len(scen), max_columns))
-    nrows = math.ceil(len(scen) / ncols)
-    cell_w, panel_h = 5.2, 3.4
-    fig = Figure(figsize=(cell_w * max(ncols, 2), 4.4 + 3 * panel_h * nrows), layout="constrained")
-    title = str(ds.attrs.get("study_name", "")) or "study"
-    fig.suptitle(f"{title}: support reactions, interface resultants, lines of thrust, mechanisms",
-                 fontsize=12)
-    top, bottom = fig.subfigures(2, 1, height_ratios=[4.4, 3 * panel_h * nrows])
-    thrust_curves(ds, fig=top)
-    cells = np.atleast_1d(bottom.subfigures(nrows, ncols, squeeze=False)).ravel()
-    for cell, s in zip(cells, scen):
-        panels = cell.subfigures(3, 1)
-        assembly_view(ds, s, fig=panels[0])
-        if _is_planar(ds, s):  # the settlement alone against the limit state (the paper's Fig. 7)
-            thrust_line(ds, s, step=_first_and_limit(ds, s), fig=panels[1])
-        else:
-            assembly_view(ds, s, view="plan", fig=panels[1])
-        if _mechanism(ds, s, asm) is not None:
-            mechanism_view(ds, s, fig=panels[2])
-        elif _no_limit_caption(ds, s):
-            panels[2].text(0.5, 0.5, f"{s}: no finite limit\n\n{_no_limit_caption(ds, s, 60)}",
-                           ha="center", va="center", fontsize=8, wrap=True)
-    return fig
+    names = list(names or scenarios(ds))
+    asm = assembly(ds)
+    frame = structure_frame(asm)
+    spatial = any(not is_planar(ds, s) for s in names)
+    comps = (["H", "S", "V"] + ([] if frame.kind == "radial" else ["M"])) if spatial else ["H", "V"]
+    supports = [str(s) for s in ds["support"].values]
+    by_support = len(supports) > 2
+    styles = _Styles.of(ds, names)
+    facets = _facets(ds, names, styles, by_support)
+    forces = {s: support_forces(ds, s, frame) for s in names}
+    steps = {s: optimal_steps(ds, s) for s in names}
+    lams = {s: value(ds, "lam", s).astype(float)[steps[s]] for s in names}
+    faint = {s: bool(unique_note(ds, s)) for s in names}
+    sup_colours = _palette(len(supports)) if by_support else []
+
+    def style(s: str, j: int) -> dict:
+        colour = sup_colours[j] if by_support else styles.colours[s]
+        return dict(color=colour, linestyle=styles.styles[s], marker=MARKERS[j % len(MARKERS)],
+                    markerfacecolor=colour if by_support or j % 2 == 0 else "white")
+
+    if by_support:
+        handles: list = [Line2D([], [], linewidth=1.3, markersize=4, label=f"support {sup}",
+                                **{k: v for k, v in style(names[0], j).items() if k != "linestyle"})
+                         for j, sup in enumerate(supports)]
+        if len(styles.style_values) > 1:
+            handles += [Line2D([], [], color="#555555", linestyle=st, linewidth=1.3, label=c)
+                        for c, st in styles.style_values.items()]
+    else:
+        handles = styles.handles()
+        handles += [Line2D([], [], color="black", linestyle="none", marker=MARKERS[j % len(MARKERS)], markersize=4.5,
+                           markerfacecolor="white" if j % 2 else "black", label=f"support {sup}")
+                    for j, sup in enumerate(supports)]
+    if any(faint.values()):
+        handles.append(Line2D([], [], color="black", alpha=0.4, linewidth=2.5,
+                              label="faint: state not necessarily unique\n(rigid, no support motion)"))
+    notes = [f"{s}: {outcome_note(ds, s)}" for s in names if outcome_note(ds, s)]
+    square = len(comps) == 4 and len(facets) == 1
+    ncols, nrows = (2, 2) if square else (len(comps), len(facets))
+    w = 3.4
+    width = 0.8 + ncols * w + (ncols - 1) * 0.85 + 0.2
+    below = _legend_height([h.get_label() for h in handles], width) + 0.16 * len(notes)
+    grid = _Grid(nrows, ncols, w, 2.3, left=0.8, wspace=0.85, hspace=0.8, top=0.8, bottom=0.45, below=below)
+    lmax = sorted({round(float(value(ds, "lambda_max", s)), 9) for s in names
+                   if math.isfinite(float(value(ds, "lambda_max", s)))})
+    xmax = 1.08 * max([*lmax, *(float(np.max(v)) for v in lams.values() if v.size)], default=1.0)
+    for r, (facet, members) in enumerate(facets):
+        for c, comp in enumerate(comps):
+            ax = grid.axes[c // 2][c % 2] if square else grid.axes[r][c]
+            keys, curves = [], []
+            for s in members:
+                for j, sup in enumerate(supports):
+                    keys.append((s, sup))
+                    curves.append((lams[s], forces[s][comp][steps[s], j]))
+            allv = np.concatenate([y for _, y in curves]) if curves else np.empty(0)
+            scale = float(np.nanmax(np.abs(allv))) if np.isfinite(allv).any() else 1.0
+            same: list[list[tuple[str, str]]] = []
+            for g in group_identical(curves, atol=1e-6 * max(scale, 1e-12)):
+                s, sup = keys[g[0]]
+                j = supports.index(sup)
+                x, y = curves[g[0]]
+                ax.plot(x, y, linewidth=1.3, alpha=0.45 if faint[s] else 1.0, markersize=4,
+                        markevery=(0.03 * (j % 2), 0.1), gid=f"reaction:{comp}:{s}:{sup}", **style(s, j))
+                if len(g) > 1:
+                    same.append([keys[i] for i in g])
+            for k, v in enumerate(lmax):  # labels of neighbouring limits alternate in height
+                ax.axvline(v, color="#555555", linestyle=":", linewidth=1.0, gid="lambda_max")
+                ax.text(v, 0.72 - 0.44 * (k % 2), f" λmax = {v:.3f}", transform=ax.get_xaxis_transform(), ha="left",
+                        va="center", rotation=90, fontsize=FONT - 1, color="#333333")
+            _min_span(ax, allv)
+            ax.grid(True, linewidth=0.3, alpha=0.6)
+            ax.set_xlim(0.0, xmax)
+            ax.set_ylabel(frame.labels[comp], fontsize=FONT)
+            if (c >= 2) if square else r == len(facets) - 1:
+                ax.set_xlabel("load multiplier λ (–)", fontsize=FONT)
+            else:  # the panels below share this λ axis and name it
+                ax.tick_params(labelbottom=False)
+            title = facet
+            if same:
+                title += ("\n" if title else "") + _wrap("coincide: " + _coincide(same, len(members) == 1), w)
+            ax.set_title(title, fontsize=FONT - 0.5, loc="left", y=1.0)
+    grid.fig.suptitle(f"{_study(ds)}: forces on the supports", fontsize=FONT + 2, y=1 - 0.18 / grid.height)
+    _bottom_legend(grid, handles, y=0.06 + 0.16 * len(notes))
+    for k, note in enumerate(notes):
+        grid.fig.text(0.5, (0.06 + 0.16 * k) / grid.height, note, ha="center", fontsize=FONT - 0.5, color=NOTE_COLOUR)
+    return grid.fig
 
 
-def write_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
-    """Write every figure of a study beside its dataset.
+def _study(ds: xr.Dataset) -> str:
+    return str(ds.attrs.get("study_name", "")) or "study"
 
-    Files: ``thrust.png``; per scenario ``assembly_<s>.png``, ``thrust_line_<s>.png`` (planar
-    scenarios only) and ``mechanism_<s>.png`` (when the scenario has a mechanism);
-    ``bracket.png`` when a material parameter is swept (:mod:`tce.plot.materials`);
-    ``sheet.png`` and ``sheet.pdf``. ``<s>`` is the scenario name made safe for file names.
+
+# ---------------------------------------------------------------------------- small multiples
+class _Sheet:
+    """Panels of one drawing on a single equal-aspect axes (no ticks), panel ``(r, c)``
+    shifted by :meth:`offset`: one axes however many panels, which keeps a grid of
+    drawings fast. Below the panels: a scale bar and, for an axonometric camera, the
+    global axes.
+
+    Parameters
+    ----------
+    nrows, ncols : int
+    lo, hi : (2,) array
+        Screen box of one panel's content (m).
+    width : float
+        Width of a panel (inches).
+    title : float
+        Inches above each panel for its title.
+    below : float
+        Inches under the drawing for the figure legend.
+    """
+
+    GAP = 0.3  # inches between panels
+    MIN_WIDTH = 5.0  # inches: room for the title and the legend
+
+    def __init__(self, nrows: int, ncols: int, lo: NDArray, hi: NDArray, width: float, title: float,
+                 below: float, camera: draw.Camera, top: float = 0.45, header: float = 0.0) -> None:
+        self.lo, ext = np.asarray(lo, float), np.asarray(hi, float) - np.asarray(lo, float)
+        self.k = width / ext[0]  # inches per metre
+        gap, self.title_h = self.GAP / self.k, title / self.k
+        self.cell = np.array([ext[0] + gap, ext[1] + self.title_h + gap])
+        self.strip = 0.3 / self.k  # scale bar and axes
+        data_w, data_h = ncols * self.cell[0], nrows * self.cell[1] + self.strip
+        self.header_h = header / self.k
+        data_h += self.header_h
+        fw, fh = max(data_w * self.k + 0.2, self.MIN_WIDTH), data_h * self.k + top + below
+        self.fig = Figure(figsize=(fw, fh))
+        left = 0.5 * (fw - data_w * self.k)
+        self.ax = self.fig.add_axes((left / fw, below / fh, data_w * self.k / fw, data_h * self.k / fh))
+        self.ax.set_axis_off()
+        self.ax.set_xlim(0.0, data_w)
+        self.ax.set_ylim(-data_h + self.header_h, self.header_h)
+        self.width, self.height, self.nrows, self.camera = fw, fh, nrows, camera
+        self._scale_bar(ext)
+
+    def offset(self, r: int, c: int) -> NDArray[np.float64]:
+        """Screen shift of panel ``(r, c)``."""
+        return np.array([c * self.cell[0] + 0.5 * self.GAP / self.k,
+                         -(r + 1) * self.cell[1] + 0.5 * self.GAP / self.k]) - self.lo
+
+    def title(self, r: int, c: int, text: str, colour: str = "black") -> None:
+        x = (c + 0.5) * self.cell[0]
+        y = -r * self.cell[1] - 0.2 * self.GAP / self.k
+        self.ax.text(x, y, text, ha="center", va="top", fontsize=FONT, color=colour)
+
+    def header(self, c: int, text: str, colour: str = "black") -> None:
+        """Text above column ``c`` (in the header band)."""
+        self.ax.text((c + 0.5) * self.cell[0], self.header_h, text, ha="center", va="top", fontsize=FONT,
+                     color=colour)
+
+    def note(self, r: int, c: int, text: str) -> None:
+        """A framed message in the middle of panel ``(r, c)``."""
+        x = (c + 0.5) * self.cell[0]
+        y = -(r + 0.5) * self.cell[1]
+        self.ax.text(x, y, text, ha="center", va="center", fontsize=FONT, color=NOTE_COLOUR,
+                     bbox=dict(facecolor="white", edgecolor=NOTE_COLOUR, alpha=0.9))
+
+    def _scale_bar(self, ext: NDArray) -> None:
+        length = draw.nice(0.25 * ext[0])
+        y = -self.nrows * self.cell[1] - 0.55 * self.strip
+        x0 = 0.5 * self.GAP / self.k
+        self.ax.plot([x0, x0 + length], [y, y], color="black", linewidth=2.0, solid_capstyle="butt", gid="scale_bar")
+        self.ax.text(x0 + length + 0.1 / self.k, y, f"{length:g} m", va="center", fontsize=FONT - 0.5)
+        x1 = x0 + length + 0.9 / self.k
+        size = 0.16 / self.k
+        names = self.camera.axis_names if self.camera.flat else ("x", "y", "z")
+        cols = {"x": 0, "y": 1, "z": 2}
+        for name in names:
+            d = self.camera.basis[:2, cols[name]] * size
+            if np.linalg.norm(d) < 0.1 * size:
+                continue
+            self.ax.annotate("", (x1 + d[0], y + d[1]), (x1, y),
+                             arrowprops=dict(arrowstyle="-|>", color="#444444", linewidth=0.8, mutation_scale=6))
+            self.ax.text(x1 + 1.35 * d[0], y + 1.35 * d[1], name, fontsize=FONT - 1, color="#444444", ha="center",
+                         va="center")
+
+
+# ---------------------------------------------------------------------------- states
+@dataclass(frozen=True)
+class _Scales:
+    """One arrow scale (m per kN) and one torque scale (m per kN m) for a whole figure."""
+
+    force: float
+    torque: float
+    fmax: float
+
+    @classmethod
+    def of(cls, arrays: _Arrays, states: Sequence[State], size: float) -> _Scales:
+        fmax = tmax = 0.0
+        for st in states:
+            if st.step is None:
+                continue
+            _, res, tq = arrays.state(st)
+            fmax = max(fmax, float(np.nanmax(np.linalg.norm(res, axis=1), initial=0.0)))
+            tmax = max(tmax, float(np.nanmax(np.abs(tq), initial=0.0)))
+        force = draw.nice(ARROW_FRACTION * size / fmax) if fmax > 0 else 0.0
+        sig = tmax > TORQUE_TOL * fmax * size
+        torque = draw.nice(TORQUE_FRACTION * size / tmax) if sig and tmax > 0 else 0.0
+        return cls(force, torque, fmax)
+
+
+class _Arrays:
+    """Pressure points, resultants and torques of the scenarios of a figure, read once."""
+
+    def __init__(self, ds: xr.Dataset, names: Sequence[str]) -> None:
+        sub = ds.sel(scenario=list(names))
+        self.index = {s: k for k, s in enumerate(names)}
+        self.pp = np.asarray(sub["pressure_point"].transpose("scenario", "step", "interface", "xyz").values, float)
+        self.res = np.asarray(sub["resultant"].transpose("scenario", "step", "interface", "xyz").values, float)
+        self.tq = np.asarray(sub["torque"].transpose("scenario", "step", "interface").values, float)
+
+    def state(self, st: State) -> tuple[NDArray, NDArray, NDArray]:
+        i = self.index[st.scenario]
+        return self.pp[i, st.step], self.res[i, st.step], self.tq[i, st.step]
+
+
+def _camera(ds: xr.Dataset, names: Sequence[str], asm: Assembly) -> draw.Camera:
+    """Elevation when every scenario is planar, else the axonometric camera of the assembly
+    turned to show what happens across its plane."""
+    if all(is_planar(ds, s) for s in names):
+        return draw.Camera.elevation()
+    return draw.Camera.for_assembly(asm, across=True)
+
+
+def _state_panel(ax: Axes, off: NDArray, ds: xr.Dataset, asm: Assembly, art: draw.BlockArt, arrays: _Arrays,
+                 st: State, camera: draw.Camera, scales: _Scales, chain: list[int] | None, head: float) -> None:
+    """Draw one state (an optimal step) shifted by ``off``."""
+    art.draw(ax, off)
+    pp, res, tq = arrays.state(st)
+    ok = np.all(np.isfinite(pp), axis=1) & np.all(np.isfinite(res), axis=1)
+    mag = np.where(ok, np.linalg.norm(np.nan_to_num(res), axis=1), -1.0)
+    shown = np.zeros(len(ok), bool)
+    shown[np.argsort(-mag, kind="stable")[: min(MAX_ARROWS, int(ok.sum()))]] = True
+
+    def xy(p: NDArray) -> NDArray:
+        return camera.project(p) + off
+
+    if chain is not None:
+        line = xy(np.where(ok[chain, None], pp[chain], np.nan))
+        ax.plot(line[:, 0], line[:, 1], color=THRUST_LINE_COLOUR, linewidth=0.9, alpha=0.8, zorder=3,
+                gid="thrust_line")
+    if shown.any():
+        vec = res[shown] * scales.force
+        draw.arrows(ax, xy(pp[shown] - 0.5 * vec), xy(pp[shown] + 0.5 * vec), FORCE_COLOUR, head, linewidth=1.5,
+                    gid="resultants")
+        c = xy(pp[shown])
+        ax.plot(c[:, 0], c[:, 1], linestyle="none", marker="o", markersize=2.2, color=FORCE_COLOUR, zorder=5,
+                gid="pressure_points")
+    loads = declared_loads(ds, st.scenario)
+    if loads is not None and scales.force > 0:  # each arrow ends where its load acts
+        p, f, live = loads
+        f = np.where(live[:, None], st.lam * f, f)
+        keep = np.linalg.norm(f, axis=1) > 0
+        vec = f[keep] * scales.force
+        draw.arrows(ax, xy(p[keep] - vec), xy(p[keep]), LOAD_COLOUR, head, linewidth=1.8, gid="loads")
+    if scales.torque > 0:
+        sig = shown & np.isfinite(tq) & (np.abs(np.nan_to_num(tq)) > TORQUE_TOL * scales.fmax * asm.size)
+        if sig.any():
+            normals = np.array([i.normal for i in asm.interfaces])[sig]
+            arcs = draw.torque_arcs(pp[sig], normals, tq[sig], scales.torque)
+            coll = LineCollection([xy(a) for a in arcs], colors=TORQUE_COLOUR, linewidths=1.0, zorder=4)
+            coll.set_gid("torques")
+            ax.add_collection(coll)
+    if st.target == "max" and text(ds, "outcome", st.scenario, "limit") == "limit":
+        _hinges(ax, ds, st.scenario, asm, camera, planar=is_planar(ds, st.scenario), offset=off)
+
+
+def _hinges(ax: Axes, ds: xr.Dataset, scenario: str, asm: Assembly, camera: draw.Camera, planar: bool,
+            offset: NDArray = np.zeros(2)) -> None:
+    """Hinge lines of the mechanism (segments along the hinge axes, gid ``"hinges"``); in an
+    elevation of a planar scenario, where they are seen end-on, a marker each."""
+    if planar and camera == draw.Camera.elevation():
+        mode = value(ds, "interface_mode", scenario).astype(str) if "interface_mode" in ds else np.array([])
+        hp = np.asarray(ds["hinge_point"].sel(scenario=scenario).transpose("interface", "xyz").values, float)
+        hp = hp[(mode == "hinge") & np.all(np.isfinite(hp), axis=1)]
+        xy = camera.project(hp) + offset
+        ax.plot(xy[:, 0], xy[:, 1], linestyle="none", marker="o", markersize=6, markerfacecolor="white",
+                markeredgecolor=HINGE_COLOUR, markeredgewidth=1.6, zorder=6, gid="hinges")
+        return
+    segs = hinge_segments(ds, scenario, asm)
+    if segs.size:
+        coll = LineCollection([camera.project(s) + offset for s in segs], colors=HINGE_COLOUR, linewidths=2.6,
+                              zorder=6, capstyle="round")
+        coll.set_gid("hinges")
+        ax.add_collection(coll)
+
+
+def _content_box(art: draw.BlockArt, pad: float) -> tuple[NDArray, NDArray]:
+    return art.points.min(axis=0) - pad, art.points.max(axis=0) + pad
+
+
+def _state_handles(scales: _Scales, chain: bool, hinges: bool, loads: bool = False) -> list:
+    h: list = [Patch(facecolor=draw.BLOCK_COLOUR, edgecolor=draw.EDGE_COLOUR, label="block"),
+               Patch(facecolor=draw.SUPPORT_COLOUR, edgecolor=draw.EDGE_COLOUR, label="support")]
+    if scales.force > 0:
+        h.append(Line2D([], [], color=FORCE_COLOUR, linewidth=1.5, marker="o", markersize=3,
+                        label=f"interface resultant at its pressure point (1 kN = {scales.force:.3g} m)"))
+    if scales.torque > 0:
+        h.append(Line2D([], [], color=TORQUE_COLOUR, linewidth=1.0,
+                        label=f"torque about the normal (arc radius: 1 kN m = {scales.torque:.3g} m)"))
+    if loads:
+        h.append(Line2D([], [], color=LOAD_COLOUR, linewidth=1.8, label="applied load (live ones × λ), same scale"))
+    if chain:
+        h.append(Line2D([], [], color=THRUST_LINE_COLOUR, linewidth=0.9, label="line of thrust"))
+    if hinges:
+        h.append(Line2D([], [], color=HINGE_COLOUR, linewidth=2.6, marker="o", markerfacecolor="white",
+                        label="hinge at λmax"))
+    return h
+
+
+def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: str = "") -> Figure:
+    """Interface resultants, torques, lines of thrust and hinges of drawn states.
 
     Parameters
     ----------
     ds : xarray.Dataset
-    outdir : pathlib.Path
-        Created if missing.
+    panels : sequence of (scenario, target)
+        One panel each (target: a multiplier or ``"max"``, see :func:`tce.plot.data.find_state`),
+        laid out by :func:`tce.plot.data.state_pages`: a column per scenario and a row per target when
+        the page has several of both, the targets side by side for one scenario, the
+        scenarios in two columns for one target.
+    title : str
 
     Returns
     -------
-    list of pathlib.Path
-        The files written, in the order above.
+    Figure
+        One axes holding every panel (shifted copies of the drawing). Arrows (gid
+        ``"resultants"``, heads ``"resultants-heads"``) are centred on the projected
+        pressure points (line ``"pressure_points"``), to the scale stated in the legend.
     """
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
-    asm = _assembly(ds)
-    written: list[Path] = []
+    asm = assembly(ds)
+    names = list(dict.fromkeys(s for s, _ in panels))
+    targets = list(dict.fromkeys(t for _, t in panels))
+    states = {(s, t): find_state(ds, s, t) for s, t in panels}
+    arrays = _Arrays(ds, names)
+    camera = _camera(ds, names, asm)
+    chain = chain_interfaces(asm)
+    scales = _Scales.of(arrays, list(states.values()), asm.size)
+    art = draw.BlockArt.of(asm, camera)
+    lo, hi = _content_box(art, 0.5 * scales.fmax * scales.force + 0.03 * asm.size)
+    many = len(targets) > 1
+    across = many and len(names) == 1  # one scenario: its states side by side
+    grid = many and not across  # a column per scenario, a row per target: headers name them
+    if across:
+        cols, rows = min(len(targets), MAX_COLUMNS), math.ceil(len(targets) / MAX_COLUMNS)
+    elif grid:
+        cols, rows = len(names), len(targets)
+    else:
+        cols = min(len(names), 2)
+        rows = math.ceil(len(names) / cols)
+    width = 3.0 if camera.flat else 3.2
+    # what holds for every state of a scenario (outcome, non-unique) is said once, in its header
+    common = {s: _common_note([states[(s, t)] for t in targets if (s, t) in states]) for s in names}
+    heads = {s: s + ("\n" + _wrap(common[s], width) if common[s] else "") for s in names} if many else {}
+    header_lines = max((h.count("\n") + 1 for h in heads.values()), default=0)
+    cell_notes = {k: _rest(st.note, common[k[0]] if many else "") for k, st in states.items() if st.step is not None}
+    cell_lines = 1 + max((_wrap(n, width).count("\n") + 1 for n in cell_notes.values() if n), default=0)
+    has_loads = any(declared_loads(ds, s) is not None for s in names)
+    handles = _state_handles(scales, chain is not None, any(t == "max" for t in targets), has_loads)
+    below = _legend_height([x.get_label() for x in handles], max(cols * (width + _Sheet.GAP), _Sheet.MIN_WIDTH))
+    sheet = _Sheet(rows, cols, lo, hi, width, 0.16 * cell_lines + 0.08, below, camera,
+                   header=0.16 * header_lines + 0.05 if grid else 0.0)
+    head = 0.04 * asm.size
+    for s, t in panels:
+        if across:
+            r, c = divmod(targets.index(t), cols)
+        elif grid:
+            r, c = targets.index(t), names.index(s)
+        else:
+            r, c = divmod(names.index(s), cols)
+        st = states[(s, t)]
+        off = sheet.offset(r, c)
+        if st.step is None:
+            art.draw(sheet.ax, off)
+            sheet.note(r, c, _wrap(f"{st.label}: {st.note}", 3.0))
+        else:
+            _state_panel(sheet.ax, off, ds, asm, art, arrays, st, camera, scales, chain, head)
+        note = cell_notes.get((s, t), "")
+        label = st.label if many else f"{s}: {st.label}"
+        sheet.title(r, c, label + ("\n" + _wrap(note, width) if note else ""), NOTE_COLOUR if note else "black")
+    for s in names if grid else []:
+        sheet.header(names.index(s), heads[s], NOTE_COLOUR if common[s] else "black")
+    where = "elevation" if camera == draw.Camera.elevation() else "axonometric view"
+    what = f"{names[0]}: " if across else ""
+    sub = "\n" + _wrap(common[names[0]], sheet.width) if across and common[names[0]] else ""
+    sheet.fig.suptitle(title or f"{_study(ds)}: {what}internal stress states ({where}){sub}", fontsize=FONT + 2,
+                       y=1 - 0.12 / sheet.height)
+    _bottom_legend(sheet, handles)
+    return sheet.fig
 
-    def save(fig: Canvas, name: str) -> None:
-        path = outdir / name
-        fig.savefig(path, dpi=150)
-        written.append(path)
 
-    save(thrust_curves(ds), "thrust.png")
-    seen: set[str] = set()
-    for i, s in enumerate(_scenarios(ds)):
-        slug = _slug(s)
-        slug = slug if slug not in seen else f"{slug}_{i}"
-        seen.add(slug)
-        save(assembly_view(ds, s), f"assembly_{slug}.png")
-        if _is_planar(ds, s):
-            save(thrust_line(ds, s, step=_first_and_limit(ds, s)), f"thrust_line_{slug}.png")
-        if _mechanism(ds, s, asm) is not None:
-            save(mechanism_view(ds, s), f"mechanism_{slug}.png")
-    from .materials import write_material_figures  # imports this module: not at the top
+def _common_note(states: Sequence[State]) -> str:
+    """The note every drawn state of a scenario shares ("" if they differ or have none)."""
+    notes = {st.note for st in states if st.step is not None}
+    return notes.pop() if len(notes) == 1 else ""
 
-    written += write_material_figures(ds, outdir)
-    sheet = figure_sheet(ds)
-    save(sheet, "sheet.png")
-    save(sheet, "sheet.pdf")
-    return written
+
+def _rest(note: str, common: str) -> str:
+    """``note`` without what the scenario's header already says."""
+    return "" if note == common else note
+
+
+# ---------------------------------------------------------------------------- lines of thrust
+def thrust_lines(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object]) -> Figure:
+    """One elevation per drawn state with the line of thrust of each scenario (Figs. 3b, 7).
+
+    Only for a structure that is one line of blocks (:func:`tce.plot.data.chain_interfaces`).
+    Lines carry the gid ``"thrust_line:<scenario>"``; coincident lines are drawn once (the
+    first scenario's) and named together in the panel title; at lambda_max the hinges of
+    the first scenario with a mechanism are marked (gid ``"hinges"``).
+
+    Raises
+    ------
+    ValueError
+        The structure is not one line of blocks.
+    """
+    asm = assembly(ds)
+    chain = chain_interfaces(asm)
+    if chain is None:
+        raise ValueError("the structure is not one line of blocks: it has no line of thrust")
+    names, targets = list(names), list(targets)
+    camera = draw.Camera.elevation()
+    styles = _Styles.of(ds, names)
+    arrays = _Arrays(ds, names)
+    art = draw.BlockArt.of(asm, camera)
+    lo, hi = _content_box(art, 0.03 * asm.size)
+    cols = min(len(targets), 2)
+    rows = math.ceil(len(targets) / cols)
+    handles = [Line2D([], [], color=styles.colours[s], linestyle=styles.styles[s], linewidth=1.4, marker="o",
+                      markersize=2.5, label=s) for s in names]
+    notes = [f"{s}: {n}" for s in names if (n := outcome_note(ds, s) or unique_note(ds, s))]
+    width = 3.6
+    fig_w = max(cols * (width + _Sheet.GAP), _Sheet.MIN_WIDTH)
+    below = _legend_height([x.get_label() for x in handles], fig_w) + 0.16 * len(notes)
+    sheet = _Sheet(rows, cols, lo, hi, width, 0.55, below, camera)
+    for k, t in enumerate(targets):
+        r, c = divmod(k, cols)
+        off = sheet.offset(r, c)
+        art.draw(sheet.ax, off)
+        labels, keys, lines = set(), [], []
+        for s in names:
+            st = find_state(ds, s, t)
+            if st.step is not None:
+                labels.add(st.label)
+                keys.append(s)
+                lines.append(camera.project(arrays.state(st)[0][chain]) + off)
+        groups = group_identical([(np.arange(2 * len(ln)), ln.ravel()) for ln in lines], atol=1e-6 * asm.size)
+        for g in groups:
+            s, line = keys[g[0]], lines[g[0]]
+            sheet.ax.plot(line[:, 0], line[:, 1], color=styles.colours[s], linestyle=styles.styles[s], linewidth=1.4,
+                          marker="o", markersize=2.5, zorder=4, gid=f"thrust_line:{s}")
+        if t == "max":
+            first = next((s for s in names if text(ds, "outcome", s, "limit") == "limit"), None)
+            if first is not None:
+                _hinges(sheet.ax, ds, first, asm, camera, planar=True, offset=off)
+        same = "; ".join(join_names([keys[i] for i in g], 4) for g in groups if len(g) > 1)
+        title = " / ".join(sorted(labels)) if labels else f"λ = {t}: no admissible state"
+        sheet.title(r, c, title + ("\n" + _wrap("coincide: " + same, width) if same else ""))
+    sheet.fig.suptitle(f"{_study(ds)}: lines of thrust (pressure points, elevation)", fontsize=FONT + 2,
+                       y=1 - 0.12 / sheet.height)
+    _bottom_legend(sheet, handles, y=0.06 + 0.16 * len(notes))
+    for k, note in enumerate(notes):
+        sheet.fig.text(0.5, (0.06 + 0.16 * k) / sheet.height, _wrap(note, sheet.width), ha="center",
+                       fontsize=FONT - 0.5, color=NOTE_COLOUR)
+    return sheet.fig
+
+
+# ---------------------------------------------------------------------------- base interfaces
+def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object]) -> Figure:
+    """The support interfaces seen along their normals, with the pressure point of every
+    scenario and drawn state (the paper's Fig. 9: base pressure points on the rocking edge).
+
+    Horizontal interfaces are drawn in plan (x, y); others in their own frame (t1, t2).
+    Points carry the gid ``"base:<interface>:<scenario>"``.
+    """
+    asm = assembly(ds)
+    sup = set(asm.support_indices)
+    itfs = [k for k, i in enumerate(asm.interfaces) if (i.a in sup) != (i.b in sup)]
+    names, targets = list(names), list(targets)
+    styles = _Styles.of(ds, names)
+    cols = min(len(itfs), 4)
+    rows = math.ceil(len(itfs) / cols)
+    w = 2.6
+    handles = [Line2D([], [], color=styles.colours[s], linestyle="none", marker="o", markersize=5, label=s)
+               for s in names]
+    handles += [Line2D([], [], color="#555555", linestyle="none", marker=MARKERS[k % len(MARKERS)], markersize=5,
+                       markerfacecolor="none", label=f"state {t}") for k, t in enumerate(targets)] if len(targets) > 1 else []
+    if "max" in targets:
+        handles.append(Line2D([], [], color=HINGE_COLOUR, linewidth=3, alpha=0.5, label="hinge line at λmax"))
+    width = 0.7 + cols * w + (cols - 1) * 0.7 + 0.2
+    grid = _Grid(rows, cols, w, w, left=0.7, wspace=0.7, hspace=0.8, top=0.7, bottom=0.45,
+                 below=_legend_height([x.get_label() for x in handles], width))
+    itf_names = [str(x) for x in ds["interface"].values]
+    for n, k in enumerate(itfs):
+        ax = grid.axes[n // cols][n % cols]
+        itf = asm.interfaces[k]
+        basis = np.array([[1.0, 0, 0], [0, 1.0, 0]]) if abs(itf.normal[2]) > 0.9 else itf.frame[1:]
+        axes_names = ("x", "y") if abs(itf.normal[2]) > 0.9 else ("t1", "t2")
+        poly = itf.points @ basis.T
+        ax.add_patch(Polygon(poly, closed=True, facecolor=draw.SUPPORT_COLOUR, alpha=0.25, edgecolor=draw.EDGE_COLOUR))
+        pts = [poly]
+        if "max" in targets:
+            for s in names:
+                for seg in hinge_segments(ds, s, asm):
+                    if np.allclose((seg - itf.points[0]) @ itf.normal, 0.0, atol=1e-9 * asm.size):
+                        xy = seg @ basis.T
+                        ax.plot(xy[:, 0], xy[:, 1], color=HINGE_COLOUR, linewidth=3, alpha=0.5, zorder=1,
+                                gid="hinge", solid_capstyle="butt")
+        for s in names:
+            for j, t in enumerate(targets):
+                st = find_state(ds, s, t)
+                if st.step is None:
+                    continue
+                p = ds["pressure_point"].sel(scenario=s, step=st.step, interface=itf_names[k]).values
+                if not np.all(np.isfinite(p)):
+                    continue
+                xy = p @ basis.T
+                ax.plot(*xy, linestyle="none", marker=MARKERS[j % len(MARKERS)], markersize=6,
+                        color=styles.colours[s], markerfacecolor="none" if j else styles.colours[s], alpha=0.85,
+                        gid=f"base:{itf_names[k]}:{s}")
+                pts.append(xy[None])
+        allp = np.vstack(pts)
+        mid = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
+        half = 0.58 * max(np.ptp(allp, axis=0).max(), 1e-9)  # square panel, equal scales
+        ax.set_xlim(mid[0] - half, mid[0] + half)
+        ax.set_ylim(mid[1] - half, mid[1] + half)
+        ax.grid(True, linewidth=0.3, alpha=0.5)
+        ax.set_xlabel(f"{axes_names[0]} (m)", fontsize=FONT - 0.5)
+        ax.set_ylabel(f"{axes_names[1]} (m)", fontsize=FONT - 0.5)
+        ax.set_title(f"interface {itf_names[k]}", fontsize=FONT, y=1.0)
+    for n in range(len(itfs), rows * cols):
+        grid.axes[n // cols][n % cols].set_axis_off()
+    what = ", ".join("λmax" if t == "max" else f"λ = {t:g}" for t in targets)
+    grid.fig.suptitle(f"{_study(ds)}: pressure points on the support interfaces at {what}", fontsize=FONT + 1.5,
+                      y=1 - 0.15 / grid.height)
+    _bottom_legend(grid, handles)
+    return grid.fig
+
+
+# ---------------------------------------------------------------------------- mechanism
+def mechanism_view(ds: xr.Dataset, names: Sequence[str]) -> Figure:
+    """The collapse mechanism shared by ``names``: blocks displaced (exaggerated) over their
+    original outlines, hinge lines marked.
+
+    A vertex ``p`` of a block with centroid ``c`` and velocities ``(v, w)`` moves to
+    ``p + s (v + w x (p - c))``; ``s`` makes the largest vertex displacement
+    :data:`MECHANISM_FRACTION` of the assembly size and the title states it. Planar
+    scenarios are drawn in elevation, spatial ones in an axonometric view turned towards
+    the span when the blocks move across it.
+
+    Returns
+    -------
+    Figure
+        One axes: displaced blocks (gid ``"blocks"``), ghosts (``"blocks-ghost"``), hinges
+        (``"hinges"``).
+    """
+    names = list(names)
+    s0 = names[0]
+    asm = assembly(ds)
+    vel = np.asarray(ds["mechanism"].sel(scenario=s0).sel(block=list(asm.names)).transpose("block", "dof").values,
+                     float)
+    verts = [np.asarray(b.shape.vertices, float) for b in asm.blocks]
+    cen = asm.centroids
+    disp = [vel[k, :3] + np.cross(vel[k, 3:], v - cen[k]) for k, v in enumerate(verts)]
+    dmax = max(float(np.linalg.norm(d, axis=1).max()) for d in disp)
+    scale = MECHANISM_FRACTION * asm.size / dmax if dmax > 0 else 0.0
+    moved = [v + scale * d for v, d in zip(verts, disp)]
+    planar = is_planar(ds, s0)
+    if planar:
+        camera = draw.Camera.elevation()
+    else:
+        d = np.vstack(disp)
+        camera = draw.Camera.for_assembly(asm, across=bool(np.abs(d[:, 1]).sum() > np.abs(d[:, 0]).sum()))
+    ghost = draw.BlockArt.of(asm, camera, ghost=True)
+    art = draw.BlockArt.of(asm, camera, verts=moved)
+    both = np.vstack([ghost.points, art.points])
+    lo, hi = both.min(axis=0) - 0.03 * asm.size, both.max(axis=0) + 0.03 * asm.size
+    handles = [Patch(facecolor="none", edgecolor="#9a9a9a", linestyle="--", label="original position"),
+               Patch(facecolor=draw.BLOCK_COLOUR, edgecolor=draw.EDGE_COLOUR, label="displaced block"),
+               Line2D([], [], color=HINGE_COLOUR, linewidth=2.6, marker="o", markerfacecolor="white", label="hinge")]
+    width = 5.0
+    lmax = float(value(ds, "lambda_max", s0))
+    lam = f"λmax = {lmax:.3f}" if math.isfinite(lmax) else "the direct limit"
+    who = "every scenario drawn" if len(names) > 1 and len(names) == len(ds["scenario"]) else join_names(names, 4)
+    title = (_wrap(f"collapse mechanism at {lam}, shared by {who}", width) +
+             f"\n(exaggerated: largest displacement drawn {scale * dmax:.2f} m)")
+    sheet = _Sheet(1, 1, lo, hi, width, 0.16 * (title.count("\n") + 1) + 0.1,
+                   _legend_height([h.get_label() for h in handles], width), camera)
+    off = sheet.offset(0, 0)
+    ghost.draw(sheet.ax, off)
+    art.draw(sheet.ax, off)
+    _hinges(sheet.ax, ds, s0, asm, camera, planar=planar, offset=off)
+    sheet.title(0, 0, title)
+    sheet.fig.suptitle(f"{_study(ds)}: collapse mechanism", fontsize=FONT + 2, y=1 - 0.12 / sheet.height)
+    _bottom_legend(sheet, handles)
+    return sheet.fig
+
+
+# ---------------------------------------------------------------------------- sweeps
+def summary_figure(ds: xr.Dataset) -> Figure:
+    """lambda_max against each swept parameter, one row per settlement case.
+
+    In the panel of parameter ``p``, one line per combination of the other swept
+    parameters; lines with the same values are drawn once and named together, and so are
+    settlement cases with the same answers everywhere (one row). Scenarios whose outcome is
+    not ``limit`` are crosses at the bottom of the panel, named in the legend.
+
+    Raises
+    ------
+    ValueError
+        Nothing is swept.
+    """
+    params = swept_parameters(ds)
+    if not params:
+        raise ValueError("nothing is swept: the summary needs a swept parameter")
+    names = scenarios(ds)
+    case = {s: (str(ds["settlement"].sel(scenario=s).values) if "settlement" in ds.coords else "") for s in names}
+    lmax = {s: float(value(ds, "lambda_max", s)) for s in names}
+    outcome = {s: text(ds, "outcome", s, "limit") for s in names}
+    par = {s: {p: float(ds[p].sel(scenario=s)) for p in params} for s in names}
+    cases = list(dict.fromkeys(case.values()))
+    # cases with identical answers for every parameter set share a row
+    sig = {c: tuple(sorted((tuple(par[s][p] for p in params), round(lmax[s], 9) if math.isfinite(lmax[s]) else outcome[s])
+                           for s in names if case[s] == c)) for c in cases}
+    rows: list[list[str]] = []
+    for c in cases:
+        for r in rows:
+            if sig[r[0]] == sig[c]:
+                r.append(c)
+                break
+        else:
+            rows.append([c])
+    w, h = 3.4, 2.3
+    grid = _Grid(len(rows), len(params), w, h, left=0.75, right=2.3, wspace=2.6, hspace=0.85, top=0.75, bottom=0.5)
+    for r, row in enumerate(rows):
+        for c, p in enumerate(params):
+            ax = grid.axes[r][c]
+            others = [q for q in params if q != p]
+            lines: dict[tuple, list[str]] = {}
+            for s in names:
+                if case[s] == row[0]:
+                    lines.setdefault(tuple(par[s][q] for q in others), []).append(s)
+            keys = list(lines)
+            curves = []
+            for key in keys:
+                ss = sorted(lines[key], key=lambda s: par[s][p])
+                curves.append((np.array([par[s][p] for s in ss]), np.array([lmax[s] for s in ss])))
+            groups = group_identical(curves, atol=1e-9)
+            palette = _palette(len(groups))
+            bad: dict[str, list[float]] = {}
+            for g, members in enumerate(groups):
+                x, y = curves[members[0]]
+                label = _combo_label(others, [keys[i] for i in members])
+                ax.plot(x, y, color=palette[g], linestyle=LINESTYLES[g % len(LINESTYLES)], marker="o", markersize=3.5,
+                        linewidth=1.2, label=label, gid=f"summary:{p}:{g}")
+            for s in names:
+                if case[s] == row[0] and outcome[s] != "limit":
+                    bad.setdefault(outcome[s], []).append(par[s][p])
+            for k, (o, xs) in enumerate(bad.items()):
+                ax.plot(xs, np.zeros(len(xs)), linestyle="none", marker="x", markersize=6,
+                        color=COLOURS[(k + 1) % len(COLOURS)], label=f"{o} (no λmax)", clip_on=False)
+            finite = [v for v in lmax.values() if math.isfinite(v)]
+            _min_span(ax, np.array(finite + [0.0]))
+            ax.set_xlabel(f"{p} ({SWEPT[p]}); points: scenarios", fontsize=FONT)
+            ax.set_ylabel("λmax (–)", fontsize=FONT)
+            ax.grid(True, linewidth=0.3, alpha=0.6)
+            ax.set_title(_wrap("settlement: " + join_names(row, 6), w), fontsize=FONT - 0.5, loc="left", y=1.0)
+            if others or bad:
+                ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=FONT - 1, frameon=False,
+                          title=", ".join(others) if others else None, title_fontsize=FONT - 1)
+    grid.fig.suptitle(f"{_study(ds)}: λmax of {len(names)} scenarios", fontsize=FONT + 2, y=1 - 0.18 / grid.height)
+    return grid.fig
+
+
+def _combo_label(others: Sequence[str], keys: Sequence[tuple]) -> str:
+    """Legend text of one line standing for the parameter sets ``keys``."""
+    if not others:
+        return "λmax"
+    if len(keys) == 1:
+        return ", ".join(f"{v:g}" for v in keys[0])
+    if len(others) == 1:
+        vals = sorted(k[0] for k in keys)
+        listed = ", ".join(f"{v:g}" for v in vals) if len(vals) <= 4 else f"{vals[0]:g} … {vals[-1]:g}"
+        return f"{listed} ({len(vals)}, identical)"
+    return f"{len(keys)} sets, identical"

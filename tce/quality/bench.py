@@ -27,11 +27,24 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     ``(d/2) / z_c`` (``z_c`` the voussoirs' centroid height) and of the minimum thickness
     against ``t/R = 0.1075``.
 ``scaling``
-    Arches and domes from tens to 10,000 blocks: time and peak memory (resident set, in
-    a fresh subprocess) of one lambda_max solve, with the fitted growth exponent.
+    Arches and domes of about 100, 1,000 and 10,000 blocks: time to build them (generation,
+    checks, model; ``build_s``) and of one lambda_max solve, peak memory (resident set, in
+    a fresh subprocess each), medians of repeats, with the fitted growth exponents.
+``runs``
+    ``tce run`` end to end on the paper's studies with and without figures; on Fig. 8 and
+    Fig. 10 also the default choice of jobs against ``--jobs 1`` and ``--jobs 2``, and dask
+    kept out against dask importable (variants interleaved, medians of repeats).
 ``reduction``
     What the planar model, dropping the cone (Heyman) and dropping the quadratic term
     (rigid) save, each with its effect on the answer.
+``plotting``
+    For each shipped paper study, in a fresh process as ``tce run --jobs 2`` runs it: the
+    wall time of solving and writing (``run_study(plots=False)``, worker start included)
+    and of drawing every figure and the view (``write_plots``, matplotlib's import
+    included), with their CPU times in ``note`` (``--quick``: one run, the workers' CPU
+    counted with the solving); the full run repeats both in the same process (imports
+    warm) and adds a 300-scenario sweep of the paper's arch (10 frictions x 5 settlement
+    magnitudes x 6 settlement cases). The targets compare the cold wall times as a ratio.
 
 ``hot_path``
     The load path's inner solve (:meth:`tce.core.analysis.Analysis.path`: scene checked
@@ -72,6 +85,7 @@ from ..core.material import Material
 from ..core.model import Model, build_model
 from ..core.pyramid import pyramid_lambda_max
 from ..core.solve import SolverOptions, TCESolver
+from ..study.progress import Progress, track
 
 __all__ = ["run_bench", "bench_command", "add_bench_arguments", "evaluate_targets", "growth_exponent"]
 
@@ -81,7 +95,7 @@ SETTLEMENT = {"right": [0.001, 0.0, 0.0, 0.0, 0.0, 0.0]}
 THICKNESS_REF = 0.1075
 IN_PLANE = [0, 2, 4]  # Fx, Fz, My of a support wrench: unique; Fy, Mx, Mz carry a free self-stress in 3D
 COLUMNS = [
-    "section", "case", "method", "solver", "model", "n_blocks", "n_solves", "time_s", "solver_time_s",
+    "section", "case", "method", "solver", "model", "n_blocks", "n_solves", "time_s", "build_s", "solver_time_s",
     "ratio", "error", "error_of", "residual", "peak_mem_mb", "time_min_s", "note",
 ]
 
@@ -266,6 +280,8 @@ def _limit_rows(quick: bool) -> list[dict[str, Any]]:
 
 # ---------------------------------------------------------------- load path
 def _load_path(quick: bool) -> list[dict[str, Any]]:
+    """Load paths to each tolerance, narrowed by the direct bracket and by plain bisection
+    (interleaved, same run), with their solve counts and gaps to the direct lambda_max."""
     from ..core.analysis import Analysis
     from ..analysis.loadpath import load_path
 
@@ -273,23 +289,30 @@ def _load_path(quick: bool) -> list[dict[str, Any]]:
     rows: list[dict[str, Any]] = []
     ref = LimitSolver(build_model(arch, "planar"), Material(friction=FRICTION), tol=1e-12).solve(0.0).lambda_max
     tols = (1e-2, 1e-4, 1e-6, 1e-8) if quick else (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
-    for (atol, options) in [(t, o) for o in (None, SolverOptions(refine=True)) for t in tols]:
-        times, res = [], None
-        for _ in range(1 if quick else 3):
-            an = Analysis(arch, Material(friction=FRICTION), options=options)
-            t0 = time.perf_counter()
-            res = load_path(an, 0.0, SETTLEMENT, step=0.02, atol=atol)
-            times.append(time.perf_counter() - t0)
-        assert res is not None
-        suffix = "" if options is None else ", with refinement"
-        rows.append(
-            _row("load_path", "arch in plane, 1 mm spreading, step 0.02", f"bisection atol={atol:g}{suffix}", solver="CLARABEL",
-                 model=res.steps[-1].model, n_blocks=len(arch.blocks), n_solves=res.n_solves,
-                 time_s=statistics.median(times), solver_time_s=res.solve_time,
-                 error=abs(res.lambda_max - ref), error_of="lambda_max",
-                 residual=max(s.eq_residual for s in res.steps if s.ok),
-                 note=f"{res.outcome}; includes the direct check (one lambda_max solve)")
-        )
+    brackets = ("direct", "bisection")
+    for options in (None, SolverOptions(refine=True)):
+        for atol in tols:
+            times: dict[str, list[float]] = {b: [] for b in brackets}
+            res: dict[str, Any] = {}
+            for _ in range(1 if quick else 3):
+                for b in brackets:
+                    an = Analysis(arch, Material(friction=FRICTION), options=options)
+                    t0 = time.perf_counter()
+                    res[b] = load_path(an, 0.0, SETTLEMENT, step=0.02, atol=atol, bracket=b)
+                    times[b].append(time.perf_counter() - t0)
+            suffix = "" if options is None else ", with refinement"
+            for b in brackets:
+                r = res[b]
+                name = "direct bracket" if b == "direct" else "bisection"
+                rows.append(
+                    _row("load_path", "arch in plane, 1 mm spreading, step 0.02", f"{name} atol={atol:g}{suffix}",
+                         solver="CLARABEL", model=r.steps[-1].model, n_blocks=len(arch.blocks), n_solves=r.n_solves,
+                         time_s=statistics.median(times[b]), solver_time_s=r.solve_time,
+                         error=abs(r.lambda_max - ref), error_of="lambda_max",
+                         residual=max(s.eq_residual for s in r.steps if s.ok),
+                         note=f"{r.outcome}; gap to direct {r.gap:.2g}; {r.n_solves} solves "
+                              f"(bisection {res['bisection'].n_solves}); includes the direct lambda_max solve")
+                )
     return rows
 
 
@@ -314,7 +337,8 @@ def _discretisation(quick: bool) -> list[dict[str, Any]]:
                  residual=_eq_residual(model, res[-1].forces, res[-1].lambda_max, 90.0))
         )
         if arch_minimum_thickness is not None and (n == 16 or not quick):
-            th = arch_minimum_thickness(1.0, n, tol=1e-5)
+            with Progress(0, f"minimum thickness, {n} voussoirs", unit="solve") as bar:
+                th = arch_minimum_thickness(1.0, n, tol=1e-5, progress=bar)
             rows.append(
                 _row("discretisation", f"arch {n} voussoirs", "minimum thickness (bisection 1e-5)",
                      solver="CLARABEL", model="planar", n_blocks=n + 2, n_solves=th.n_solves, time_s=th.wall_time,
@@ -328,24 +352,37 @@ def scaling_case(structure: str, size: int, friction: float = FRICTION) -> dict[
     """Build one structure of ``size`` and time one lambda_max solve (run in a subprocess).
 
     ``structure`` is ``"arch"`` (``size`` voussoirs) or ``"dome"`` (``size`` sectors and
-    courses). Returns times (s), sizes and the peak resident memory of the process (MB).
+    courses). Returns wall times (s) of the assembly (generation and checks), the model and
+    the solve, their process CPU times (``cpu_*``, s), sizes and the peak resident memory of
+    the process (MB).
     """
     import resource
 
     from ..structures.dome import hemispherical_dome
 
-    t0 = time.perf_counter()
+    c0, t0 = time.process_time(), time.perf_counter()
     a = semicircular_arch(voussoirs=size) if structure == "arch" else hemispherical_dome(sectors=size, courses=size)
     a = a.validate()
     t1 = time.perf_counter()
     model = build_model(a, "spatial")
-    t2 = time.perf_counter()
+    c2, t2 = time.process_time(), time.perf_counter()
     res = LimitSolver(model, Material(friction=friction)).solve(90.0 if structure == "arch" else 0.0)
-    t3 = time.perf_counter()
+    c3, t3 = time.process_time(), time.perf_counter()
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # kB on Linux
-    return dict(n_blocks=len(a.blocks), n_vars=model.n_vars, status=res.status, lambda_max=res.lambda_max,
-                t_assembly=t1 - t0, t_model=t2 - t1, t_solve=t3 - t2, t_clarabel=res.solve_time,
-                iterations=res.iterations, peak_mem_mb=rss)
+    out = dict(n_blocks=len(a.blocks), n_vars=model.n_vars, status=res.status, lambda_max=res.lambda_max,
+               t_assembly=t1 - t0, t_model=t2 - t1, t_build=t2 - t0, t_solve=t3 - t2, t_clarabel=res.solve_time,
+               cpu_build=c2 - c0, cpu_solve=c3 - c2, iterations=res.iterations, peak_mem_mb=rss)
+    if structure == "dome":
+        # the same limit problem with iterative refinement (the former default), for comparison
+        from ..core.clarabel_solver import SolverOptions as Options, solve_once
+        from ..core.problem import Formulation, limit_problem
+
+        f = Formulation(model, Material(friction=friction))
+        c4 = time.process_time()
+        sol = solve_once(limit_problem(f, model.b_dead, model.b_lateral(0.0)), Options(tol=1e-10, max_iter=500).settings(refine=True))
+        out.update(cpu_solve_refine=time.process_time() - c4, t_solve_refine=sol.solve_time + sol.setup_time,
+                   lambda_refine=float(sol.x[-1]) if sol.solved else float("nan"), iterations_refine=sol.iterations)
+    return out
 
 
 def _subprocess_case(structure: str, size: int, timeout: float) -> dict[str, Any] | None:
@@ -360,32 +397,111 @@ def _subprocess_case(structure: str, size: int, timeout: float) -> dict[str, Any
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+#: sizes of the scaling section: about 100, 1,000 and 10,000 blocks (dome: sectors = courses)
+SCALING_SIZES = {"arch": (98, 998, 9998), "dome": (10, 31, 100)}
+QUICK_SCALING_SIZES = {"arch": (98, 298, 998), "dome": (6, 10, 16)}
+
+
 def _scaling(quick: bool) -> list[dict[str, Any]]:
+    """Build (assembly and model) and one lambda_max solve against size, medians of repeats
+    (each in a fresh process, sizes interleaved), with fitted growth exponents."""
     rows: list[dict[str, Any]] = []
-    sizes = {
-        "arch": (30, 100, 300) if quick else (30, 100, 300, 1000, 3000, 9998),
-        "dome": (6, 10, 16) if quick else (6, 10, 20, 40, 70, 100),
-    }
+    sizes = QUICK_SCALING_SIZES if quick else SCALING_SIZES
+    repeats = 1 if quick else 3
     for structure, ns in sizes.items():
+        runs: dict[int, list[dict[str, Any]]] = {n: [] for n in ns}
+        for _ in range(repeats):
+            for n in ns:
+                r = _subprocess_case(structure, n, timeout=120 if quick else 1800)
+                if r is not None:
+                    runs[n].append(r)
         got = []
         for n in ns:
-            r = _subprocess_case(structure, n, timeout=120 if quick else 900)
-            if r is None:
-                rows.append(_row("scaling", f"{structure} size {n}", "lambda_max (direct, 3D)", note="failed or timed out"))
+            if not runs[n]:
+                rows.append(_row("scaling", f"{structure} size {n}", "build + lambda_max (direct, 3D)", note="failed or timed out"))
                 continue
-            got.append(r)
+            med = {k: statistics.median(r[k] for r in runs[n]) for k in runs[n][0]
+                   if k.startswith(("t_", "cpu_", "peak_"))}
+            r = runs[n][-1]
+            got.append((r["n_blocks"], med))
             rows.append(
-                _row("scaling", f"{structure} {r['n_blocks']} blocks", "lambda_max (direct, 3D)", solver="CLARABEL",
-                     model="spatial", n_blocks=r["n_blocks"], n_solves=1, time_s=r["t_solve"],
-                     solver_time_s=r["t_clarabel"], peak_mem_mb=r["peak_mem_mb"],
-                     note=f"{r['status']}, {r['n_vars']} unknowns, {r['iterations']} it; assembly {r['t_assembly']:.2f} s, "
-                          f"model {r['t_model']:.2f} s")
+                _row("scaling", f"{structure} {r['n_blocks']} blocks", "build + lambda_max (direct, 3D)", solver="CLARABEL",
+                     model="spatial", n_blocks=r["n_blocks"], n_solves=len(runs[n]), time_s=med["t_solve"],
+                     build_s=med["t_build"], solver_time_s=med["t_clarabel"], peak_mem_mb=med["peak_mem_mb"],
+                     note=f"{r['status']}, {r['n_vars']} unknowns, {r['iterations']} it; build/solve "
+                          f"{med['t_build'] / med['t_solve']:.3f} (cpu {med['cpu_build']:.2f} / {med['cpu_solve']:.2f} s)")
             )
-        big = got[len(got) // 2 - 1:] if len(got) >= 4 else got
-        expo = growth_exponent([r["n_blocks"] for r in big], [r["t_solve"] for r in big])
+            if "t_solve_refine" in med:
+                rows.append(
+                    _row("scaling", f"{structure} {r['n_blocks']} blocks", "lambda_max with iterative refinement (former default)",
+                         solver="CLARABEL", model="spatial", n_blocks=r["n_blocks"], n_solves=len(runs[n]),
+                         time_s=med["t_solve_refine"], error=abs(r["lambda_refine"] - r["lambda_max"]),
+                         error_of="lambda_max vs the default (no refinement)",
+                         note=f"{r['iterations_refine']} it; cpu {med['cpu_solve_refine']:.2f} s, "
+                              f"the default takes {med['cpu_solve'] / med['cpu_solve_refine']:.2f}x of it")
+                )
+        blocks = [b for b, _ in got]
+        e_solve = growth_exponent(blocks, [m["t_solve"] for _, m in got])
+        e_build = growth_exponent(blocks, [m["t_build"] for _, m in got])
         for row in rows:
             if row["case"].startswith(structure):
-                row["note"] += f"; time ~ n^{expo:.2f}"
+                row["note"] += f"; solve ~ n^{e_solve:.2f}, build ~ n^{e_build:.2f}"
+    return rows
+
+
+# ---------------------------------------------------------------- whole runs
+#: the shipped studies that reproduce the paper's figures
+PAPER_STUDIES = ("fig3_4_settlements", "fig5_6_transversal", "fig7_8_inplane", "fig9_outofplane", "fig10_dome")
+
+
+def _tce_run(study: Path, out: Path, args: Sequence[str], program: bool = True) -> float:
+    """Wall time (s) of ``tce run STUDY --fresh ARGS`` in a fresh process. ``program=False``
+    calls :func:`tce.study.cli.main` with explicit arguments, which leaves dask importable
+    (what every run did before the program kept it out)."""
+    if program:
+        cmd = [sys.executable, "-m", "tce.study.cli"]
+    else:
+        cmd = [sys.executable, "-c", "import sys; from tce.study.cli import main; sys.exit(main(sys.argv[1:]))"]
+    t0 = time.perf_counter()
+    subprocess.run(cmd + ["-q", "run", str(study), "--out", str(out), "--fresh", *args], check=True,
+                   capture_output=True, text=True)
+    return time.perf_counter() - t0
+
+
+def _runs(quick: bool) -> list[dict[str, Any]]:
+    """End-to-end ``tce run`` of the paper's studies with and without figures, and, on Fig. 8
+    and Fig. 10, the default choice of jobs against ``--jobs 1`` and ``--jobs 2`` and the
+    program without dask against dask importable; variants interleaved, medians of repeats."""
+    import tempfile
+
+    root = Path(__file__).resolve().parents[2] / "studies"
+    if not root.is_dir():
+        return []
+    rows: list[dict[str, Any]] = []
+    repeats = 1 if quick else 3
+    variants = {
+        "default (no figures)": (["--no-plots"], True),
+        "--jobs 1 (no figures)": (["--no-plots", "--jobs", "1"], True),
+        "--jobs 2 (no figures)": (["--no-plots", "--jobs", "2"], True),
+        "default, dask importable (no figures)": (["--no-plots"], False),
+        "default, with figures": ([], True),
+    }
+    studies = ("fig7_8_inplane",) if quick else PAPER_STUDIES
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in studies:
+            chosen = variants if name in ("fig7_8_inplane", "fig10_dome") else {
+                k: v for k, v in variants.items() if k in ("default (no figures)", "default, with figures")}
+            if quick:
+                chosen = {k: v for k, v in chosen.items() if "figures)" in k and "dask" not in k}
+            times: dict[str, list[float]] = {k: [] for k in chosen}
+            for _ in range(repeats):
+                for label, (args, program) in chosen.items():
+                    times[label].append(_tce_run(root / f"{name}.toml", Path(tmp), args, program))
+            base = statistics.median(times["--jobs 1 (no figures)"]) if "--jobs 1 (no figures)" in times else None
+            for label, ts in times.items():
+                med = statistics.median(ts)
+                rows.append(_row("runs", f"tce run {name}", label, n_solves=len(ts), time_s=med, time_min_s=min(ts),
+                                 note="" if base is None else f"{med / base:.2f}x --jobs 1"))
     return rows
 
 
@@ -434,6 +550,111 @@ def _reduction(quick: bool) -> list[dict[str, Any]]:
     return rows
 
 
+# ---------------------------------------------------------------- plotting
+PLOT_STUDIES = ("fig3_4_settlements", "fig5_6_transversal", "fig7_8_inplane", "fig9_outofplane", "fig10_dome")
+PLOT_JOBS = 2
+_PLOT_RUN = """
+import json, resource, shutil, sys, tempfile, time
+from pathlib import Path
+from tce.study.schema import load_study
+from tce.study.runner import run_study, write_plots
+import xarray as xr
+study, jobs, repeats = load_study(sys.argv[1]), int(sys.argv[2]), int(sys.argv[3])
+out = Path(tempfile.mkdtemp())
+rows = []
+for k in range(repeats):
+    t, c = time.perf_counter(), time.process_time()
+    report = run_study(study, out / str(k), jobs=jobs, plots=False)
+    solve, solve_cpu = time.perf_counter() - t, time.process_time() - c
+    ds = xr.load_dataset(report.results)
+    t, c = time.perf_counter(), time.process_time()
+    files = write_plots(ds, out / str(k) / study.name, jobs=jobs)
+    rows.append(dict(solve=solve, plot=time.perf_counter() - t, solve_cpu=solve_cpu, plot_cpu=time.process_time() - c,
+                     files=len(files), n_solves=int(ds.n_solves.sum()), scenarios=int(ds.sizes["scenario"])))
+from joblib.externals.loky import get_reusable_executor
+get_reusable_executor().shutdown(wait=True)  # the workers' CPU time is the solving's (they only solved)
+rows[0]["workers_cpu"] = sum(getattr(resource.getrusage(resource.RUSAGE_CHILDREN), f) for f in ("ru_utime", "ru_stime"))
+shutil.rmtree(out, ignore_errors=True)
+print(json.dumps(rows))
+"""
+SWEEP_300 = """
+[study]
+name = "sweep300"
+[structure]
+type = "semicircular_arch"
+[material]
+friction = 0.8
+[loads]
+lambda_step = 0.02
+tolerance = 1e-6
+[sweep]
+friction = [0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.2, 1.4, 1.7, 2.0]
+magnitude = [0.5, 1.0, 1.5, 2.0, 3.0]
+[scenarios.none]
+[scenarios.outward]
+right = [0.001, 0, 0, 0, 0, 0]
+[scenarios.inward]
+right = [-0.001, 0, 0, 0, 0, 0]
+[scenarios.downward]
+right = [0, 0, -0.001, 0, 0, 0]
+[scenarios.transversal]
+right = [0, 0.001, 0, 0, 0, 0]
+[scenarios.rotation]
+right = [0, 0, 0, 0.001, 0, 0]
+"""
+
+
+def _plot_run(study: Path, repeats: int, timeout: float) -> list[dict[str, Any]]:
+    """Solve and plot ``study`` ``repeats`` times in one fresh process (see ``plotting``)."""
+    env = dict(os.environ, MPLBACKEND="Agg")
+    done = subprocess.run([sys.executable, "-c", _PLOT_RUN, str(study), str(PLOT_JOBS), str(repeats)],
+                          capture_output=True, text=True, timeout=timeout, env=env, check=True)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def _plotting(quick: bool) -> list[dict[str, Any]]:
+    """Plotting against solving and writing, per shipped paper study (and the 300-scenario sweep)."""
+    import tempfile
+
+    studies = Path(__file__).resolve().parents[2] / "studies"
+    cases = [(name, studies / f"{name}.toml") for name in PLOT_STUDIES if (studies / f"{name}.toml").exists()]
+    tmp = None
+    if not quick:
+        tmp = tempfile.TemporaryDirectory()
+        sweep = Path(tmp.name) / "sweep300.toml"
+        sweep.write_text(SWEEP_300)
+        cases.append(("sweep300 (10 x 5 x 6 scenarios)", sweep))
+    rows = []
+    try:
+        for name, path in cases:
+            repeats = 1 if quick or name.startswith("sweep") else 3
+            runs = _plot_run(path, repeats, timeout=7200)
+            warm = runs[1:]
+            first = runs[0]
+            common = dict(n_solves=first["n_solves"])
+            what = f"{first['scenarios']} scenarios, {first['files']} files"
+            cpu_solve = first["solve_cpu"] + (first.get("workers_cpu", 0.0) if repeats == 1 else float("nan"))
+            rows.append(_row("plotting", name, "solve + write (cold process, as tce run)", time_s=first["solve"],
+                             note=f"{what}; CPU {cpu_solve:.2f} s (workers included)" if repeats == 1 else what,
+                             **common))
+            rows.append(_row("plotting", name, "figures + view (cold process, as tce run)", time_s=first["plot"],
+                             note=f"{what}; CPU {first['plot_cpu']:.2f} s; plot / (solve + write) = "
+                                  f"{first['plot'] / first['solve']:.2f} (wall)"
+                                  + (f", {first['plot_cpu'] / cpu_solve:.2f} (CPU)" if repeats == 1 else ""),
+                             **common))
+            if warm:
+                solve = statistics.median(r["solve"] for r in warm)
+                plot = statistics.median(r["plot"] for r in warm)
+                rows.append(_row("plotting", name, "solve + write (same process again: imports warm)", time_s=solve,
+                                 note=what, **common))
+                rows.append(_row("plotting", name, "figures + view (same process again: imports warm)", time_s=plot,
+                                 note=f"{what}; plot / (solve + write) = {plot / solve:.2f} (wall)", **common))
+    finally:
+        if tmp is not None:
+            tmp.cleanup()
+    return rows
+
+
 # ---------------------------------------------------------------- targets, outputs
 def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
     """The issue's targets as ``(target, measured figure, met)`` from a bench table."""
@@ -469,11 +690,35 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
             r = float(mine.time_s.iloc[0] / raw.time_s.iloc[0])
             out.append((f"{model}: load-path solve <= 1.15x Clarabel's own update + solve (same run, interleaved)",
                         f"{r:.3f}x ({mine.time_s.iloc[0] * 1e3:.3f} / {raw.time_s.iloc[0] * 1e3:.3f} ms)", r <= 1.15))
-    big = df[(df.section == "scaling") & (df.n_blocks >= 9000)]
+    for case, g in df[df.section == "plotting"].groupby("case", sort=False):
+        cold = {m.split(" (")[0]: t for m, t in zip(g.method, g.time_s) if "cold" in m}
+        if len(cold) == 2:
+            r = cold["figures + view"] / cold["solve + write"]
+            out.append((f"{case}: plotting <= 0.3x solving + writing (as tce run --jobs {PLOT_JOBS})",
+                        f"{r:.2f}x ({cold['figures + view']:.1f} s / {cold['solve + write']:.1f} s)", r <= 0.3))
+    big = df[(df.section == "scaling") & (df.n_blocks >= 9000) & df.method.str.startswith("build")]
     for _, r in big.iterrows():
         out.append((f"{r.case}: one lambda_max solve < 60 s and < 4 GiB",
                     f"{r.time_s:.1f} s, {r.peak_mem_mb / 1024:.2f} GiB",
                     bool(r.time_s < 60 and r.peak_mem_mb < 4096)))
+        out.append((f"{r.case}: building it (assembly, checks, model) <= 0.2x one lambda_max solve",
+                    f"{r.build_s / r.time_s:.3f}x ({r.build_s:.2f} / {r.time_s:.1f} s)", bool(r.build_s <= 0.2 * r.time_s)))
+    lp = df[df.section == "load_path"]
+    for _, r in lp[lp.method.str.startswith("direct bracket") & ~lp.method.str.contains("refinement")].iterrows():
+        tol = r.method.split("atol=")[1]
+        bis = lp[lp.method == f"bisection atol={tol}"]
+        if len(bis):
+            b = bis.iloc[0]
+            out.append((f"load path to {tol}: direct bracket takes fewer solves than bisection, same lambda_max within atol",
+                        f"{r.n_solves:.0f} vs {b.n_solves:.0f} solves, time {r.time_s / b.time_s:.2f}x",
+                        bool(r.n_solves < b.n_solves and abs(r.error - b.error) <= float(tol))))
+    runs = df[df.section == "runs"]
+    for case in runs.case.unique():
+        g = runs[runs.case == case].set_index("method").time_s
+        if "--jobs 1 (no figures)" in g:
+            out.append((f"{case}: default jobs no slower than --jobs 1 (no figures)",
+                        f"{g['default (no figures)'] / g['--jobs 1 (no figures)']:.2f}x",
+                        bool(g["default (no figures)"] <= 1.05 * g["--jobs 1 (no figures)"])))
     return out
 
 
@@ -487,9 +732,9 @@ def _fmt(v: Any) -> str:
 
 def to_markdown(df: pd.DataFrame, machine: str = "") -> str:
     """The bench table as Markdown (times in ms), followed by the targets."""
-    cols = ["section", "case", "method", "solver", "model", "n_solves", "time_ms", "solver_ms", "ratio",
+    cols = ["section", "case", "method", "solver", "model", "n_solves", "time_ms", "build_ms", "solver_ms", "ratio",
             "error", "error_of", "residual", "peak_mem_mb", "note"]
-    t = df.assign(time_ms=df.time_s * 1e3, solver_ms=df.solver_time_s * 1e3)
+    t = df.assign(time_ms=df.time_s * 1e3, build_ms=df.build_s * 1e3, solver_ms=df.solver_time_s * 1e3)
     lines = [f"Machine: {machine}", ""] if machine else []
     lines += ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     for _, r in t.iterrows():
@@ -550,7 +795,9 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "load_path": _load_path,
     "discretisation": _discretisation,
     "scaling": _scaling,
+    "runs": _runs,
     "reduction": _reduction,
+    "plotting": _plotting,
 }
 
 
@@ -577,7 +824,7 @@ def run_bench(out_dir: Path = Path("results/bench"), quick: bool = False,
     if unknown:
         raise ValueError(f"unknown bench sections {sorted(unknown)}; choose from {list(SECTIONS)}")
     rows: list[dict[str, Any]] = []
-    for name in names:
+    for name in track(names, "bench", unit="section"):
         rows += SECTIONS[name](quick)
     df = pd.DataFrame(rows, columns=COLUMNS)
     base = df[(df.section == "per_solve") & (df.model == "spatial") & df.method.str.startswith("clarabel-direct (warm")]

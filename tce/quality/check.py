@@ -7,6 +7,7 @@ from collections.abc import Sequence
 
 import pandas as pd
 
+from ..study.progress import track
 from .hard import CASES, HardCase, run_case
 
 __all__ = ["check_command", "format_table", "run_checks"]
@@ -34,9 +35,8 @@ def run_checks(cases: Sequence[HardCase] = CASES, select: str | None = None) -> 
         ``errors``.
     """
     rows = []
-    for case in cases:
-        if select and select.lower() not in case.name.lower():
-            continue
+    chosen = [case for case in cases if not select or select.lower() in case.name.lower()]
+    for case in track(chosen, "hard cases", unit="case", label=lambda c: c.name):
         run = run_case(case)
         rows.append(
             {

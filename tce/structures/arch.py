@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .assembly import Assembly, Block, Interface
-from .geometry import prism
+from .geometry import FaceTable, prisms
 from .params import check_positive, check_whole
 
 __all__ = [
@@ -73,36 +73,36 @@ def arch_from_joints(
     check_positive(depth=depth, unit_weight=unit_weight)
     n = len(ji) - 1
     d = float(depth) / 2.0
-    blocks: list[Block] = []
 
-    def support(k: int, name: str) -> Block:
+    def support(k: int) -> np.ndarray:
         top = np.array([ji[k], je[k]])
         height = support_height if support_height is not None else float(np.linalg.norm(je[k] - ji[k]))
         check_positive(support_height=height)
         base = top[:, 1].min() - height
-        loop = np.array([top[0], top[1], [top[1, 0], base], [top[0, 0], base]])
-        return Block(name, prism(_at_depth(loop, -d), _at_depth(loop, d)), unit_weight, True)
+        return _at_depth(np.array([top[0], top[1], [top[1, 0], base], [top[0, 0], base]]), -d)[None]
 
-    blocks.append(support(0, "left"))
+    # section loops (x, z) of every block: left support, voussoirs 1..n, right support
+    loops = np.stack([ji[:-1], ji[1:], je[1:], je[:-1]], axis=1)  # (n, 4, 2)
+    front = np.concatenate([support(0), _at_depth(loops.reshape(-1, 2), -d).reshape(n, 4, 3), support(n)])
+    back = front.copy()
+    back[:, :, 1] = d
+    shapes = prisms(front, back)
     width = len(str(n)) if n >= 10 else 2
-    for i in range(n):
-        loop = np.array([ji[i], ji[i + 1], je[i + 1], je[i]])
-        shape = prism(_at_depth(loop, -d), _at_depth(loop, d))
-        blocks.append(Block(f"v{i + 1:0{width}d}", shape, unit_weight))
-    blocks.append(support(n, "right"))
+    names = ["left"] + [f"v{i + 1:0{width}d}" for i in range(n)] + ["right"]
+    uw = float(unit_weight)
+    blocks = [Block(name, shape, uw, k in (0, n + 1)) for k, (name, shape) in enumerate(zip(names, shapes))]
 
-    interfaces = []
-    for k in range(n + 1):
-        a, b = k, k + 1  # block k is left of joint k
-        joint = np.array([ji[k], je[k]])
-        pts = np.vstack([_at_depth(joint, -d), _at_depth(joint[::-1], d)])
-        # normal in the x-z plane, perpendicular to the joint, pointing left -> right
-        tx, tz = je[k] - ji[k]
-        normal = np.array([tz, 0.0, -tx])
-        cb, ca = blocks[b].centroid, blocks[a].centroid
-        if normal @ (cb - ca) < 0:
-            normal = -normal
-        interfaces.append(Interface(a, b, pts, normal))
+    # joint k between blocks k and k + 1: (ji, je) at -d, then (je, ji) at +d
+    pts = np.stack(
+        [_at_depth(ji, -d), _at_depth(je, -d), _at_depth(je, d), _at_depth(ji, d)], axis=1
+    )  # (n + 1, 4, 3)
+    # normal in the x-z plane, perpendicular to the joint, pointing left -> right
+    t = je - ji
+    normal = np.column_stack([t[:, 1], np.zeros(n + 1), -t[:, 0]])
+    centroids = FaceTable.uniform(np.concatenate([front, back], axis=1), shapes[0].faces).centroid  # either orientation
+    flip = np.einsum("ij,ij->i", normal, centroids[1:] - centroids[:-1]) < 0
+    normal[flip] *= -1.0
+    interfaces = [Interface(k, k + 1, pts[k], normal[k]) for k in range(n + 1)]
     return Assembly(tuple(blocks), tuple(interfaces), dict(meta or {}))
 
 

@@ -17,16 +17,19 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .geometry import (
+    FaceTable,
     GeometryError,
+    PolygonTable,
     Polyhedron,
     frame_from_normal,
+    frames_from_normals,
     newell_normal,
     polygon_area,
     polygon_centroid,
     tributary_areas,
 )
 
-__all__ = ["Assembly", "AssemblyError", "Block", "Interface"]
+__all__ = ["Assembly", "AssemblyError", "Block", "Interface", "InterfaceTable"]
 
 
 class AssemblyError(ValueError):
@@ -100,8 +103,8 @@ class Interface:
         if self.normal is None:
             n = newell_normal(p)
         else:
-            n = np.asarray(self.normal, dtype=float)
-        norm = np.linalg.norm(n)
+            n = np.asarray(self.normal, dtype=float).ravel()
+        norm = float(np.sqrt(n @ n)) if n.shape == (3,) else float("nan")
         if not np.isfinite(norm) or norm == 0.0:
             raise AssemblyError(f"interface {self.a}-{self.b}: cannot determine a normal")
         if not (np.isfinite(self.stiffness) and self.stiffness > 0):
@@ -131,6 +134,78 @@ class Interface:
         if len(self.points) < 3:
             return np.zeros(len(self.points))
         return tributary_areas(self.points)
+
+
+@dataclass(frozen=True, eq=False)
+class InterfaceTable:
+    """The interfaces of an assembly as arrays (what :class:`Interface` gives one by one).
+
+    Attributes
+    ----------
+    a, b : (ni,) ndarray of int
+        Blocks of each interface; the normal points from ``a`` into ``b``.
+    polygons : PolygonTable
+        Contact vertices of every interface, one interface after the other (m).
+    normal : (ni, 3) ndarray
+        Unit normals.
+    stiffness : (ni,) ndarray
+        Stiffness multipliers.
+    """
+
+    a: NDArray[np.int64]
+    b: NDArray[np.int64]
+    polygons: PolygonTable
+    normal: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, interfaces: Sequence[Interface]) -> InterfaceTable:
+        n = len(interfaces)
+        return cls(
+            np.fromiter((i.a for i in interfaces), dtype=np.int64, count=n),
+            np.fromiter((i.b for i in interfaces), dtype=np.int64, count=n),
+            PolygonTable.of([i.points for i in interfaces]),
+            np.array([i.normal for i in interfaces], dtype=float).reshape(n, 3),
+            np.fromiter((i.stiffness for i in interfaces), dtype=float, count=n),
+        )
+
+    def __len__(self) -> int:
+        return len(self.a)
+
+    @property
+    def points(self) -> NDArray[np.float64]:
+        """Every contact vertex, (nv, 3) (m)."""
+        return self.polygons.points
+
+    @property
+    def start(self) -> NDArray[np.int64]:
+        """Interface ``k`` owns vertices ``start[k]:start[k + 1]``, (ni + 1,)."""
+        return self.polygons.start
+
+    @property
+    def vertex_interface(self) -> NDArray[np.int64]:
+        """Interface of every vertex, (nv,)."""
+        return self.polygons.owner
+
+    @cached_property
+    def frame(self) -> NDArray[np.float64]:
+        """Frames ``(n, t1, t2)`` as rows, (ni, 3, 3) (see :func:`tce.structures.geometry.frames_from_normals`)."""
+        return frames_from_normals(self.normal)
+
+    @property
+    def area(self) -> NDArray[np.float64]:
+        """Contact areas (m^2), (ni,)."""
+        return self.polygons.area
+
+    @property
+    def centroid(self) -> NDArray[np.float64]:
+        """Area centroids of the contact polygons (m), (ni, 3)."""
+        return self.polygons.centroid
+
+    @property
+    def tributary(self) -> NDArray[np.float64]:
+        """Tributary area of every vertex (m^2), (nv,)."""
+        return self.polygons.tributary
 
 
 @dataclass(frozen=True, eq=False)
@@ -180,14 +255,39 @@ class Assembly:
         return tuple(i for i, b in enumerate(self.blocks) if not b.support)
 
     @cached_property
+    def face_table(self) -> FaceTable:
+        """The faces of every block, flattened (block order)."""
+        return FaceTable.of([b.shape for b in self.blocks])
+
+    @cached_property
+    def interface_table(self) -> InterfaceTable:
+        """The interfaces as arrays (interface order)."""
+        return InterfaceTable.of(self.interfaces)
+
+    @property
+    def volumes(self) -> NDArray[np.float64]:
+        """Block volumes, (n_blocks,), m^3."""
+        return self.face_table.volume
+
+    @property
     def centroids(self) -> NDArray[np.float64]:
         """Block centroids, (n_blocks, 3), m."""
-        return np.array([b.centroid for b in self.blocks])
+        return self.face_table.centroid
+
+    @cached_property
+    def unit_weights(self) -> NDArray[np.float64]:
+        """Block unit weights, (n_blocks,), kN/m^3."""
+        return np.fromiter((b.unit_weight for b in self.blocks), dtype=float, count=len(self.blocks))
 
     @cached_property
     def weights(self) -> NDArray[np.float64]:
         """Block self-weights, (n_blocks,), kN."""
-        return np.array([b.weight for b in self.blocks])
+        return self.unit_weights * self.volumes
+
+    @property
+    def sizes(self) -> NDArray[np.float64]:
+        """Bounding-box diagonal of every block, (n_blocks,), m."""
+        return self.face_table.size
 
     @property
     def total_weight(self) -> float:
@@ -197,8 +297,7 @@ class Assembly:
     @cached_property
     def size(self) -> float:
         """Characteristic length (m): diagonal of the bounding box of all blocks."""
-        pts = np.vstack([b.shape.vertices for b in self.blocks])
-        return float(np.linalg.norm(np.ptp(pts, axis=0)))
+        return float(np.linalg.norm(np.ptp(self.face_table.points, axis=0)))
 
     # ------------------------------------------------------------------ edits
     def with_supports(self, names: Iterable[str]) -> Assembly:
@@ -287,7 +386,7 @@ class Assembly:
 
     # ------------------------------------------------------------------ checks
     def validate(self) -> Assembly:
-        """Check the assembly and return it.
+        """Check the assembly and return it (the checks run once per assembly).
 
         Raises
         ------
@@ -298,33 +397,43 @@ class Assembly:
         GeometryError
             A block that is not a valid closed polyhedron (named).
         """
+        return self._validated
+
+    @cached_property
+    def _validated(self) -> Assembly:
         if len(set(self.names)) != len(self.names):
-            dup = sorted({n for n in self.names if self.names.count(n) > 1})
-            raise AssemblyError(f"duplicate block names {dup}")
-        for b in self.blocks:
-            if not (np.isfinite(b.unit_weight) and b.unit_weight > 0):
-                raise AssemblyError(
-                    f"block {b.name!r}: unit weight must be a positive number, got {b.unit_weight}"
-                )
-            try:
-                b.shape.validate(name=f"block {b.name!r}")
-            except GeometryError:
-                raise
+            counts: dict[str, int] = {}
+            for n in self.names:
+                counts[n] = counts.get(n, 0) + 1
+            raise AssemblyError(f"duplicate block names {sorted(n for n, c in counts.items() if c > 1)}")
+        # blocks in order: a block's unit weight is checked before its geometry
+        uw = self.unit_weights
+        bad_weight = np.flatnonzero(~(np.isfinite(uw) & (uw > 0)))
+        fault = self.face_table.first_fault()
+        if len(bad_weight) and (fault is None or bad_weight[0] <= fault[0]):
+            b = self.blocks[bad_weight[0]]
+            raise AssemblyError(f"block {b.name!r}: unit weight must be a positive number, got {b.unit_weight}")
+        if fault is not None:
+            raise GeometryError(f"block {self.names[fault[0]]!r}: {fault[1]}")
         if not self.support_indices:
             raise AssemblyError("the assembly has no support block: mark at least one block as support")
         if not self.free_indices:
             raise AssemblyError("every block is a support: nothing to analyse")
-        touched = np.zeros(len(self.blocks), dtype=bool)
         nb = len(self.blocks)
-        for k, i in enumerate(self.interfaces):
-            if not (0 <= i.a < nb and 0 <= i.b < nb) or i.a == i.b:
-                raise AssemblyError(f"interface {k} joins blocks {i.a} and {i.b}: invalid")
-            if len(i.points) < 3 or i.area <= 0.0:
-                raise AssemblyError(
-                    f"interface {k} between {self.names[i.a]!r} and {self.names[i.b]!r} has no area"
-                )
-            touched[[i.a, i.b]] = True
-        loose = [self.names[k] for k in range(nb) if not touched[k]]
+        t = self.interface_table
+        invalid = ~((0 <= t.a) & (t.a < nb) & (0 <= t.b) & (t.b < nb)) | (t.a == t.b)
+        no_area = (t.polygons.counts < 3) | ~(t.area > 0.0)
+        wrong = np.flatnonzero(invalid | no_area)
+        if len(wrong):
+            k = int(wrong[0])
+            if invalid[k]:
+                raise AssemblyError(f"interface {k} joins blocks {t.a[k]} and {t.b[k]}: invalid")
+            raise AssemblyError(
+                f"interface {k} between {self.names[t.a[k]]!r} and {self.names[t.b[k]]!r} has no area"
+            )
+        touched = np.zeros(nb, dtype=bool)
+        touched[t.a] = touched[t.b] = True
+        loose = [self.names[k] for k in np.flatnonzero(~touched)]
         if loose:
             raise AssemblyError(f"block(s) {loose} touch nothing: no interface found for them")
         return self

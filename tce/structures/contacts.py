@@ -45,72 +45,11 @@ from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
 
 from .assembly import Assembly, AssemblyError, Block, Interface
-from .geometry import newell_normal
+from .geometry import FaceTable, _ring, cross, frames_from_normals
 
 __all__ = ["block_pairs", "check_overlaps", "detect_interfaces"]
 
 log = logging.getLogger(__name__)
-
-
-@dataclass(frozen=True, eq=False)
-class _BlockData:
-    """Per-block arrays used by the detection and the overlap check."""
-
-    block: Block
-
-    @cached_property
-    def vertices(self) -> NDArray[np.float64]:
-        return self.block.shape.vertices
-
-    @cached_property
-    def size(self) -> float:
-        return self.block.shape.size
-
-    @cached_property
-    def faces(self) -> list[NDArray[np.float64]]:
-        return [self.block.shape.face_points(k) for k in range(len(self.block.shape.faces))]
-
-    @cached_property
-    def normals(self) -> NDArray[np.float64]:
-        return self.block.shape.face_normals
-
-    @cached_property
-    def centres(self) -> NDArray[np.float64]:
-        return np.array([f.mean(axis=0) for f in self.faces])
-
-    @cached_property
-    def offsets(self) -> NDArray[np.float64]:
-        """``n . x`` of each face plane (through the mean of the face's vertices)."""
-        return np.einsum("ij,ij->i", self.normals, self.centres)
-
-    @cached_property
-    def face_lo(self) -> NDArray[np.float64]:
-        return np.array([f.min(axis=0) for f in self.faces])
-
-    @cached_property
-    def face_hi(self) -> NDArray[np.float64]:
-        return np.array([f.max(axis=0) for f in self.faces])
-
-    def convex(self, tol: float) -> bool:
-        """True when every vertex lies on the inner side of every face plane (within tol * size)."""
-        d = self.vertices @ self.normals.T - self.offsets
-        return bool(d.max() <= tol * self.size)
-
-    @cached_property
-    def edge_midpoints(self) -> NDArray[np.float64]:
-        v = self.vertices
-        mids = {}
-        for f in self.block.shape.faces:
-            for i, j in zip(f, f[1:] + f[:1]):
-                key = (min(i, j), max(i, j))
-                mids[key] = 0.5 * (v[i] + v[j])
-        return np.array(list(mids.values()))
-
-    @cached_property
-    def triangles(self) -> NDArray[np.float64]:
-        """Fan triangles of the faces, (nt, 3, 3), for the winding number."""
-        tris = [np.stack([np.repeat(f[:1], len(f) - 2, axis=0), f[1:-1], f[2:]], axis=1) for f in self.faces]
-        return np.concatenate(tris, axis=0)
 
 
 def _blocks_of(assembly_or_blocks: Assembly | Sequence[Block]) -> tuple[Block, ...]:
@@ -145,96 +84,15 @@ def block_pairs(lo: NDArray[np.float64], hi: NDArray[np.float64]) -> NDArray[np.
         if best is None or count < best[0]:
             best = (count, order, ends)
     _, order, ends = best
-    out = []
-    for r in range(n):
-        if ends[r] <= r + 1:
-            continue
-        i = order[r]
-        ks = order[r + 1 : ends[r]]
-        ok = np.all((lo[ks] <= hi[i]) & (hi[ks] >= lo[i]), axis=1)
-        ks = ks[ok]
-        if len(ks):
-            out.append(np.column_stack([np.minimum(i, ks), np.maximum(i, ks)]))
-    if not out:
-        return np.zeros((0, 2), dtype=np.int64)
-    pairs = np.concatenate(out)
+    # candidates of the box at sorted position r: those at positions r + 1 .. ends[r] - 1
+    extra = np.maximum(ends - np.arange(n) - 1, 0)
+    r = np.repeat(np.arange(n), extra)
+    cand = r + 1 + np.arange(extra.sum()) - np.repeat(np.cumsum(extra) - extra, extra)
+    i, k = order[r], order[cand]
+    ok = np.all((lo[k] <= hi[i]) & (hi[k] >= lo[i]), axis=1)
+    i, k = i[ok], k[ok]
+    pairs = np.column_stack([np.minimum(i, k), np.maximum(i, k)]).astype(np.int64)
     return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
-
-
-def _padded_boxes(data: Sequence[_BlockData], tol: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    lo = np.array([d.vertices.min(axis=0) for d in data])
-    hi = np.array([d.vertices.max(axis=0) for d in data])
-    pad = np.array([tol * d.size for d in data])[:, None]
-    return lo - pad, hi + pad
-
-
-@dataclass(frozen=True)
-class _FaceTable:
-    """All faces of all blocks, flattened.
-
-    ``loop`` holds global vertex indices of the faces, one after the other; face ``f`` is
-    ``loop[start[f]:start[f + 1]]`` and belongs to block ``block[f]``; the faces of block
-    ``b`` are ``first[b]:first[b + 1]``.
-    """
-
-    points: NDArray[np.float64]
-    loop: NDArray[np.int64]
-    start: NDArray[np.int64]
-    block: NDArray[np.int64]
-    first: NDArray[np.int64]
-    normal: NDArray[np.float64]
-    centre: NDArray[np.float64]
-    lo: NDArray[np.float64]
-    hi: NDArray[np.float64]
-
-    @property
-    def offset(self) -> NDArray[np.float64]:
-        return np.einsum("ij,ij->i", self.normal, self.centre)
-
-
-def _face_table(blocks: Sequence[Block]) -> _FaceTable:
-    pts, loops, counts, owner, nfaces = [], [], [], [], []
-    base = 0
-    for b, blk in enumerate(blocks):
-        v = blk.shape.vertices
-        pts.append(v)
-        for f in blk.shape.faces:
-            loops.append(np.asarray(f, dtype=np.int64) + base)
-            counts.append(len(f))
-        owner.append(np.full(len(blk.shape.faces), b, dtype=np.int64))
-        nfaces.append(len(blk.shape.faces))
-        base += len(v)
-    P = np.vstack(pts)
-    loop = np.concatenate(loops)
-    counts = np.asarray(counts, dtype=np.int64)
-    start = np.concatenate([[0], np.cumsum(counts)])
-    seg = start[:-1]
-    fid = np.repeat(np.arange(len(counts)), counts)
-    q = P[loop]
-    centre = np.add.reduceat(q, seg, axis=0) / counts[:, None]
-    r = q - centre[fid]
-    pos = np.arange(len(loop)) - seg[fid]
-    nxt = seg[fid] + (pos + 1) % counts[fid]
-    nv = np.add.reduceat(np.cross(r, r[nxt]), seg, axis=0)
-    norm = np.linalg.norm(nv, axis=1)
-    normal = nv / np.where(norm > 0, norm, 1.0)[:, None]
-    lo = np.minimum.reduceat(q, seg, axis=0)
-    hi = np.maximum.reduceat(q, seg, axis=0)
-    first = np.concatenate([[0], np.cumsum(nfaces)]).astype(np.int64)
-    return _FaceTable(P, loop, start, np.concatenate(owner), first, normal, centre, lo, hi)
-
-
-def _frames(n: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Vectorised :func:`tce.geometry.frame_from_normal`: (k, 3, 3), rows (n, t1, t2)."""
-    ez = np.array([0.0, 0.0, 1.0])
-    t1 = ez - n[:, 2:3] * n
-    flat = np.linalg.norm(t1, axis=1) < 1e-6
-    if flat.any():
-        ex = np.array([1.0, 0.0, 0.0])
-        t1[flat] = ex - n[flat, 0:1] * n[flat]
-    t1 /= np.linalg.norm(t1, axis=1)[:, None]
-    t2 = np.cross(n, t1)
-    return np.stack([n, t1, t2], axis=1)
 
 
 def _ragged(start: NDArray[np.int64], faces: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
@@ -254,28 +112,75 @@ def _polygons(xy: NDArray[np.float64], row: NDArray[np.int64]) -> NDArray[np.obj
     return polys
 
 
-def _pieces(geom: object) -> list[Polygon]:
-    out: list[Polygon] = []
-    for g in getattr(geom, "geoms", [geom]):
-        if isinstance(g, Polygon):
-            out.append(g)
-        elif hasattr(g, "geoms"):
-            out.extend(_pieces(g))
-    return out
+def _flat_polygons(geoms: NDArray[np.object_]) -> tuple[NDArray[np.object_], NDArray[np.int64]]:
+    """The polygons inside each geometry (collections flattened depth first, other kinds
+    dropped), and the index of the geometry each came from."""
+    index = np.arange(len(geoms))
+    while True:
+        multi = shapely.get_num_geometries(geoms) > 1
+        multi |= np.isin(shapely.get_type_id(geoms), (4, 5, 6, 7))  # collections of one part
+        if not multi.any():
+            break
+        geoms, idx = shapely.get_parts(geoms, return_index=True)
+        index = index[idx]
+    poly = shapely.get_type_id(geoms) == 3
+    return geoms[poly], index[poly]
 
 
-def _lift(poly: Polygon, frame: NDArray[np.float64], origin: NDArray[np.float64], eps: float) -> NDArray[np.float64]:
-    """Outer loop of a 2D polygon, counter-clockwise about the frame normal, back in 3D."""
-    poly = orient(poly, 1.0)
-    xy = np.asarray(poly.exterior.coords)[:-1]
+def _lift(
+    pieces: NDArray[np.object_], frames: NDArray[np.float64], origins: NDArray[np.float64], eps: NDArray[np.float64]
+) -> list[NDArray[np.float64]]:
+    """Outer loops of 2D polygons, counter-clockwise about their frame normals, back in 3D.
+
+    A vertex closer than ``eps`` to the last vertex kept is dropped, and so is a last vertex
+    that close to the first.
+    """
+    ring = shapely.get_exterior_ring(pieces)
+    xy, owner = shapely.get_coordinates(ring, return_index=True)
+    counts = np.bincount(owner, minlength=len(pieces))
+    last = np.cumsum(counts) - 1
+    keep = np.ones(len(xy), dtype=bool)
+    keep[last] = False  # the closing repeat of the first vertex
+    x, y = xy[:, 0], xy[:, 1]
+    nxt = np.minimum(np.arange(len(xy)) + 1, len(xy) - 1)
+    twice = np.bincount(owner, weights=np.where(keep, x * y[nxt] - x[nxt] * y, 0.0), minlength=len(pieces))
+    xy, owner, counts = xy[keep], owner[keep], counts - 1
+    start = np.concatenate([[0], np.cumsum(counts)])
+    # counter-clockwise: a loop of negative shoelace area is reversed (keeping its first vertex)
+    pos = np.arange(len(xy)) - start[owner]
+    order = start[owner] + np.where(twice[owner] < 0, (counts[owner] - pos) % counts[owner], pos)
+    xy = xy[order]
+    # loops with a vertex within eps of its predecessor (cyclically) need the sequential rule
+    prev = start[owner] + (pos - 1) % counts[owner]
+    close = np.linalg.norm(xy - xy[prev], axis=1) <= eps[owner]
+    redo = np.bincount(owner[close], minlength=len(pieces)) > 0
+    pts = origins[owner] + np.einsum("kj,kji->ki", xy, frames[owner, 1:])
+    loops = np.split(pts, start[1:-1])
+    for k in np.flatnonzero(redo):
+        loops[k] = origins[k] + _drop_close(xy[start[k] : start[k + 1]], eps[k]) @ frames[k, 1:]
+    return loops
+
+
+def _drop_close(xy: NDArray[np.float64], eps: float) -> NDArray[np.float64]:
+    """``xy`` without the vertices within ``eps`` of the last one kept (and a last one within
+    ``eps`` of the first)."""
     keep = [0]
     for k in range(1, len(xy)):
         if np.linalg.norm(xy[k] - xy[keep[-1]]) > eps:
             keep.append(k)
     if len(keep) > 1 and np.linalg.norm(xy[keep[-1]] - xy[keep[0]]) <= eps:
         keep.pop()
-    xy = xy[keep]
-    return origin + xy @ frame[1:]
+    return xy[keep]
+
+
+def _pairs_within(first: NDArray[np.int64], count_a: NDArray[np.int64], count_b: NDArray[np.int64],
+                  start_a: NDArray[np.int64], start_b: NDArray[np.int64]) -> tuple[NDArray, NDArray, NDArray]:
+    """All pairs ``(start_a[r] + p, start_b[r] + q)``, ``p < count_a[r]``, ``q < count_b[r]``,
+    for each row ``r`` of ``first``, with the row of each pair."""
+    rep = count_a * count_b
+    row = np.repeat(np.arange(len(first)), rep)
+    local = np.arange(rep.sum()) - np.repeat(np.cumsum(rep) - rep, rep)
+    return row, start_a[row] + local // count_b[row], start_b[row] + local % count_b[row]
 
 
 def detect_interfaces(
@@ -315,33 +220,31 @@ def detect_interfaces(
     blocks = _blocks_of(assembly_or_blocks)
     if len(blocks) < 2:
         return []
-    T = _face_table(blocks)
-    size = np.array([b.shape.size for b in blocks])
-    lo = np.array([b.shape.vertices.min(axis=0) for b in blocks]) - (tol * size)[:, None]
-    hi = np.array([b.shape.vertices.max(axis=0) for b in blocks]) + (tol * size)[:, None]
+    T = FaceTable.of([b.shape for b in blocks])
+    size = T.size
+    lo, hi = T.lo - (tol * size)[:, None], T.hi + (tol * size)[:, None]
     pairs = block_pairs(lo, hi)
     if not len(pairs):
         return []
+    normal, centre = T.face_normal, T.faces.mean
+    offset = np.einsum("ij,ij->i", normal, centre)
     # every face of block i against every face of block j, for each candidate pair
-    nf = np.diff(T.first)
-    na, nb = nf[pairs[:, 0]], nf[pairs[:, 1]]
-    rep = na * nb
-    pid = np.repeat(np.arange(len(pairs)), rep)
-    local = np.arange(rep.sum()) - np.repeat(np.concatenate([[0], np.cumsum(rep)[:-1]]), rep)
-    fa = T.first[pairs[pid, 0]] + local // nb[pid]
-    fb = T.first[pairs[pid, 1]] + local % nb[pid]
-    keep = np.einsum("ij,ij->i", T.normal[fa], T.normal[fb]) <= -cos_tol
+    nf = np.diff(T.face_start)
+    pid, fa, fb = _pairs_within(
+        pairs, nf[pairs[:, 0]], nf[pairs[:, 1]], T.face_start[pairs[:, 0]], T.face_start[pairs[:, 1]]
+    )
+    keep = np.einsum("ij,ij->i", normal[fa], normal[fb]) <= -cos_tol
     fa, fb, pid = fa[keep], fb[keep], pid[keep]
     eps = tol * np.maximum(size[pairs[pid, 0]], size[pairs[pid, 1]])
-    offset = T.offset
-    keep = np.abs(np.einsum("ij,ij->i", T.normal[fa], T.centre[fb]) - offset[fa]) <= eps
-    keep &= np.all((T.lo[fa] <= T.hi[fb] + eps[:, None]) & (T.lo[fb] <= T.hi[fa] + eps[:, None]), axis=1)
+    keep = np.abs(np.einsum("ij,ij->i", normal[fa], centre[fb]) - offset[fa]) <= eps
+    flo, fhi = T.face_lo, T.face_hi
+    keep &= np.all((flo[fa] <= fhi[fb] + eps[:, None]) & (flo[fb] <= fhi[fa] + eps[:, None]), axis=1)
     fa, fb, pid, eps = fa[keep], fb[keep], pid[keep], eps[keep]
     if not len(fa):
         return []
     # every vertex of B's face on A's plane
     posb, rowb = _ragged(T.start, fb)
-    db = np.abs(np.einsum("ij,ij->i", T.points[T.loop[posb]], T.normal[fa][rowb]) - offset[fa][rowb])
+    db = np.abs(np.einsum("ij,ij->i", T.points[T.loop[posb]], normal[fa][rowb]) - offset[fa][rowb])
     worst = np.zeros(len(fb))
     np.maximum.at(worst, rowb, db)
     keep = worst <= eps
@@ -349,8 +252,8 @@ def detect_interfaces(
     if not len(fa):
         return []
     # overlap in A's face plane (2D frame of A's normal, origin at A's face centre)
-    frames = _frames(T.normal[fa])
-    origin = T.centre[fa]
+    frames = frames_from_normals(normal[fa])
+    origin = centre[fa]
     posa, rowa = _ragged(T.start, fa)
     posb, rowb = _ragged(T.start, fb)
     xya = np.einsum("kj,kij->ki", T.points[T.loop[posa]] - origin[rowa], frames[rowa, 1:])
@@ -359,20 +262,19 @@ def detect_interfaces(
     area = shapely.area(inter)
     smaller = np.minimum(size[pairs[pid, 0]], size[pairs[pid, 1]])
     amin = tol * smaller**2 if min_area is None else np.full(len(fa), float(min_area))
-    found: list[Interface] = []
-    for k in np.flatnonzero(area > amin):
-        i, j = (int(x) for x in pairs[pid[k]])
-        for piece in _pieces(inter[k]):
-            if piece.area <= amin[k]:
-                continue
-            if len(piece.interiors):
-                log.warning(
-                    "contact between %r and %r has a hole; only its outer loop is kept",
-                    blocks[i].name, blocks[j].name,
-                )
-            pts = _lift(piece, frames[k], origin[k], 1e-9 * eps[k] / tol)
-            if len(pts) >= 3:
-                found.append(Interface(i, j, pts, T.normal[fa[k]]))
+    hit = np.flatnonzero(area > amin)
+    pieces, src = _flat_polygons(inter[hit])
+    k = hit[src]
+    big = shapely.area(pieces) > amin[k]
+    pieces, k = pieces[big], k[big]
+    for h in np.flatnonzero(shapely.get_num_interior_rings(pieces) > 0):
+        i, j = pairs[pid[k[h]]]
+        log.warning("contact between %r and %r has a hole; only its outer loop is kept", blocks[i].name, blocks[j].name)
+    loops = _lift(pieces, frames[k], origin[k], 1e-9 * eps[k] / tol) if len(k) else []
+    ab = pairs[pid[k]].tolist()
+    found = [
+        Interface(ij[0], ij[1], pts, normal[fa[kk]]) for ij, pts, kk in zip(ab, loops, k.tolist()) if len(pts) >= 3
+    ]
     found.sort(key=lambda itf: (itf.a, itf.b))
     log.info(
         "detect_interfaces: %d blocks, %d coplanar face pairs, %d interfaces", len(blocks), len(fa), len(found)
@@ -397,38 +299,76 @@ def _winding_numbers(tris: NDArray[np.float64], pts: NDArray[np.float64]) -> NDA
     return out
 
 
-def _test_points(d: _BlockData, tol: float) -> NDArray[np.float64]:
-    pts = [d.vertices, d.edge_midpoints]
-    if d.convex(tol):
-        pts.append(d.block.centroid[None, :])
-        pts.append(d.centres)
-    else:
-        for f in d.faces:  # centroids of convex faces only
-            n = newell_normal(f)
-            e = np.roll(f, -1, axis=0) - f
-            turn = np.cross(e, np.roll(e, -1, axis=0)) @ n
-            if np.all(turn >= -tol * d.size**2):
-                pts.append(f.mean(axis=0)[None, :])
-    return np.vstack(pts)
+def _convex(T: FaceTable, offset: NDArray[np.float64], tol: float) -> NDArray[np.bool_]:
+    """True for each polyhedron whose vertices lie on the inner side of each of its face
+    planes (within ``tol`` times its size)."""
+    n = len(T)
+    blocks = np.arange(n)
+    poly, v, f = _pairs_within(blocks, np.diff(T.vertex_start), np.diff(T.face_start), T.vertex_start[:-1], T.face_start[:-1])
+    d = np.einsum("ij,ij->i", T.points[v], T.face_normal[f]) - offset[f]
+    worst = np.full(n, -np.inf)
+    np.maximum.at(worst, poly, d)
+    return worst <= tol * T.size
 
 
-def _inside_depth(d: _BlockData, pts: NDArray[np.float64], eps: float, convex: bool) -> NDArray[np.float64]:
-    """Depth (m) of each point inside block ``d`` (<= 0 when outside or on its surface)."""
-    s = d.offsets[None, :] - pts @ d.normals.T  # > 0 on the inner side of each face plane
-    if convex:
-        return s.min(axis=1)
-    w = _winding_numbers(d.triangles, pts)
+def _test_points(T: FaceTable, convex: NDArray[np.bool_], tol: float) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """Points of each polyhedron that lie in it (closed): its vertices and edge midpoints; for a
+    convex one also its centroid and face centres, otherwise the centres of its convex faces.
+
+    Returns the points and the start of each polyhedron's points, ``(n + 1,)``.
+    """
+    owner, nxt, _ = _ring(T.start)
+    i, j = T.loop, T.loop[nxt]
+    nv = max(len(T.points), 1)
+    edges = np.unique(np.minimum(i, j) * nv + np.maximum(i, j))
+    lo, hi = edges // nv, edges % nv
+    face_poly = T.face_owner
+    centre = T.faces.mean
+    # convex faces of the non-convex polyhedra: every turn of the loop the normal's way
+    p = T.points[T.loop]
+    e = p[nxt] - p
+    turn = np.einsum("ij,ij->i", cross(e, e[nxt]), T.faces.newell[owner])
+    size2 = T.size[face_poly[owner]] ** 2
+    bent = np.bincount(owner, weights=(turn < -tol * size2).astype(float), minlength=len(face_poly)) > 0
+    use_face = convex[face_poly] | ~bent
+    parts = [
+        (T.points, T.vertex_owner),
+        (0.5 * (T.points[lo] + T.points[hi]), T.vertex_owner[lo]),
+        (T.centroid[convex], np.flatnonzero(convex)),
+        (centre[use_face], face_poly[use_face]),
+    ]
+    pts = np.concatenate([q for q, _ in parts])
+    who = np.concatenate([o for _, o in parts])
+    order = np.argsort(who, kind="stable")
+    start = np.concatenate([[0], np.cumsum(np.bincount(who, minlength=len(T)))])
+    return pts[order], start
+
+
+def _nonconvex_depth(T: FaceTable, x: int, offset: NDArray[np.float64], pts: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Depth (m) of each point inside the non-convex polyhedron ``x`` (-inf when outside):
+    inside by the winding number, depth a lower bound of the distance to its faces (the larger
+    of the distances to each face's plane and to its bounding box)."""
+    faces = np.arange(T.face_start[x], T.face_start[x + 1])
+    normal, off = T.face_normal[faces], offset[faces]
+    corners = [T.points[T.loop[T.start[f] : T.start[f + 1]]] for f in faces]
+    tris = np.concatenate(
+        [np.stack([np.repeat(c[:1], len(c) - 2, axis=0), c[1:-1], c[2:]], axis=1) for c in corners]
+    )
+    w = _winding_numbers(tris, pts)
     depth = np.full(len(pts), -np.inf)
+    s = off[None, :] - pts @ normal.T
+    flo, fhi = T.face_lo[faces], T.face_hi[faces]
     for k in np.flatnonzero(w > 0.5):
-        # lower bound of the distance to each face: the larger of the distances to its
-        # plane and to its bounding box
-        gap = np.maximum(d.face_lo - pts[k], pts[k] - d.face_hi).clip(min=0.0)
+        gap = np.maximum(flo - pts[k], pts[k] - fhi).clip(min=0.0)
         depth[k] = np.maximum(np.abs(s[k]), np.linalg.norm(gap, axis=1)).min()
     return depth
 
 
 def check_overlaps(assembly_or_blocks: Assembly | Sequence[Block], tol: float = 1e-6) -> None:
     """Raise if two blocks' volumes intersect (see module docstring for what is checked).
+
+    All pairs with a convex block are checked at once (the test points of one block against
+    the face planes of the other); pairs with a non-convex block one by one.
 
     Parameters
     ----------
@@ -440,25 +380,49 @@ def check_overlaps(assembly_or_blocks: Assembly | Sequence[Block], tol: float = 
     Raises
     ------
     AssemblyError
-        Naming both blocks and the depth of the deepest test point.
+        For the first overlapping pair (in :func:`block_pairs` order), naming both blocks and
+        the depth of the deepest test point.
     """
     blocks = _blocks_of(assembly_or_blocks)
-    data = [_BlockData(b) for b in blocks]
-    lo, hi = _padded_boxes(data, -tol)
-    convex = [d.convex(tol) for d in data]
-    tests = [None] * len(data)
-    for i, j in block_pairs(lo, hi):
-        eps = tol * max(data[i].size, data[j].size)
-        for x, y in ((i, j), (j, i)):
-            if tests[y] is None:
-                tests[y] = _test_points(data[y], tol)
-            p = tests[y]
-            box = np.all((p > lo[x]) & (p < hi[x]), axis=1)
-            if not box.any():
-                continue
-            depth = _inside_depth(data[x], p[box], eps, convex[x])
-            if depth.max() > eps:
-                raise AssemblyError(
-                    f"blocks {blocks[x].name!r} and {blocks[y].name!r} overlap: a point of "
-                    f"{blocks[y].name!r} lies {depth.max():.3g} m inside {blocks[x].name!r}"
-                )
+    if len(blocks) < 2:
+        return
+    T = FaceTable.of([b.shape for b in blocks])
+    size = T.size
+    lo, hi = T.lo + (tol * size)[:, None], T.hi - (tol * size)[:, None]
+    pairs = block_pairs(lo, hi)
+    if not len(pairs):
+        return
+    offset = np.einsum("ij,ij->i", T.face_normal, T.faces.mean)
+    convex = _convex(T, offset, tol)
+    tests, tstart = _test_points(T, convex, tol)
+    # each pair both ways: the points of Y inside X
+    X = pairs.ravel()
+    Y = pairs[:, ::-1].ravel()
+    eps = np.repeat(tol * np.maximum(size[pairs[:, 0]], size[pairs[:, 1]]), 2)
+    worst = np.full(len(X), -np.inf)
+    ntest = np.diff(tstart)
+    nface = np.diff(T.face_start)
+    todo = np.flatnonzero(convex[X])
+    # in chunks of about a million (point, face) checks
+    load = np.cumsum(ntest[Y[todo]] * nface[X[todo]])
+    for chunk in np.split(todo, np.searchsorted(load, np.arange(1, int(load[-1] // 1_000_000) + 1) * 1_000_000)) if len(todo) else []:
+        row, _, pt = _pairs_within(chunk, np.ones(len(chunk), dtype=np.int64), ntest[Y[chunk]], np.zeros(len(chunk), dtype=np.int64), tstart[Y[chunk]])
+        d = chunk[row]
+        p = tests[pt]
+        inside = np.all((p > lo[X[d]]) & (p < hi[X[d]]), axis=1)
+        d, p = d[inside], p[inside]
+        r, k, f = _pairs_within(d, np.ones(len(d), dtype=np.int64), nface[X[d]], np.arange(len(d)), T.face_start[X[d]])
+        s = offset[f] - np.einsum("ij,ij->i", p[k], T.face_normal[f])
+        if len(s):
+            depth = np.minimum.reduceat(s, np.concatenate([[0], np.cumsum(nface[X[d]])[:-1]]))
+            np.maximum.at(worst, d, depth)
+    for d in np.flatnonzero(~convex[X]):
+        p = tests[tstart[Y[d]] : tstart[Y[d] + 1]]
+        p = p[np.all((p > lo[X[d]]) & (p < hi[X[d]]), axis=1)]
+        if len(p):
+            worst[d] = _nonconvex_depth(T, int(X[d]), offset, p).max()
+    bad = np.flatnonzero(worst > eps)
+    if len(bad):
+        d = bad[0]
+        x, y = blocks[X[d]].name, blocks[Y[d]].name
+        raise AssemblyError(f"blocks {x!r} and {y!r} overlap: a point of {y!r} lies {worst[d]:.3g} m inside {x!r}")

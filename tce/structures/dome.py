@@ -48,26 +48,24 @@ from numpy.typing import NDArray
 
 from .params import check_positive, check_whole
 from .assembly import Assembly, Block, Interface
-from .geometry import Polyhedron, prism
+from .geometry import FaceTable, PolygonTable, oriented_polyhedra, prisms
 
 __all__ = ["hemispherical_dome", "radial_settlement", "shell_centroid_height", "shell_volume"]
 
 
-def _sph(r: float, theta: float, psi: float) -> NDArray[np.float64]:
-    """Point at radius ``r``, colatitude ``theta`` and azimuth ``psi`` (rad)."""
-    st = math.sin(theta)
-    return np.array([r * st * math.cos(psi), r * st * math.sin(psi), r * math.cos(theta)])
+def _corners(r: float, thetas: NDArray[np.float64], psis: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Points at radius ``r`` (m), colatitudes ``thetas`` and azimuths ``psis`` (rad), as a
+    ``(len(thetas), len(psis), 3)`` grid; the base row (``thetas[0]``, 90 deg) exactly at z = 0."""
+    st = np.sin(thetas)[:, None]
+    x = r * st * np.cos(psis)[None, :]
+    y = r * st * np.sin(psis)[None, :]
+    z = np.broadcast_to(r * np.cos(thetas)[:, None], x.shape).copy()
+    z[0] = 0.0
+    return np.stack([x, y, z], axis=-1)
 
 
-def _wedge(ci: NDArray, co: NDArray, i1: NDArray, i2: NDArray, o1: NDArray, o2: NDArray) -> Polyhedron:
-    """Triangular prism of a crown wedge: axis points ``ci`` (inner), ``co`` (outer) and the
-    lower corners ``i1, i2`` (inner) and ``o1, o2`` (outer) at azimuths psi_j, psi_j+1."""
-    v = np.array([ci, i1, i2, co, o1, o2])
-    faces = [(0, 1, 2), (3, 5, 4), (1, 4, 5, 2), (0, 3, 4, 1), (0, 2, 5, 3)]
-    poly = Polyhedron(v, faces)
-    if poly.volume < 0:
-        poly = Polyhedron(v, [f[::-1] for f in faces])
-    return poly
+#: faces of a crown wedge with vertices (axis inner, i1, i2, axis outer, o1, o2)
+_WEDGE_FACES = ((0, 1, 2), (3, 5, 4), (1, 4, 5, 2), (0, 3, 4, 1), (0, 2, 5, 3))
 
 
 def hemispherical_dome(
@@ -132,68 +130,67 @@ def hemispherical_dome(
     thetas = np.linspace(math.pi / 2.0, theta0, courses + 1)
     psis = np.linspace(0.0, 2.0 * math.pi, sectors + 1)
     closed = theta0 == 0.0
+    S, C = sectors, courses
+    # corners on the intrados and extrados: [k, j] at colatitude thetas[k], azimuth psis[j % S]
+    inner, outer = _corners(ri, thetas, psis[np.arange(S + 1) % S]), _corners(ro, thetas, psis[np.arange(S + 1) % S])
+    wedges = closed
+    lo, hi = slice(0, S), slice(1, S + 1)  # sector j spans azimuths j .. j + 1
 
-    def corner(r: float, k: int, j: int) -> NDArray[np.float64]:
-        p = _sph(r, thetas[k], psis[j % sectors])
-        if k == 0:
-            p[2] = 0.0  # exactly on the base plane
-        return p
+    # supports: the prism under each sector's base joint
+    top = np.stack([inner[0, lo], inner[0, hi], outer[0, hi], outer[0, lo]], axis=1)  # (S, 4, 3)
+    shapes = prisms(top - np.array([0.0, 0.0, h]), top)
+    # voussoirs of the courses k = 1 .. C (between thetas[k - 1] and thetas[k]), sector by sector
+    ring = C - 1 if wedges else C
+    k0 = np.repeat(np.arange(ring), S)  # lower joint index of each voussoir
+    js = np.tile(np.arange(S), ring)
+    quad = lambda g, k, j: np.stack([g[k, j], g[k, j + 1], g[k + 1, j + 1], g[k + 1, j]], axis=1)  # noqa: E731
+    shapes += prisms(quad(inner, k0, js), quad(outer, k0, js))
+    if wedges:
+        # crown wedges: axis points (inner, outer) and the lower corners of the top course
+        j = np.arange(S)
+        axis_i = np.broadcast_to([0.0, 0.0, ri], (S, 3))
+        axis_o = np.broadcast_to([0.0, 0.0, ro], (S, 3))
+        verts = np.stack([axis_i, inner[C - 1, j], inner[C - 1, j + 1], axis_o, outer[C - 1, j], outer[C - 1, j + 1]], axis=1)
+        shapes += oriented_polyhedra(verts, _WEDGE_FACES)
+    wj = max(2, len(str(S)))
+    wk = max(2, len(str(C)))
+    names = [f"s{j + 1:0{wj}d}" for j in range(S)]
+    names += [f"c{k:0{wk}d}s{j + 1:0{wj}d}" for k in range(1, C + 1) for j in range(S)]
+    uw = float(unit_weight)
+    blocks = [Block(name, shape, uw, i < S) for i, (name, shape) in enumerate(zip(names, shapes))]
 
-    wj = max(2, len(str(sectors)))
-    wk = max(2, len(str(courses)))
-    blocks: list[Block] = []
-    # supports
-    for j in range(sectors):
-        top = np.array([corner(ri, 0, j), corner(ri, 0, j + 1), corner(ro, 0, j + 1), corner(ro, 0, j)])
-        bottom = top - np.array([0.0, 0.0, h])
-        blocks.append(Block(f"s{j + 1:0{wj}d}", prism(bottom, top), float(unit_weight), True))
-    # voussoirs, course k between thetas[k-1] (lower) and thetas[k] (upper)
-    for k in range(1, courses + 1):
-        for j in range(sectors):
-            name = f"c{k:0{wk}d}s{j + 1:0{wj}d}"
-            if closed and k == courses:
-                shape = _wedge(
-                    np.array([0.0, 0.0, ri]), np.array([0.0, 0.0, ro]),
-                    corner(ri, k - 1, j), corner(ri, k - 1, j + 1),
-                    corner(ro, k - 1, j), corner(ro, k - 1, j + 1),
-                )
-            else:
-                inner = [corner(ri, k - 1, j), corner(ri, k - 1, j + 1), corner(ri, k, j + 1), corner(ri, k, j)]
-                outer = [corner(ro, k - 1, j), corner(ro, k - 1, j + 1), corner(ro, k, j + 1), corner(ro, k, j)]
-                shape = prism(inner, outer)
-            blocks.append(Block(name, shape, float(unit_weight)))
-
-    def vid(k: int, j: int) -> int:
+    def vid(k: int | NDArray, j: int | NDArray) -> NDArray:
         """Index of the voussoir of course k (1-based) in sector j (0-based, wrapped)."""
-        return sectors + (k - 1) * sectors + (j % sectors)
+        return S + (np.asarray(k) - 1) * S + (np.asarray(j) % S)
 
-    interfaces: list[Interface] = []
-
-    def add(a: int, b: int, pts: list[NDArray[np.float64]]) -> None:
-        p = np.array(pts)
-        if a > b:
-            a, b = b, a
-        itf = Interface(a, b, p)
-        if itf.normal @ (blocks[b].centroid - blocks[a].centroid) < 0:
-            itf = Interface(a, b, p[::-1], -itf.normal)
-        interfaces.append(itf)
-
-    for j in range(sectors):
-        # base joints
-        add(j, vid(1, j), [corner(ri, 0, j), corner(ri, 0, j + 1), corner(ro, 0, j + 1), corner(ro, 0, j)])
-    for k in range(1, courses + 1):
-        wedge_course = closed and k == courses
-        for j in range(sectors):
-            # bed joint above course k
-            if k < courses:
-                add(vid(k, j), vid(k + 1, j),
-                    [corner(ri, k, j), corner(ri, k, j + 1), corner(ro, k, j + 1), corner(ro, k, j)])
-            # meridian joint between sector j and j+1 at psi_{j+1}
-            if wedge_course:
-                pts = [corner(ri, k - 1, j + 1), corner(ro, k - 1, j + 1), np.array([0.0, 0.0, ro]), np.array([0.0, 0.0, ri])]
-            else:
-                pts = [corner(ri, k - 1, j + 1), corner(ro, k - 1, j + 1), corner(ro, k, j + 1), corner(ri, k, j + 1)]
-            add(vid(k, j), vid(k, j + 1), pts)
+    # interfaces in order: base joints; then per course, sector by sector, the bed joint above
+    # it (below the top course) and the meridian joint at psi_{j+1} towards the next sector
+    j = np.arange(S)
+    parts = [(j, vid(1, j), np.stack([inner[0, j], inner[0, j + 1], outer[0, j + 1], outer[0, j]], axis=1))]
+    for k in range(1, C + 1):
+        if wedges and k == C:
+            mer = np.stack([inner[k - 1, j + 1], outer[k - 1, j + 1],
+                            np.broadcast_to([0.0, 0.0, ro], (S, 3)), np.broadcast_to([0.0, 0.0, ri], (S, 3))], axis=1)
+        else:
+            mer = np.stack([inner[k - 1, j + 1], outer[k - 1, j + 1], outer[k, j + 1], inner[k, j + 1]], axis=1)
+        if k < C:
+            bed = np.stack([inner[k, j], inner[k, j + 1], outer[k, j + 1], outer[k, j]], axis=1)
+            a = np.stack([vid(k, j), vid(k, j)], axis=1).ravel()
+            b = np.stack([vid(k + 1, j), vid(k, j + 1)], axis=1).ravel()
+            parts.append((a, b, np.stack([bed, mer], axis=1).reshape(-1, 4, 3)))
+        else:
+            parts.append((vid(k, j), vid(k, j + 1), mer))
+    a = np.concatenate([p[0] for p in parts])
+    b = np.concatenate([p[1] for p in parts])
+    pts = np.concatenate([p[2] for p in parts])
+    a, b = np.minimum(a, b), np.maximum(a, b)
+    normal = PolygonTable(pts.reshape(-1, 3), np.arange(len(pts) + 1) * 4).newell
+    normal /= np.linalg.norm(normal, axis=1)[:, None]
+    centroids = FaceTable.of(shapes).centroid
+    flip = np.einsum("ij,ij->i", normal, centroids[b] - centroids[a]) < 0
+    pts[flip] = pts[flip, ::-1]
+    normal[flip] *= -1.0
+    interfaces = [Interface(int(a[i]), int(b[i]), pts[i], normal[i]) for i in range(len(a))]
 
     meta = dict(
         generator="hemispherical_dome",

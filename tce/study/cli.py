@@ -2,8 +2,11 @@
 
 ``tce run STUDY.toml``   validate a study, solve its scenarios in parallel, write
                          ``<out>/<study>/results.nc`` and its figures (resumes a run).
-``tce show RESULTS.nc``  one line per scenario: limit, outcome, model, cost.
-``tce plot RESULTS.nc``  the figures of a results file.
+``tce show RESULTS.nc``  one line per scenario: limit, outcome, model, cost (and the
+                         critical position of a load-position sweep).
+``tce plot RESULTS.nc``  the figures of a results file (``--scenario S --step 0.1``: one on demand).
+``tce view RESULTS.nc``  the interactive 3D view (one offline HTML file).
+``tce export RESULTS.nc --vtk``  ParaView files: blocks, vertex forces, resultants per step.
 
 Exit codes (``tce run``): 0 success; 2 bad input or a run that cannot start (a bad study,
 an unwritable, full or locked results folder: one message on stderr, no traceback,
@@ -23,6 +26,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .. import __version__
+from .schema import PLOT_KINDS
 
 __all__ = ["main"]
 
@@ -40,6 +44,19 @@ def _jobs(text: str) -> int:
         raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}") from None
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}")
+    return value
+
+
+def _target(text: str) -> float | str:
+    """A ``--step``: a load multiplier >= 0 or ``max``."""
+    if text == "max":
+        return text
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f'must be a number >= 0 or "max", got {text!r}') from None
+    if not (value >= 0 and value != float("inf")):
+        raise argparse.ArgumentTypeError(f'must be a number >= 0 or "max", got {text!r}')
     return value
 
 
@@ -63,7 +80,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("study", type=Path, metavar="STUDY.toml", help="study file (TOML)")
     run.add_argument("--out", type=Path, default=Path("results"), metavar="DIR", help="results root (default: results)")
-    run.add_argument("--jobs", type=_jobs, default=None, metavar="N", help="parallel workers (default: all cores)")
+    run.add_argument("--jobs", type=_jobs, default=None, metavar="N", help="parallel workers (default: in-process when the study is smaller than starting workers costs, else all cores)")
     run.add_argument(
         "--backend", choices=("loky", "dask"), default="loky",
         help="loky: processes on this machine (default); dask: a Dask distributed cluster",
@@ -83,9 +100,43 @@ def _parser() -> argparse.ArgumentParser:
     show = sub.add_parser("show", help="summarise a results file", description="One line per scenario of RESULTS.nc.")
     show.add_argument("results", type=Path, metavar="RESULTS.nc")
 
-    plot = sub.add_parser("plot", help="plot a results file", description="Write the figures of RESULTS.nc.")
+    plot = sub.add_parser(
+        "plot", help="plot a results file",
+        description="Write the figures of RESULTS.nc that the study's [plots] table asks for; --scenario, --step "
+        "and --kind replace its entries (with --scenario or --step and no --kind: the states figure only, its "
+        "file name tagged). A load multiplier that is not a solved step is solved, not interpolated.",
+    )
     plot.add_argument("results", type=Path, metavar="RESULTS.nc")
     plot.add_argument("--out", type=Path, default=None, metavar="DIR", help="folder of the figures (default: beside RESULTS.nc)")
+    plot.add_argument("--scenario", action="append", default=None, metavar="NAME",
+                      help="scenario to draw (name or shell pattern; repeatable)")
+    plot.add_argument("--step", action="append", type=_target, default=None, metavar="LAMBDA",
+                      help='load multiplier to draw (>= 0) or "max" (repeatable)')
+    plot.add_argument("--kind", action="append", choices=PLOT_KINDS, default=None, help="figure kind (repeatable)")
+    plot.add_argument("--jobs", type=_jobs, default=1, metavar="N", help="drawing processes (default 1)")
+
+    view = sub.add_parser(
+        "view", help="write the interactive 3D view of a results file",
+        description="Write one self-contained HTML file (works offline) with the blocks, interface resultants at "
+        "their pressure points, torques, loads and the collapse mechanism, a scenario selector and a slider over "
+        "the solved steps.",
+    )
+    view.add_argument("results", type=Path, metavar="RESULTS.nc")
+    view.add_argument("--out", type=Path, default=None, metavar="FILE", help="HTML file (default: view.html beside RESULTS.nc)")
+    view.add_argument("--scenario", action="append", default=None, metavar="NAME",
+                      help="scenario to include (name or shell pattern; repeatable; default: the study's [plots] scenarios)")
+    view.add_argument("--open", action="store_true", help="open the file in the web browser")
+
+    export = sub.add_parser(
+        "export", help="export a results file for ParaView",
+        description="Write VTK files (blocks, vertex forces and interface resultants per step, mechanism, one .pvd "
+        "time series per scenario with lambda as time).",
+    )
+    export.add_argument("results", type=Path, metavar="RESULTS.nc")
+    export.add_argument("--vtk", action="store_true", required=True, help="VTK XML files (.vtu, .pvd)")
+    export.add_argument("--out", type=Path, default=None, metavar="DIR", help="folder (default: vtk/ beside RESULTS.nc)")
+    export.add_argument("--scenario", action="append", default=None, metavar="NAME",
+                        help="scenario to export (name or shell pattern; repeatable; default: all)")
 
     check = sub.add_parser(
         "check",
@@ -132,22 +183,27 @@ def _open_results(path: Path):
 
 
 class _Bar:
-    """tqdm progress of scenarios and load steps (silent when stderr is not a terminal)."""
+    """Progress of a run's scenarios (:class:`tce.study.progress.Progress`): a bar on a
+    terminal, one-line progress in the log otherwise."""
 
-    def __init__(self) -> None:
+    def __init__(self, desc: str) -> None:
+        self.desc = desc
         self.bar = None
 
     def __call__(self, done: int, total: int, steps: int) -> None:
-        from tqdm import tqdm
+        from .progress import Progress
 
         if self.bar is None:
-            self.bar = tqdm(total=total, unit="scenario", disable=not sys.stderr.isatty(), file=sys.stderr)
-        self.bar.set_postfix_str(f"{steps} steps")
-        self.bar.update(done - self.bar.n)
+            self.bar = Progress(total, self.desc, unit="scenario")
+        self.bar.note(f"{steps} load steps")
+        self.bar.set_done(done)
+        if done >= total:
+            self.close()  # solving is over: what follows (figures) reports itself
 
     def close(self) -> None:
         if self.bar is not None:
             self.bar.close()
+            self.bar = None
 
 
 #: exit codes of ``tce run`` (module docstring)
@@ -165,7 +221,7 @@ def _run(args: argparse.Namespace) -> int:
     except StudyError as exc:
         raise UsageError(str(exc)) from None
     kept = f"finished scenarios are kept in {args.out / study.name / 'scenarios'}"
-    bar = _Bar()
+    bar = _Bar(study.name)
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,
@@ -213,16 +269,92 @@ def _show(args: argparse.Namespace) -> int:
         for name, why in zip(ds["scenario"].values, ds["no_limit_reason"].values):
             if str(why):
                 print(f"{name}: no_limit: {why}")
+    if "load_x" in ds.coords:
+        _show_critical(ds)
     return 0
 
 
+def _show_critical(ds) -> None:
+    """The critical position of a load-position sweep, per group of the other coordinates."""
+    from .positions import critical_positions
+
+    print("critical load position (smallest lambda_max over load_x):")
+    for c in critical_positions(ds):
+        where = f"{c.group}: " if c.group else ""
+        if c.scenario:
+            print(f"  {where}load_x = {c.load_x:.6g} m, lambda_max = {c.lambda_max:.6g} (scenario {c.scenario})")
+        else:
+            print(f"  {where}no position has a finite lambda_max")
+
+
+_OPTIONS = {"scenarios": "--scenario", "steps": "--step", "kinds": "--kind"}
+
+
+def _spec(ds, **given):
+    """The plotting spec of ``ds`` with the command line's replacements; a bad one is a usage
+    error naming the option (or the ``[plots]`` key of the study stored in the file)."""
+    from ..plot.data import PlotSpecError, plot_spec
+
+    try:
+        return plot_spec(ds, **given)
+    except PlotSpecError as exc:
+        replaced = {"scenarios": "scenarios_"}.get(exc.key, exc.key)
+        where = _OPTIONS.get(exc.key, exc.key) if given.get(replaced) is not None else f"[plots] {exc.key}"
+        raise UsageError(f"{where}: {exc.message}") from None
+
+
 def _plot(args: argparse.Namespace) -> int:
-    from .runner import write_plots
+    from ..plot.data import slug
+    from ..plot.output import write_figures
 
     ds = _open_results(args.results)
+    on_demand = args.scenario is not None or args.step is not None
+    kinds = args.kind or (["states"] if on_demand else None)
+    spec = _spec(ds, steps=args.step, scenarios_=args.scenario, kinds=kinds)
+    if on_demand and not spec.scenarios:
+        raise UsageError("--scenario: no scenario selected")
+    tag = slug("_".join([*(args.scenario or []), *(f"lam{s}" for s in args.step or [])]))[:80] if on_demand else ""
     outdir = args.out or args.results.parent
-    figures = write_plots(ds, outdir)
+    figures = write_figures(ds, outdir, spec, jobs=args.jobs, tag=tag)
+    for f in figures if on_demand else []:
+        print(f)
     print(f"{len(figures)} figures in {outdir}")
+    return 0
+
+
+def _view(args: argparse.Namespace) -> int:
+    from ..plot.view import view_html
+
+    ds = _open_results(args.results)
+    spec = _spec(ds, scenarios_=args.scenario)
+    if not spec.scenarios:
+        raise UsageError("--scenario: the study draws no scenario by default (a large sweep): name some")
+    out = args.out or args.results.parent / "view.html"
+    if out.suffix.lower() not in (".html", ".htm"):
+        raise UsageError(f"--out: {out} is not an .html file")
+    page = view_html(ds, spec.scenarios)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(page, encoding="utf-8")
+    print(out)
+    if args.open:
+        import webbrowser
+
+        webbrowser.open(out.resolve().as_uri())
+    return 0
+
+
+def _export(args: argparse.Namespace) -> int:
+    from ..plot.export import export_vtk
+
+    ds = _open_results(args.results)
+    names = None
+    if args.scenario:
+        names = _spec(ds, scenarios_=args.scenario).scenarios
+    if "vertex_force" not in ds:
+        raise UsageError(f"{args.results}: no vertex forces (written by an older tce); fix: run the study again")
+    out = args.out or args.results.parent / "vtk"
+    files = export_vtk(ds, out, names)
+    print(f"{len(files)} VTK files in {out}")
     return 0
 
 
@@ -238,17 +370,31 @@ def _bench(args: argparse.Namespace) -> int:
     return bench_command(args)
 
 
+def _without_dask() -> None:
+    """Keep xarray from importing dask in this program and its workers (:mod:`tce.study.jobs`)."""
+    import os
+
+    from .jobs import NO_DASK, block_dask_import
+
+    os.environ[NO_DASK] = "1"
+    block_dask_import()
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tce`` command; returns the exit code.
 
     Parameters
     ----------
     argv : sequence of str, optional
-        Arguments without the program name (default: ``sys.argv[1:]``).
+        Arguments without the program name (default: ``sys.argv[1:]``, the ``tce``
+        program, which then keeps dask from being imported unless ``--backend dask``).
     """
     args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
     _setup_logging(args.verbose, args.quiet)
-    commands = {"run": _run, "show": _show, "plot": _plot, "check": _check, "bench": _bench}
+    if argv is None and getattr(args, "backend", None) != "dask":
+        _without_dask()
+    commands = {"run": _run, "show": _show, "plot": _plot, "view": _view, "export": _export, "check": _check,
+                "bench": _bench}
     try:
         return commands[args.command](args)
     except UsageError as exc:

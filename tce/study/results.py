@@ -41,6 +41,8 @@ from ..core.analysis import Analysis
 from ..analysis.diagnose import no_limit_reason
 from ..analysis.loadpath import LoadPathResult
 from ..analysis.nonassoc import NonAssocResult
+from ..core.model import InterfaceMap
+from ..core.resultants import global_vertex_forces
 from ..core.solve import SOLVER_NAME, TCEResult
 from .schema import Scenario, Study
 
@@ -54,6 +56,7 @@ __all__ = [
     "remove_temporaries",
     "scenario_dataset",
     "scenario_path",
+    "steps_dataset",
     "study_attrs",
     "write_atomic",
     "write_scenario",
@@ -72,7 +75,7 @@ SCENARIO_VARS = (
     "torque", "lambda_max", "lambda_upper", "lambda_direct", "lambda_gap", "lambda_kinematic",
     "certificate_gap", "n_solves", "solve_time", "wall_time", "outcome", "model", "mechanism",
     "interface_mode", "hinge_point", "interface_a", "interface_b", "block_centroid", "block_support",
-    "no_limit_reason",
+    "no_limit_reason", "unique", "vertex_force", "vertex_point", "vertex_interface",
 )
 #: name of the lock file of a study folder
 LOCK_NAME = ".tce-run.lock"
@@ -101,6 +104,11 @@ META: dict[str, tuple[str, str]] = {
     "resultant": ("kN", "interface resultant force on block B, global frame"),
     "pressure_point": ("m", "interface pressure point"),
     "torque": ("kN m", "torque about the interface normal at the pressure point, on block B"),
+    "unique": ("1", "1 if the step's force state is the unique minimiser, 0 if not (rigid, no support motion: "
+               "one admissible state of many), NaN if unknown"),
+    "vertex_force": ("kN", "force at each interface vertex on block B, global frame"),
+    "vertex_point": ("m", "interface vertex position"),
+    "vertex_interface": ("-", "interface of the vertex, as 'A|B' block names"),
     "mechanism": ("m, rad", "collapse mechanism velocities at the limit (unit amplitude, supports zero)"),
     "interface_mode": ("-", "interface behaviour in the mechanism (hinge, sliding, opening, closed)"),
     "hinge_point": ("m", "trace point of the hinge line (NaN if no hinge)"),
@@ -108,6 +116,9 @@ META: dict[str, tuple[str, str]] = {
     "interface_b": ("-", "block B of the interface"),
     "block_centroid": ("m", "block centroid"),
     "block_support": ("-", "1 for support blocks, 0 for free blocks"),
+    "load_point": ("m", "point of application of each declared load (a distributed load: each part's resultant)"),
+    "load_force": ("kN", "force of each declared load, global frame (a scaled load: at lambda = 1)"),
+    "load_scaled": ("1", "1 for a live load (multiplied by lambda), 0 for a fixed load"),
     # coordinates
     "scenario": ("-", "scenario name"),
     "step": ("-", "load-path step, sorted by load multiplier"),
@@ -117,6 +128,8 @@ META: dict[str, tuple[str, str]] = {
     "xyz": ("-", "global axis"),
     "block": ("-", "block name"),
     "dof": ("-", "rigid-body velocity component"),
+    "vertex": ("-", "interface vertex (every vertex of the model's interfaces)"),
+    "load": ("-", "applied load (point loads, then the parts of distributed loads)"),
     "settlement": ("-", "settlement case ([scenarios.NAME] of the study)"),
     "alpha": ("degree", "direction of the lateral loads, from +x towards +y"),
     "friction": ("1", "friction coefficient (NaN: unlimited)"),
@@ -125,6 +138,7 @@ META: dict[str, tuple[str, str]] = {
     "thickness": ("m", "thickness"),
     "depth": ("m", "depth"),
     "radius": ("m", "mid-surface radius"),
+    "load_x": ("m", "plan abscissa of the moving (scaled, on_top) point loads"),
     "cohesion": ("kN/m^2", "cohesion of the joints"),
     "tensile_strength": ("kN/m^2", "tensile strength of the joints"),
     "compressive_strength": ("kN/m^2", "compressive strength of the joints (per contact vertex)"),
@@ -153,12 +167,14 @@ def _step_fields(step: TCEResult, slots: np.ndarray, n_itf: int) -> dict[str, np
         "resultant": np.full((n_itf, 3), np.nan),
         "pressure_point": np.full((n_itf, 3), np.nan),
         "torque": np.full(n_itf, np.nan),
+        "vertex_force": np.full((len(step.interface_map.vertex_points), 3), np.nan),
     }
     if step.ok:
         out["reaction"] = step.support_wrenches
         out["resultant"][slots] = step.resultants
         out["pressure_point"][slots] = step.pressure_points
         out["torque"][slots] = step.torques
+        out["vertex_force"] = global_vertex_forces(step.interface_map, step.vertex_forces)
     return out
 
 
@@ -175,11 +191,21 @@ def _path_vars(path: Sequence[TCEResult], slots: np.ndarray, n_itf: int) -> dict
     dims = ("scenario", "step")
     out: dict[str, tuple] = {k: (dims, np.asarray([v], dtype=float)) for k, v in scalar.items()}
     out["status"] = (dims, _text([[s.status for s in path]]))
+    out["unique"] = (dims, np.asarray([[np.nan if s.unique is None else float(s.unique) for s in path]]))
+    out["vertex_force"] = (dims + ("vertex", "xyz"), stack["vertex_force"])
     out["reaction"] = (dims + ("support", "component"), stack["reaction"])
     out["resultant"] = (dims + ("interface", "xyz"), stack["resultant"])
     out["pressure_point"] = (dims + ("interface", "xyz"), stack["pressure_point"])
     out["torque"] = (dims + ("interface",), stack["torque"])
     return out
+
+
+def steps_dataset(scenario: str, steps: Sequence[TCEResult], n_interfaces: int) -> xr.Dataset:
+    """Per-step variables (``lam``, ``status``, ``reaction``, ...) of ``steps`` as a
+    one-scenario dataset, ``step`` in the given order (for states solved after a run)."""
+    slots = np.asarray(steps[0].interfaces, dtype=int)
+    ds = xr.Dataset(_path_vars(steps, slots, n_interfaces), coords={"scenario": [scenario]})
+    return _label(ds)
 
 
 def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int) -> dict[str, tuple]:
@@ -213,15 +239,33 @@ def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int
     return out
 
 
-def _static_vars(analysis: Analysis) -> dict[str, tuple]:
-    """Variables of the assembly (no scenario dimension)."""
+def _static_vars(analysis: Analysis, imap: InterfaceMap) -> dict[str, tuple]:
+    """Variables of the assembly and of the interface vertices of ``imap`` (no scenario dimension)."""
     a = analysis.assembly
+    names = [f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces]
+    owner = np.asarray(imap.interfaces, dtype=int)[imap.vertex_slot]
     return {
+        "vertex_point": (("vertex", "xyz"), imap.vertex_points),
+        "vertex_interface": (("vertex",), _text([names[k] for k in owner])),
         "interface_a": (("interface",), _text([a.names[i.a] for i in a.interfaces])),
         "interface_b": (("interface",), _text([a.names[i.b] for i in a.interfaces])),
         "block_centroid": (("block", "xyz"), a.centroids),
         "block_support": (("block",), np.asarray([int(b.support) for b in a.blocks])),
     }
+
+
+def _load_vars(lp: LoadPathResult, analysis: Analysis) -> tuple[dict[str, tuple], dict[str, tuple]]:
+    """Variables and coordinate of the declared point and distributed loads (for arrows);
+    empty for the paper's pattern alone."""
+    applied = analysis.applied_loads(loads=lp.loads)
+    if not len(applied.blocks):
+        return {}, {}
+    data = {
+        "load_point": (("scenario", "load", "xyz"), applied.points[None]),
+        "load_force": (("scenario", "load", "xyz"), applied.forces[None]),
+        "load_scaled": (("scenario", "load"), applied.scaled.astype(float)[None]),
+    }
+    return data, {"load": (("load",), np.arange(len(applied.blocks)))}
 
 
 def _coords(sc: Scenario, analysis: Analysis, n_steps: int) -> dict[str, tuple]:
@@ -288,11 +332,13 @@ def scenario_dataset(
     limit_slots = np.asarray(analysis.model(lp.limit.model).interfaces, dtype=int)
     data = _path_vars(path, step_slots, n_itf)
     data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
-    data.update(_static_vars(analysis))
+    data.update(_static_vars(analysis, path[0].interface_map))
     data["no_limit_reason"] = (("scenario",), _text([no_limit_reason(analysis, lp)]))
     if nonassoc is not None:
         data.update(_nonassoc_vars(nonassoc))
-    ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)))
+    loads, load_coord = _load_vars(lp, analysis)
+    data.update(loads)
+    ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)) | load_coord)
     ds.attrs["scenario_key"] = sc.key
     return _label(ds)
 
@@ -521,6 +567,7 @@ def study_attrs(study: Study, models: Iterable[str]) -> dict[str, str]:
         "model": ", ".join(sorted(set(models))),
         "assembly": json.dumps(assembly.to_dict()),
         "material": json.dumps(study.spec.material.model_dump()),
+        "loads": json.dumps(study.spec.loads.model_dump()),
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
     }
 

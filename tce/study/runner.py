@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import math
 import multiprocessing as mp
 import multiprocessing.connection
 import os
@@ -41,18 +42,19 @@ import threading
 import time
 import traceback
 from collections import deque
-from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal
 
 import joblib
 import xarray as xr
 
-from ..analysis.loadpath import load_path
+from ..analysis.loadpath import LoadPathResult, load_path
 from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
+from .jobs import choose_jobs
 from .results import (
     FolderLocked,
     StorageError,
@@ -67,11 +69,24 @@ from .results import (
 )
 from .schema import Scenario, Study, build_material
 
-__all__ = ["RunError", "RunFault", "RunReport", "run_study", "solve_scenario", "write_plots"]
+__all__ = [
+    "LAMBDA_TOL",
+    "RunError",
+    "RunFault",
+    "RunReport",
+    "missing_lambdas",
+    "run_study",
+    "same_lambda",
+    "solve_scenario",
+    "with_drawn_states",
+    "write_plots",
+]
 
 log = logging.getLogger(__name__)
 
 Backend = Literal["loky", "dask"]
+#: two load multipliers closer than this (relative to max(1, |lambda|)) are the same step
+LAMBDA_TOL = 1e-9
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
 #: outcomes of a load path, in the order the run summary lists them
@@ -154,21 +169,70 @@ def _cold(analysis: Analysis) -> Analysis:
 
 
 def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
-    """Run the load path of one scenario on its built ``assembly``; return its dataset."""
+    """Run the load path of one scenario on its built ``assembly``; return its dataset.
+
+    The multipliers the study's figures draw (:attr:`Scenario.draw`) that the load path did
+    not reach are solved after it and stored as steps like the others
+    (:func:`with_drawn_states`).
+    """
     analysis = _cold(_analysis(sc, assembly))
     lp = load_path(
         analysis,
-        alpha=sc.alpha,
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
         atol=sc.loads["tolerance"],
         lam_cap=sc.loads["lambda_cap"],
+        loads=sc.loads_pattern,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     bracket = None
     if analysis.material.flow == "non-associative":
-        bracket = nonassociative_limit(analysis, sc.alpha)
-    return scenario_dataset(sc, lp, analysis, nonassoc=bracket)
+        bracket = nonassociative_limit(analysis, loads=sc.loads_pattern)
+    return scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+
+
+def same_lambda(a: float, b: float) -> bool:
+    """Whether two load multipliers are the same step (within :data:`LAMBDA_TOL`)."""
+    return abs(a - b) <= LAMBDA_TOL * max(1.0, abs(a), abs(b))
+
+
+def missing_lambdas(solved: Sequence[float], wanted: Sequence[float], upper: float) -> list[float]:
+    """The multipliers of ``wanted`` that are not ``solved`` and may be admissible.
+
+    A multiplier is missing when no solved one is :func:`same_lambda` as it. Those at or
+    above ``upper`` (the smallest multiplier found inadmissible; NaN: none) are left out:
+    the admissible multipliers of a scene form an interval (its set of admissible
+    ``(lambda, F)`` is convex and holds ``lambda = 0`` or nothing), so they have no
+    admissible state.
+    """
+    return [
+        float(w) for w in wanted
+        if not any(same_lambda(w, s) for s in solved) and not (math.isfinite(upper) and w >= upper)
+    ]
+
+
+def with_drawn_states(analysis: Analysis, lp: LoadPathResult, lams: Sequence[float]) -> LoadPathResult:
+    """``lp`` with the multipliers ``lams`` solved and added to its steps (when missing).
+
+    See :func:`missing_lambdas`. Nothing is solved when the path has no optimal step. The
+    counts and times of the result include the added solves.
+    """
+    if not any(r.ok for r in lp.steps):
+        return lp
+    todo = missing_lambdas([r.lam for r in lp.steps], lams, lp.lambda_upper)
+    if not todo:
+        return lp
+    t0 = time.perf_counter()
+    solve = analysis.path(settlements=lp.settlements, loads=lp.loads)
+    extra = [solve(lam) for lam in todo]
+    log.debug("solved the drawn states %s", todo)
+    return replace(
+        lp,
+        steps=lp.steps + extra,
+        n_solves=lp.n_solves + len(extra),
+        solve_time=lp.solve_time + sum(r.solve_time for r in extra),
+        wall_time=lp.wall_time + time.perf_counter() - t0,
+    )
 
 
 def _solve_and_write(sc: Scenario, assembly: Assembly, directory: Path) -> tuple[str, int]:
@@ -267,11 +331,12 @@ def _grouped(scenarios: list[Scenario]) -> list[Scenario]:
     return sorted(scenarios, key=lambda sc: first[sc.group])
 
 
-def write_plots(ds: xr.Dataset, outdir: Path) -> list[Path]:
-    """Figures of a results dataset (:func:`tce.plot.write_figures`), imported only when drawn."""
+def write_plots(ds: xr.Dataset, outdir: Path, jobs: int = 1) -> list[Path]:
+    """Figures and interactive view of a results dataset (:func:`tce.plot.write_figures`,
+    ``[plots]`` of the study), drawn by up to ``jobs`` processes; imported only when drawn."""
     from .. import plot
 
-    return list(plot.write_figures(ds, Path(outdir)))
+    return list(plot.write_figures(ds, Path(outdir), jobs=jobs))
 
 
 class _Tally:
@@ -473,14 +538,18 @@ def run_study(
     out : path
         Results root: the study writes into ``out/<study name>/``.
     jobs : int, optional
-        Parallel workers (default: all cores); 1 solves in this process. With
-        ``backend="dask"`` and no ``scheduler``, the size of the local cluster started.
+        Parallel workers; 1 solves in this process. Default: in-process when the study's
+        estimated work is below what starting workers costs, all cores otherwise
+        (:func:`tce.study.jobs.choose_jobs`, its reason logged at info). With
+        ``backend="dask"`` and no ``scheduler``, the size of the local cluster started
+        (default: all cores).
     backend : {"loky", "dask"}
         ``loky``: worker processes on this machine; ``dask``: a Dask distributed cluster.
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:port``).
     progress : callable, optional
-        ``progress(done, total, steps)`` after each scenario solved.
+        ``progress(done, total, steps)`` before the first scenario (``done = 0``) and after
+        each scenario solved.
     plots : bool
         Write the figures after the results.
     fresh : bool
@@ -500,8 +569,7 @@ def run_study(
     KeyboardInterrupt
         Ctrl-C; every finished scenario is on disk.
     """
-    jobs = jobs or os.cpu_count() or 1
-    if jobs < 1:
+    if jobs is not None and jobs < 1:
         raise RunError(f"jobs must be >= 1, got {jobs}")
     if backend not in ("loky", "dask"):
         raise RunError(f"unknown backend {backend!r}: use 'loky' or 'dask'")
@@ -517,16 +585,23 @@ def run_study(
                 old.unlink()
         parts = load_finished(folder, scenarios)
         todo = [sc for sc in scenarios if sc.name not in parts]
+        how = ""
+        if todo:
+            choice = choose_jobs(_grouped(todo), jobs, lambda sc: _analysis(sc, study.assembly(sc.structure)), backend)
+            jobs, how = choice.jobs, f"; {choice.reason}"
+        jobs = jobs or 1
         if parts:
             log.info(
-                "resuming %s: %d of %d scenarios already solved, solving the %d missing",
-                study.name, len(parts), len(scenarios), len(todo),
+                "resuming %s: %d of %d scenarios already solved, solving the %d missing%s",
+                study.name, len(parts), len(scenarios), len(todo), how,
             )
         else:
-            log.info("running %s: %d scenarios on %d %s worker(s)", study.name, len(todo), jobs, backend)
+            log.info("running %s: %d scenarios%s", study.name, len(todo), how)
         report = RunReport(directory / "results.nc", reused=list(parts))
         if todo:
             tally = _Tally(len(todo), progress)
+            if progress is not None:
+                progress(0, len(todo), 0)  # the bar shows (and ticks) from the start
             if backend == "dask":
                 _on_dask(todo, study, folder, scheduler, jobs, tally)
             elif jobs == 1:
@@ -549,5 +624,5 @@ def run_study(
             raise RunFault(report) from None
         log.info("wrote %s", report.results)
         if plots:
-            report.figures = write_plots(ds, directory)
+            report.figures = write_plots(ds, directory, jobs=jobs)
     return report

@@ -12,18 +12,22 @@ documented in ``docs/studies.md``.
 
 A valid study expands (:meth:`Study.scenarios`) into the cartesian product of its
 settlement cases, its lateral directions (``[loads] alpha``) and its ``[sweep]`` lists,
-in that order, each expanded :class:`Scenario` carrying everything a worker needs.
+in that order, each expanded :class:`Scenario` carrying everything a worker needs. The
+loads (``[loads]``, its ``[[loads.point]]`` and ``[[loads.distributed]]`` tables) are a
+:class:`tce.core.loads.LoadPattern`; they are resolved against every structure before
+anything runs, and ``[sweep] load_x`` moves every scaled ``on_top`` point load.
 """
 
 from __future__ import annotations
 
+import fnmatch
 import hashlib
 import itertools
 import json
 import math
 import tomllib
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
 from typing import Annotated, Any, Literal, get_args
@@ -32,6 +36,7 @@ from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError,
 
 from .. import __version__
 from ..analysis.loadpath import MAX_INCREMENTS
+from ..core.loads import LoadError, LoadPattern, resolve
 from ..core.material import Material
 from ..structures.assembly import Assembly
 from ..structures.io import MAX_BLOCKS, InputLimitError
@@ -40,6 +45,7 @@ from ..structures.params import did_you_mean
 __all__ = [
     "MAX_BLOCKS",
     "MAX_INCREMENTS",
+    "PlotsSection",
     "STRUCTURE_TYPES",
     "Scenario",
     "Study",
@@ -74,6 +80,8 @@ class _Strict(BaseModel):
 Positive = Annotated[float, Field(gt=0)]
 NonNegative = Annotated[float, Field(ge=0)]
 Vector6 = Annotated[list[float], Field(min_length=6, max_length=6)]
+Vector3 = Annotated[list[float], Field(min_length=3, max_length=3)]
+Vector2 = Annotated[list[float], Field(min_length=2, max_length=2)]
 
 
 class StudySection(_Strict):
@@ -297,10 +305,35 @@ class MaterialSection(_Strict):
         return Material(**self.model_dump())
 
 
+class PointLoadSection(_Strict):
+    """``[[loads.point]]``: a force (kN) on a free block (``block``, ``at``) or on the top
+    surface above a plan point (``on_top``); :class:`tce.core.loads.PointLoad`."""
+
+    block: str | None = None
+    at: Vector3 | None = None
+    on_top: Vector2 | None = None
+    force: Vector3
+    scaled: bool = True
+
+
+class DistributedLoadSection(_Strict):
+    """``[[loads.distributed]]``: a pressure (kN/m^2 of plan area, downwards) over a plan
+    rectangle; :class:`tce.core.loads.DistributedLoad`."""
+
+    x: Vector2
+    y: Vector2 | None = None
+    pressure: float
+    scaled: bool = True
+
+
 class LoadsSection(_Strict):
-    """``[loads]``: lateral directions (degrees), load-path step and bisection tolerance."""
+    """``[loads]``: the load pattern (lateral directions in degrees, whether lambda multiplies
+    the lateral pattern, point and distributed loads), load-path step and bisection tolerance."""
 
     alpha: float | list[float] = 0.0
+    lateral: bool = True
+    point: list[PointLoadSection] = Field(default_factory=list)
+    distributed: list[DistributedLoadSection] = Field(default_factory=list)
     lambda_step: Positive = 0.02
     tolerance: Positive = 1e-6
     lambda_cap: Positive = 100.0
@@ -309,6 +342,19 @@ class LoadsSection(_Strict):
     def alphas(self) -> list[float]:
         """The directions as a list."""
         return [float(a) for a in (self.alpha if isinstance(self.alpha, list) else [self.alpha])]
+
+    def pattern(self, alpha: float) -> LoadPattern:
+        """The load pattern in direction ``alpha`` (raises :class:`tce.core.loads.LoadError`)."""
+        return LoadPattern(
+            alpha=alpha,
+            lateral=self.lateral,
+            point=[p.model_dump(exclude_none=True) for p in self.point],
+            distributed=[d.model_dump(exclude_none=True) for d in self.distributed],
+        )
+
+    def path_settings(self) -> dict[str, float]:
+        """``lambda_step``, ``tolerance``, ``lambda_cap``: how the load path runs."""
+        return {"lambda_step": self.lambda_step, "tolerance": self.tolerance, "lambda_cap": self.lambda_cap}
 
     @field_validator("alpha")
     @classmethod
@@ -350,10 +396,78 @@ class SweepSection(_Strict):
     thickness: list[Positive] | None = None
     depth: list[Positive] | None = None
     radius: list[Positive] | None = None
+    load_x: list[float] | None = None
 
     def items(self) -> list[tuple[str, list[float]]]:
         """``(parameter, values)`` of the parameters swept, in declaration order."""
         return [(k, list(v)) for k, v in self if v is not None]
+
+
+#: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
+PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "base", "mechanism", "summary", "bracket", "view")
+#: studies with more scenarios draw per-scenario figures only for those ``[plots] scenarios`` names
+MAX_DRAWN_SCENARIOS = 12
+
+
+class PlotsSection(_Strict):
+    """``[plots]``: the states, scenarios and figure kinds a study draws (docs/studies.md).
+
+    Attributes
+    ----------
+    steps : list
+        Load multipliers to draw (numbers >= 0) and ``"max"`` (lambda_max). A number that
+        is not a step of the load path is solved, never interpolated.
+    scenarios : list of str, optional
+        Scenario names or shell patterns (``"outward/*"``) drawn in the per-scenario figures,
+        the thrust curves and the interactive view. Default: every scenario when the study
+        has at most :data:`MAX_DRAWN_SCENARIOS`, none otherwise (summary figures only).
+    kinds : list of str, optional
+        Figure kinds among :data:`PLOT_KINDS`; default: every kind that applies except
+        ``"base"``.
+    """
+
+    steps: list[Any] = Field(default_factory=lambda: [0.0, "max"])
+    scenarios: list[str] | None = None
+    kinds: list[Literal[PLOT_KINDS]] | None = None  # type: ignore[valid-type]
+
+    @field_validator("steps")
+    @classmethod
+    def _steps(cls, v: list[Any]) -> list[Any]:
+        if not v:
+            raise ValueError('give at least one load multiplier, e.g. [0.0, "max"]')
+        out: list[Any] = []
+        for item in v:
+            ok = item == "max" or (
+                isinstance(item, int | float) and not isinstance(item, bool) and math.isfinite(item) and item >= 0
+            )
+            if not ok:
+                raise ValueError(f'{item!r} is neither a load multiplier >= 0 nor "max"')
+            value = "max" if item == "max" else float(item)
+            if value not in out:
+                out.append(value)
+        return out
+
+    @field_validator("scenarios", "kinds")
+    @classmethod
+    def _not_empty(cls, v: list[str] | None) -> list[str] | None:
+        if v is not None and not v:
+            raise ValueError("give at least one entry or remove the key")
+        return v
+
+    @property
+    def lambdas(self) -> list[float]:
+        """The numeric load multipliers of :attr:`steps`."""
+        return [s for s in self.steps if s != "max"]
+
+    def unmatched(self, names: list[str]) -> list[str]:
+        """Entries of :attr:`scenarios` that match none of ``names``."""
+        return [p for p in self.scenarios or [] if not any(fnmatch.fnmatchcase(n, p) for n in names)]
+
+    def select(self, names: list[str]) -> list[str]:
+        """The scenarios of ``names`` (in that order) drawn per scenario (see :attr:`scenarios`)."""
+        if self.scenarios is None:
+            return list(names) if len(names) <= MAX_DRAWN_SCENARIOS else []
+        return [n for n in names if any(fnmatch.fnmatchcase(n, p) for p in self.scenarios)]
 
 
 class StudyFile(_Strict):
@@ -367,6 +481,7 @@ class StudyFile(_Strict):
     scenarios: Annotated[
         dict[Annotated[str, Field(min_length=1, max_length=100)], dict[str, Vector6]], Field(min_length=1)
     ] = Field(default_factory=lambda: {"none": {}})
+    plots: PlotsSection = PlotsSection()
 
     @field_validator("sweep")
     @classmethod
@@ -393,6 +508,9 @@ class Scenario:
         ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad), already scaled by ``magnitude``.
     alpha : float
         Lateral direction (degrees).
+    pattern : dict
+        The scenario's load pattern (:meth:`tce.core.loads.LoadPattern.to_dict`: ``alpha``
+        and ``load_x`` applied).
     params : dict
         Values of the swept parameters (and ``alpha``, ``magnitude``) for this scenario.
     structure, material : dict
@@ -402,17 +520,23 @@ class Scenario:
     assembly_digest : str
         SHA-256 of the built assembly (:func:`assembly_digest`): what the structure is,
         whatever file or generator it came from.
+    draw : tuple of float
+        Load multipliers the study's figures draw for this scenario (``[plots] steps``,
+        empty unless ``[plots]`` selects the scenario): solved after the load path when
+        they are not steps of it. Not part of :attr:`key`: figures do not change answers.
     """
 
     name: str
     settlement: str
     settlements: dict[str, list[float]]
     alpha: float
+    pattern: dict[str, Any]
     params: dict[str, float]
     structure: dict[str, Any]
     material: dict[str, Any]
     loads: dict[str, float]
     assembly_digest: str
+    draw: tuple[float, ...] = ()
 
     @property
     def group(self) -> str:
@@ -422,23 +546,28 @@ class Scenario:
     @property
     def key(self) -> str:
         """SHA-256 of everything that determines the answer (for resuming): the built
-        assembly, the material, the support motions, the direction, the load-path settings
-        and the versions of tce and of the solver."""
+        assembly, the material, the support motions, the direction, the loads (when other
+        than the lateral pattern alone), the load-path settings and the versions of tce and
+        of the solver."""
         from ..core.solve import SOLVER_NAME
 
-        text = json.dumps(
-            {
-                "assembly": self.assembly_digest,
-                "material": self.material,
-                "settlements": self.settlements,
-                "alpha": self.alpha,
-                "loads": self.loads,
-                "tce": __version__,
-                "solver": SOLVER_NAME,
-            },
-            sort_keys=True,
-        )
-        return hashlib.sha256(text.encode()).hexdigest()
+        what = {
+            "assembly": self.assembly_digest,
+            "material": self.material,
+            "settlements": self.settlements,
+            "alpha": self.alpha,
+            "loads": self.loads,
+            "tce": __version__,
+            "solver": SOLVER_NAME,
+        }
+        if not self.loads_pattern.default:
+            what["pattern"] = self.pattern
+        return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()
+
+    @property
+    def loads_pattern(self) -> LoadPattern:
+        """The scenario's :class:`tce.core.loads.LoadPattern`."""
+        return LoadPattern.from_dict(self.pattern)
 
 
 def assembly_digest(assembly: Assembly) -> str:
@@ -490,13 +619,17 @@ class Study:
 
     def scenarios(self) -> list[Scenario]:
         """The cartesian product of settlement cases, directions and sweeps, in file order."""
-        return list(self._expand())
+        out = list(self._expand())
+        plots = self.spec.plots
+        drawn = set(plots.select([sc.name for sc in out]))
+        lams = tuple(plots.lambdas)
+        return [replace(sc, draw=lams) if lams and sc.name in drawn else sc for sc in out]
 
     def _expand(self) -> Iterator[Scenario]:
         spec = self.spec
         axes = [("alpha", spec.loads.alphas)] + spec.sweep.items()
         names = [k for k, _ in axes]
-        loads = spec.loads.model_dump(exclude={"alpha"})
+        loads = spec.loads.path_settings()
         for case, motions in spec.scenarios.items():
             for values in itertools.product(*(v for _, v in axes)):
                 p = dict(zip(names, (float(v) for v in values), strict=True))
@@ -508,6 +641,7 @@ class Study:
                     settlement=case,
                     settlements={s: [scale * u for u in vec] for s, vec in motions.items()},
                     alpha=p["alpha"],
+                    pattern=_pattern(spec.loads, p).to_dict(),
                     params=p,
                     structure=structure,
                     material=_with(spec.material.model_dump(), p, MATERIAL_SWEEPS),
@@ -520,6 +654,12 @@ class Study:
         if key not in self._digests:
             self._digests[key] = assembly_digest(self.assembly(structure))
         return self._digests[key]
+
+
+def _pattern(section: LoadsSection, params: dict[str, float]) -> LoadPattern:
+    """The load pattern of a scenario: direction ``alpha``, moved to ``load_x`` when swept."""
+    pattern = section.pattern(params["alpha"])
+    return pattern.moved(params["load_x"]) if "load_x" in params else pattern
 
 
 def _fmt(value: float) -> str:
@@ -537,6 +677,10 @@ def _with(section: dict[str, Any], params: dict[str, float], keys: tuple[str, ..
 
 
 # ---------------------------------------------------------------------------- reading
+_LISTS = (
+    " ([ux, uy, uz, rx, ry, rz] in m and rad for a displacement, [x, y, z] for a point or a force, "
+    "[x, y] for a plan point, [from, to] for a plan range)"
+)
 _HINTS = {
     "extra_forbidden": "remove it or correct its spelling (keys: docs/studies.md)",
     "missing": "add it",
@@ -545,8 +689,8 @@ _HINTS = {
     "less_than": "use a value < {lt}",
     "multiple_of": "use a multiple of {multiple_of}",
     "finite_number": "use a finite number (NaN and inf are not allowed)",
-    "too_short": "give exactly 6 numbers [ux, uy, uz, rx, ry, rz] (m, rad)",
-    "too_long": "give exactly 6 numbers [ux, uy, uz, rx, ry, rz] (m, rad)",
+    "too_short": "give exactly {min_length} numbers" + _LISTS,
+    "too_long": "give exactly {max_length} numbers" + _LISTS,
     "float_type": "write a number",
     "float_parsing": "write a number",
     "int_type": "write a whole number",
@@ -591,10 +735,13 @@ def _siblings(loc: tuple[Any, ...]) -> list[str]:
     """The keys allowed beside the last item of a pydantic location (for "did you mean")."""
     model: type[BaseModel] | None = StudyFile
     for item in loc[:-1]:
+        if isinstance(item, int):  # an item of a list of tables ([[loads.point]])
+            continue
         if item in _STRUCTURES:
             model = _STRUCTURES[item]
         elif model is not None and item in model.model_fields:
             ann = model.model_fields[item].annotation
+            ann = get_args(ann)[0] if get_args(ann) and getattr(ann, "__origin__", None) is list else ann
             model = ann if isinstance(ann, type) and issubclass(ann, BaseModel) else None
         else:
             return []
@@ -649,8 +796,18 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
     if isinstance(spec.structure, FileStructure):
         where = (path.parent / spec.structure.path).resolve()
         spec = spec.model_copy(update={"structure": spec.structure.model_copy(update={"path": str(where)})})
+    try:
+        base = spec.loads.pattern(spec.loads.alphas[0])
+    except LoadError as exc:
+        raise StudyError(f"{path}: {exc.within('loads')}") from None
+    if spec.sweep.load_x is not None:
+        try:
+            base.moved(0.0)
+        except LoadError as exc:
+            raise StudyError(f"{path}: sweep.load_x: {exc.problem} in [loads]; fix: {exc.fix}") from None
     study = Study(path, text, spec)
     _check_scenarios(study)
+    _check_plots(study)
     return study
 
 
@@ -683,7 +840,8 @@ def build_material(section: dict[str, Any]) -> Material:
 
 def _check_scenarios(study: Study) -> None:
     """Build every distinct structure (kept for the run) and material; check the supports
-    each scenario moves, and that no two scenarios share a name."""
+    each scenario moves, that no two scenarios share a name, and apply each scenario's loads
+    to its structure."""
     spec = study.spec
     fields = type(spec.structure).model_fields
     for key, _ in spec.sweep.items():
@@ -731,6 +889,22 @@ def _check_scenarios(study: Study) -> None:
                 "fix: rename the settlement case"
             )
         names.add(sc.name)
+        _check_loads(study, sc, study.assembly(sc.structure))
+
+
+def _check_loads(study: Study, sc: Scenario, assembly: Assembly) -> None:
+    """Apply a scenario's loads to its structure; a load that cannot be applied is named."""
+    pattern = sc.loads_pattern
+    try:
+        resolve(pattern, assembly)
+    except LoadError as exc:
+        # name load_x only for a load it moved
+        moved = [f"point[{k}]." for k, p in enumerate(pattern.point) if p.scaled and p.on_top is not None]
+        keys = GEOMETRY_SWEEPS + (("load_x",) if any(exc.key.startswith(m) for m in moved) else ())
+        swept = {k: v for k, v in sc.params.items() if k in keys}
+        where = f" (with {', '.join(f'sweep.{k} = {v:g}' for k, v in swept.items())})" if swept else ""
+        err = exc.within("loads")
+        raise StudyError(f"{study.path}: {err.key}: {err.problem}{where}; fix: {err.fix}") from None
 
 
 def _build_fix(section: BaseModel, exc: Exception, swept: dict[str, float]) -> str:
@@ -747,3 +921,15 @@ def _build_fix(section: BaseModel, exc: Exception, swept: dict[str, float]) -> s
     if "no support block" in text or "every block is a support" in text or "support block(s)" in text:
         return "name the support blocks with supports = [...] in [structure]"
     return "correct the block file named above"
+
+
+def _check_plots(study: Study) -> None:
+    """Every ``[plots] scenarios`` entry names (or matches) a scenario of the study."""
+    names = [sc.name for sc in study._expand()]
+    for entry in study.spec.plots.unmatched(names):
+        k = (study.spec.plots.scenarios or []).index(entry)
+        raise StudyError(
+            f"{study.path}: plots.scenarios[{k}]: no scenario named {entry!r}; "
+            f"fix: use one of {names[:8]}{' ...' if len(names) > 8 else ''} (or a pattern such as 'outward/*')"
+            f"{did_you_mean(entry, names)}"
+        )

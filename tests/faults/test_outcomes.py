@@ -73,7 +73,7 @@ class Scripted:
     def __init__(self, status, direct: float = float("nan")) -> None:
         self.status, self.direct = status, direct
 
-    def path(self, alpha, settlements):
+    def path(self, alpha=None, settlements=None, loads=None):
         """The solve of each step of a path (as :meth:`tce.core.analysis.Analysis.path`)."""
 
         def solve_at(lam):
@@ -82,7 +82,7 @@ class Scripted:
 
         return solve_at
 
-    def limit(self, alpha):
+    def limit(self, alpha=None, loads=None):
         return SimpleNamespace(lambda_max=self.direct)
 
 

@@ -28,13 +28,14 @@ if _SPEC:
     _solve_and_write = runner._solve_and_write
 
     def _fill(folder: Path) -> None:
-        with open(folder / "filler", "ab") as fh:
-            try:
+        # unbuffered: a buffered file would raise ENOSPC again when closed, depending on how
+        # the free space divides into chunks (that is, on the size of the files written before)
+        try:
+            with open(folder / "filler", "ab", buffering=0) as fh:
                 while True:
                     fh.write(b"\0" * 65536)
-                    fh.flush()
-            except OSError:
-                pass
+        except OSError:
+            pass
 
     def _faulty(sc, assembly, directory):
         if sc.name == _NAME and _KIND == "kill":

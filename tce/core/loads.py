@@ -1,0 +1,651 @@
+"""Loads on an assembly: a declaration, its resolution into block wrenches, and the two
+right-hand sides the solvers take.
+
+Every solver of tce takes the loads as ``rhs = b_fixed + lam * b_live`` in the row layout of
+``A_eq`` (:mod:`tce.core.model`): ``b_fixed`` is always applied, ``b_live`` is multiplied by the
+load multiplier ``lam``. A :class:`LoadPattern` declares them:
+
+- the self-weight of every block (always part of ``b_fixed``);
+- the paper's lateral pattern, ``lam`` times every block's weight horizontally in direction
+  ``alpha`` (degrees from +x towards +y) at its centroid, part of ``b_live`` when ``lateral``
+  (the default: a pattern with nothing else is exactly the ``alpha`` of tce 0.1);
+- point loads (:class:`PointLoad`): a force ``f`` (kN, global frame) at a point ``p`` (m) of
+  a free block ``i``, given by block and point or found on the top surface above a plan
+  point (``on_top``);
+- distributed loads (:class:`DistributedLoad`): a pressure (kN/m^2, downwards, per unit plan
+  area) on the exposed top surfaces of the blocks under a plan rectangle.
+
+Each load is fixed (``scaled = False``: part of ``b_fixed``) or live (``scaled = True``, the
+default: part of ``b_live``). :func:`resolve` turns a pattern into applied point forces on
+one assembly (:class:`AppliedLoads`): a force ``f`` at ``p`` on block ``i`` adds the wrench
+``(f, (p - c_i) x f)`` about the block's centroid ``c_i``; a distributed load is shared among
+the blocks whose exposed top surfaces lie under its rectangle, each part's resultant at the
+plan centroid of the part. :meth:`AppliedLoads.vectors` projects the wrenches on a model's
+rows: 6 per free block ``(Fx, Fy, Fz, Mx, My, Mz)`` (spatial), or ``(e . F, z . F, m . M)``
+(planar, ``m`` the plane normal and ``e = m x z``). The planar model is exact for a scene
+only when every block's load wrench lies in the plane (no force along ``m``, no moment
+about ``e`` or ``z``, :meth:`AppliedLoads.in_plane`): a force in the plane applied off it
+makes a moment out of the plane.
+
+Loads on support blocks are refused: the equilibrium of a support is not enforced, so such a
+load would be lost without a word. Errors are :class:`LoadError` naming the key of the
+declaration (``point[0].block``; a study adds ``loads.``) and the fix.
+"""
+
+from __future__ import annotations
+
+import weakref
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from functools import cached_property, lru_cache
+from typing import Any
+
+import numpy as np
+import shapely
+from numpy.typing import ArrayLike, NDArray
+
+from ..structures.assembly import Assembly
+from ..structures.params import did_you_mean
+from .model import EZ, Model, Plane, lateral_direction, motions_in_plane
+
+__all__ = [
+    "AppliedLoads",
+    "DistributedLoad",
+    "LoadError",
+    "LoadPattern",
+    "PointLoad",
+    "as_pattern",
+    "check_in_plane",
+    "load_vectors",
+    "resolve",
+    "scene_vectors",
+    "top_surface",
+]
+
+#: a face is part of the top surface when its outward normal has a z component above this
+UPWARD = 1e-6
+#: relative tolerance (of the assembly's weight and size) of the in-plane test
+PLANE_TOL = 1e-9
+
+
+class LoadError(ValueError):
+    """A load declaration that cannot be applied: ``key`` names it (``point[0].force``)."""
+
+    def __init__(self, key: str, problem: str, fix: str) -> None:
+        self.key, self.problem, self.fix = key, problem, fix
+        super().__init__(f"{key}: {problem}; fix: {fix}" if key else f"{problem}; fix: {fix}")
+
+    def within(self, prefix: str) -> LoadError:
+        """The same error with its key under ``prefix`` (``point[0]`` + ``force``)."""
+        return LoadError(f"{prefix}.{self.key}" if self.key else prefix, self.problem, self.fix)
+
+
+def _vector(value: ArrayLike, n: int, key: str, unit: str) -> tuple[float, ...]:
+    """``value`` as a tuple of ``n`` finite floats (``LoadError`` naming ``key`` otherwise)."""
+    try:
+        v = np.asarray(value, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise LoadError(key, f"not a list of numbers ({value!r})", f"give {n} numbers ({unit})") from None
+    if v.shape != (n,):
+        raise LoadError(key, f"{len(v)} numbers given", f"give exactly {n} numbers ({unit})")
+    if not np.all(np.isfinite(v)):
+        raise LoadError(key, f"NaN or infinite entries ({value!r})", f"give finite numbers ({unit})")
+    return tuple(float(x) for x in v)
+
+
+def _range(value: ArrayLike, key: str) -> tuple[float, float]:
+    """A plan range ``[lo, hi]`` with ``lo < hi`` (m)."""
+    lo, hi = _vector(value, 2, key, "m, [from, to]")
+    if not lo < hi:
+        raise LoadError(key, f"[{lo:g}, {hi:g}] is empty", "give [from, to] with from < to (m)")
+    return lo, hi
+
+
+@dataclass(frozen=True)
+class PointLoad:
+    """A force at a point of a free block.
+
+    Parameters
+    ----------
+    force : (3,) array_like
+        kN, global frame; not zero.
+    block : str, optional
+        The free block it acts on, by name (with ``at``).
+    at : (3,) array_like, optional
+        Point of application (m); default: the block's centroid. Within the block's size
+        (bounding-box diagonal) of its centroid.
+    on_top : (2,) array_like, optional
+        Plan point ``(x, y)`` (m) instead of ``block``/``at``: the load acts on the highest
+        top surface of the structure above it (:func:`resolve`).
+    scaled : bool
+        True (default): part of the live load, multiplied by lambda; False: always applied.
+    """
+
+    force: tuple[float, float, float]
+    block: str | None = None
+    at: tuple[float, float, float] | None = None
+    on_top: tuple[float, float] | None = None
+    scaled: bool = True
+
+    def __post_init__(self) -> None:
+        force = _vector(self.force, 3, "force", "kN, global frame")
+        if not any(force):
+            raise LoadError("force", "a zero force", "give a non-zero force (kN, global frame)")
+        object.__setattr__(self, "force", force)
+        if (self.block is None) == (self.on_top is None):
+            raise LoadError(
+                "", "give either block (with an optional at) or on_top",
+                "name the free block it acts on, or give on_top = [x, y] to find it on the top surface",
+            )
+        if self.block is not None and not (isinstance(self.block, str) and self.block):
+            raise LoadError("block", f"not a block name ({self.block!r})", "give a block name")
+        if self.at is not None:
+            if self.block is None:
+                raise LoadError("at", "at goes with block, not with on_top", "remove at (on_top finds the point)")
+            object.__setattr__(self, "at", _vector(self.at, 3, "at", "m"))
+        if self.on_top is not None:
+            object.__setattr__(self, "on_top", _vector(self.on_top, 2, "on_top", "m, plan point [x, y]"))
+        if not isinstance(self.scaled, bool):
+            raise LoadError("scaled", f"not true or false ({self.scaled!r})", "write true or false")
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data, the keys of a ``[[loads.point]]`` table (absent keys left out)."""
+        out: dict[str, Any] = {"force": list(self.force), "scaled": self.scaled}
+        for key in ("block", "at", "on_top"):
+            value = getattr(self, key)
+            if value is not None:
+                out[key] = list(value) if isinstance(value, tuple) else value
+        return out
+
+
+@dataclass(frozen=True)
+class DistributedLoad:
+    """A pressure on the exposed top surfaces of the blocks under a plan rectangle.
+
+    Parameters
+    ----------
+    x : (2,) array_like
+        Plan range along x (m), ``from < to``.
+    pressure : float
+        kN/m^2 of plan area, acting downwards (negative: upwards); not zero.
+    y : (2,) array_like, optional
+        Plan range along y (m); default: the whole depth of the structure.
+    scaled : bool
+        True (default): part of the live load; False: always applied (e.g. fill weight).
+    """
+
+    x: tuple[float, float]
+    pressure: float
+    y: tuple[float, float] | None = None
+    scaled: bool = True
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "x", _range(self.x, "x"))
+        if self.y is not None:
+            object.__setattr__(self, "y", _range(self.y, "y"))
+        (p,) = _vector([self.pressure], 1, "pressure", "kN/m^2")
+        if p == 0.0:
+            raise LoadError("pressure", "a zero pressure", "give a non-zero pressure (kN/m^2, downwards)")
+        object.__setattr__(self, "pressure", p)
+        if not isinstance(self.scaled, bool):
+            raise LoadError("scaled", f"not true or false ({self.scaled!r})", "write true or false")
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data, the keys of a ``[[loads.distributed]]`` table."""
+        out: dict[str, Any] = {"x": list(self.x), "pressure": self.pressure, "scaled": self.scaled}
+        if self.y is not None:
+            out["y"] = list(self.y)
+        return out
+
+
+def _items(cls: type, values: Sequence[Any], key: str) -> tuple[Any, ...]:
+    """``values`` (instances or dicts of keyword arguments) as a tuple of ``cls``; errors
+    named ``key[k]``."""
+    out = []
+    for k, v in enumerate(values):
+        try:
+            if isinstance(v, cls):
+                out.append(v)
+            elif isinstance(v, Mapping):
+                unknown = sorted(set(v) - set(cls.__dataclass_fields__))
+                if unknown:
+                    raise LoadError(unknown[0], "unknown key", f"use the keys {list(cls.__dataclass_fields__)}")
+                out.append(cls(**v))
+            else:
+                raise LoadError("", f"not a {cls.__name__} ({v!r})", f"give a {cls.__name__} or a table of its keys")
+        except LoadError as exc:
+            raise exc.within(f"{key}[{k}]") from None
+        except TypeError as exc:  # a missing required key
+            raise LoadError(f"{key}[{k}]", str(exc), "give the required keys (docs/studies.md)") from None
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class LoadPattern:
+    """The loads of a scene: what is always applied and what lambda multiplies.
+
+    Parameters
+    ----------
+    alpha : float
+        Direction of the lateral pattern (degrees, from +x towards +y).
+    lateral : bool
+        True (default): lambda multiplies every block's weight horizontally in direction
+        ``alpha`` (the paper's pattern) besides the scaled loads; False: lambda multiplies
+        only the scaled loads (then at least one is needed).
+    point : sequence of PointLoad (or dicts of its keys)
+    distributed : sequence of DistributedLoad (or dicts of its keys)
+
+    A pattern with only ``alpha`` (``lateral`` true, no loads) is the default pattern: the
+    right-hand sides are exactly the model's ``b_dead`` and ``b_lateral(alpha)``. Patterns
+    are hashable values (results and caches key on them).
+    """
+
+    alpha: float = 0.0
+    lateral: bool = True
+    point: tuple[PointLoad, ...] = ()
+    distributed: tuple[DistributedLoad, ...] = ()
+
+    def __post_init__(self) -> None:
+        (alpha,) = _vector([self.alpha], 1, "alpha", "degrees")
+        object.__setattr__(self, "alpha", alpha)
+        if not isinstance(self.lateral, bool):
+            raise LoadError("lateral", f"not true or false ({self.lateral!r})", "write true or false")
+        object.__setattr__(self, "point", _items(PointLoad, self.point, "point"))
+        object.__setattr__(self, "distributed", _items(DistributedLoad, self.distributed, "distributed"))
+        if not self.lateral and not any(p.scaled for p in (*self.point, *self.distributed)):
+            raise LoadError(
+                "lateral", "lateral = false and no scaled load: lambda would multiply nothing",
+                "add a point or distributed load with scaled = true, or set lateral = true",
+            )
+
+    @property
+    def default(self) -> bool:
+        """True for the paper's pattern alone (self-weight and the lateral pattern)."""
+        return self.lateral and not self.point and not self.distributed
+
+    @property
+    def direction(self) -> float:
+        """``alpha`` when the lateral pattern is part of the live load, else NaN."""
+        return self.alpha if self.lateral else float("nan")
+
+    def moved(self, x: float) -> LoadPattern:
+        """The pattern with every scaled ``on_top`` point load moved to plan abscissa ``x`` (m).
+
+        Raises
+        ------
+        LoadError
+            No scaled ``on_top`` point load to move.
+        """
+        if not any(p.scaled and p.on_top is not None for p in self.point):
+            raise LoadError("point", "no scaled point load with on_top to move", "give one with on_top = [x, y] and scaled = true")
+        (x,) = _vector([x], 1, "load_x", "m")
+        point = tuple(
+            replace(p, on_top=(x, p.on_top[1])) if p.scaled and p.on_top is not None else p for p in self.point
+        )
+        return replace(self, point=point)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data (JSON-ready), the keys of a study's ``[loads]`` table."""
+        return {
+            "alpha": self.alpha,
+            "lateral": self.lateral,
+            "point": [p.to_dict() for p in self.point],
+            "distributed": [d.to_dict() for d in self.distributed],
+        }
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> LoadPattern:
+        """Inverse of :meth:`to_dict` (missing keys take their defaults).
+
+        Raises
+        ------
+        LoadError
+            An unknown key or a load that cannot be declared.
+        """
+        unknown = sorted(set(data) - set(cls.__dataclass_fields__))
+        if unknown:
+            raise LoadError(unknown[0], "unknown key", f"use the keys {list(cls.__dataclass_fields__)}")
+        return cls(**data)
+
+
+def as_pattern(alpha: float | None = None, loads: LoadPattern | None = None) -> LoadPattern:
+    """The load pattern of a call that takes ``alpha`` or ``loads``: ``loads`` when given,
+    else the default pattern in direction ``alpha`` (0 when None).
+
+    Raises
+    ------
+    ValueError
+        Both given with different directions, a non-finite ``alpha``, or ``loads`` that is
+        not a :class:`LoadPattern`.
+    """
+    if loads is None:
+        return LoadPattern(alpha=0.0 if alpha is None else alpha)
+    if not isinstance(loads, LoadPattern):
+        raise TypeError(f"loads must be a LoadPattern, got {type(loads).__name__}")
+    if alpha is not None and alpha != loads.alpha:
+        raise ValueError(
+            f"alpha={alpha!r} and loads with alpha={loads.alpha!r}: give the direction once, in the pattern"
+        )
+    return loads
+
+
+# ---------------------------------------------------------------------------- top surface
+@dataclass(frozen=True, eq=False)
+class _Faces:
+    """Upward-facing faces of an assembly: owner block, plan polygon and plane."""
+
+    block: NDArray[np.int64]
+    plan: NDArray[np.object_]  # shapely Polygons, the faces projected on the x-y plane
+    point: NDArray[np.float64]  # (k, 3) a point of each face
+    normal: NDArray[np.float64]  # (k, 3) outward unit normals, n_z > UPWARD
+
+    def z(self, k: int | NDArray[np.int64], x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
+        """Height (m) of face(s) ``k``'s plane above plan point(s) ``(x, y)``."""
+        p, n = self.point[k], self.normal[k]
+        return p[..., 2] - (n[..., 0] * (np.asarray(x) - p[..., 0]) + n[..., 1] * (np.asarray(y) - p[..., 1])) / n[..., 2]
+
+
+@lru_cache(maxsize=16)
+def _upward_faces(assembly: Assembly) -> _Faces:
+    block, plan, point, normal = [], [], [], []
+    for i, b in enumerate(assembly.blocks):
+        for k, n in enumerate(b.shape.face_normals):
+            if n[2] > UPWARD:
+                pts = b.shape.face_points(k)
+                block.append(i)
+                plan.append(shapely.Polygon(pts[:, :2]))
+                point.append(pts.mean(axis=0))
+                normal.append(n)
+    return _Faces(np.array(block, dtype=np.int64), np.array(plan, dtype=object),
+                  np.array(point).reshape(-1, 3), np.array(normal).reshape(-1, 3))
+
+
+@lru_cache(maxsize=16)
+def top_surface(assembly: Assembly) -> tuple[tuple[int, int, shapely.Polygon], ...]:
+    """The exposed top surface of an assembly, in plan: ``(block, face, polygon)`` parts.
+
+    An upward-facing face (outward normal with ``n_z > UPWARD``) is exposed where no other
+    upward-facing face lies above it: for each plan point, only the highest face counts
+    (the extrados of an arch, not the joints under the next voussoir). Two faces whose plan
+    projections overlap are ordered by their heights at a point of the overlap (blocks do
+    not interpenetrate, so one lies above the other over all of it). ``face`` indexes the
+    assembly's upward faces; each polygon is one connected exposed piece (m, plan).
+    """
+    faces = _upward_faces(assembly)
+    tree = shapely.STRtree(faces.plan)
+    eps = (1e-9 * assembly.size) ** 2
+    out = []
+    for i, poly in enumerate(faces.plan):
+        exposed = poly
+        for j in tree.query(poly, predicate="intersects"):
+            if j == i:
+                continue
+            overlap = poly.intersection(faces.plan[j])
+            if overlap.area <= eps:
+                continue
+            q = overlap.representative_point()
+            if faces.z(j, q.x, q.y) > faces.z(i, q.x, q.y):
+                exposed = exposed.difference(faces.plan[j])
+        for piece in getattr(exposed, "geoms", [exposed]):
+            if isinstance(piece, shapely.Polygon) and piece.area > eps:
+                out.append((int(faces.block[i]), i, piece))
+    return tuple(out)
+
+
+def _on_top(assembly: Assembly, xy: tuple[float, float]) -> tuple[int, NDArray[np.float64]]:
+    """Block and point of the highest top surface above plan point ``xy`` (a downward ray
+    through the upward-facing faces); ties go to a free block. Raises ``LoadError``."""
+    faces = _upward_faces(assembly)
+    x, y = xy
+    hit = np.flatnonzero(shapely.intersects_xy(faces.plan, x, y))
+    if hit.size == 0:
+        lo = np.min([b.shape.vertices.min(axis=0) for b in assembly.blocks], axis=0)
+        hi = np.max([b.shape.vertices.max(axis=0) for b in assembly.blocks], axis=0)
+        raise LoadError(
+            "on_top", f"[{x:g}, {y:g}] is outside the plan of the structure: no block lies under it (the plan spans "
+            f"x from {lo[0]:.4g} to {hi[0]:.4g} m, y from {lo[1]:.4g} to {hi[1]:.4g} m)",
+            "give a plan point above a block",
+        )
+    z = faces.z(hit, x, y)
+    top = z.max()
+    support = np.array([assembly.blocks[b].support for b in faces.block[hit]])
+    best = hit[(z >= top - 1e-9 * assembly.size) & ~support]
+    k = int(best[0]) if best.size else int(hit[np.argmax(z)])
+    return int(faces.block[k]), np.array([x, y, float(faces.z(k, x, y))])
+
+
+# ---------------------------------------------------------------------------- resolution
+@dataclass(frozen=True, eq=False)
+class AppliedLoads:
+    """A :class:`LoadPattern` resolved against one assembly: the point forces it applies.
+
+    Attributes
+    ----------
+    pattern : LoadPattern
+    assembly : Assembly
+    blocks : (k,) int
+        Block of each applied force.
+    points : (k, 3) float
+        Points of application (m): the declared point, the point found on the top surface
+        (``on_top``), or the part's resultant point of a distributed load (on the face,
+        above the part's plan centroid).
+    forces : (k, 3) float
+        Forces (kN, global frame); a scaled force is the one at lambda = 1.
+    scaled : (k,) bool
+        True for the live loads.
+    sources : tuple of str
+        The declaration each force comes from (``point[0]``, ``distributed[1]``).
+    """
+
+    pattern: LoadPattern
+    assembly: Assembly = field(repr=False)
+    blocks: NDArray[np.int64] = field(repr=False)
+    points: NDArray[np.float64] = field(repr=False)
+    forces: NDArray[np.float64] = field(repr=False)
+    scaled: NDArray[np.bool_] = field(repr=False)
+    sources: tuple[str, ...] = field(repr=False)
+
+    @cached_property
+    def wrenches(self) -> NDArray[np.float64]:
+        """``(2, n_blocks, 6)``: the fixed (0) and live (1) loads on every block as wrenches
+        ``(Fx, Fy, Fz, Mx, My, Mz)`` about its centroid (kN, kN m), self-weight and lateral
+        pattern excluded."""
+        out = np.zeros((2, len(self.assembly.blocks), 6))
+        r = self.points - self.assembly.centroids[self.blocks]
+        w = np.hstack([self.forces, np.cross(r, self.forces)])
+        np.add.at(out, (self.scaled.astype(int), self.blocks), w)
+        return out
+
+    def in_plane(self, plane: Plane | None) -> bool:
+        """Whether the lateral direction (when part of the pattern) and every block's load
+        wrench lie in ``plane``: no force along ``m``, no moment about ``e`` or ``z``
+        (relative to the weight and size of the assembly). True when ``plane`` is None."""
+        if plane is None:
+            return True
+        if self.pattern.lateral and abs(lateral_direction(self.pattern.alpha) @ plane.m) > 1e-12:
+            return False
+        if not len(self.blocks):
+            return True
+        w = self.wrenches
+        a = self.assembly
+        force = max(a.total_weight, float(np.abs(self.forces).max()))
+        out_force = np.abs(w[..., :3] @ plane.m).max()
+        out_moment = max(np.abs(w[..., 3:] @ plane.e).max(), np.abs(w[..., 3:] @ EZ).max())
+        return bool(out_force <= PLANE_TOL * force and out_moment <= PLANE_TOL * force * a.size)
+
+    @cached_property
+    def _vectors(self) -> weakref.WeakKeyDictionary[Model, tuple[NDArray[np.float64], NDArray[np.float64]]]:
+        return weakref.WeakKeyDictionary()
+
+    def vectors(self, model: Model) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``(b_fixed, b_live)`` in ``model``'s row layout (kN, kN m), read-only.
+
+        ``b_fixed`` is the self-weight plus the fixed loads, ``b_live`` the lateral pattern
+        (when ``lateral``) plus the scaled loads. For the default pattern they are the
+        model's own ``b_dead`` and ``b_lateral(alpha)``.
+
+        Raises
+        ------
+        ValueError
+            ``model`` is not a model of this assembly, or a planar model and the loads
+            leave its plane.
+        """
+        if model.assembly is not self.assembly:
+            raise ValueError("these loads were resolved against another assembly than the model's")
+        if model in self._vectors:
+            return self._vectors[model]
+        if model.kind == "planar" and not self.in_plane(model.plane):
+            raise ValueError("the loads leave the planar model's plane: use the spatial model")
+        p = self.pattern
+        b_fixed = model.b_dead
+        b_live = model.b_lateral(p.alpha) if p.lateral else np.zeros_like(model.b_dead)
+        fixed, live = self.wrenches
+        if (~self.scaled).any():
+            b_fixed = b_fixed + _block_rows(model, fixed)
+        if self.scaled.any() or not p.lateral:
+            b_live = b_live + _block_rows(model, live)
+        for v in (b_fixed, b_live):
+            if v is not model.b_dead and v is not model.b_lateral(p.alpha):  # the model's own stay as they are
+                v.flags.writeable = False
+        self._vectors[model] = (b_fixed, b_live)
+        return b_fixed, b_live
+
+
+def _block_rows(model: Model, wrenches: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Block wrenches ``(n_blocks, 6)`` about the centroids as a vector in ``model``'s row
+    layout: 6 rows per free block (spatial) or ``(e . F, z . F, m . M)`` (planar)."""
+    w = wrenches[list(model.assembly.free_indices)]
+    if model.kind == "spatial":
+        return w.ravel()
+    plane = model.plane
+    return np.column_stack([w[:, :3] @ plane.e, w[:, :3] @ EZ, w[:, 3:] @ plane.m]).ravel()
+
+
+def _plan_range(assembly: Assembly, axis: int) -> tuple[float, float]:
+    v = np.vstack([b.shape.vertices for b in assembly.blocks])[:, axis]
+    return float(v.min()), float(v.max())
+
+
+def _point(assembly: Assembly, load: PointLoad) -> tuple[int, NDArray[np.float64]]:
+    """Block and point of application of a point load (raises ``LoadError``)."""
+    if load.on_top is not None:
+        i, p = _on_top(assembly, load.on_top)
+        if assembly.blocks[i].support:
+            raise LoadError(
+                "on_top", f"[{load.on_top[0]:g}, {load.on_top[1]:g}] lands on support block {assembly.names[i]!r}, "
+                "whose equilibrium is not enforced", "give a plan point above a free block",
+            )
+        return i, p
+    if load.block not in assembly.index:
+        free = [assembly.names[i] for i in assembly.free_indices]
+        raise LoadError("block", f"{load.block!r} is not a block of the structure",
+                        f"use one of the free blocks {free}{did_you_mean(load.block, free)}")
+    i = assembly.index[load.block]
+    b = assembly.blocks[i]
+    if b.support:
+        raise LoadError("block", f"{load.block!r} is a support block, whose equilibrium is not enforced",
+                        f"load a free block: {[assembly.names[k] for k in assembly.free_indices]}")
+    if load.at is None:
+        return i, b.centroid.copy()
+    p = np.array(load.at)
+    dist = float(np.linalg.norm(p - b.centroid))
+    if dist > b.shape.size:
+        raise LoadError(
+            "at", f"{list(load.at)} is {dist:.4g} m from the centroid of block {load.block!r}, more than the block's "
+            f"size ({b.shape.size:.4g} m)", "give a point on the block (m, global frame)",
+        )
+    return i, p
+
+
+def _distributed(assembly: Assembly, load: DistributedLoad) -> list[tuple[int, NDArray[np.float64], float]]:
+    """``(block, point, area)`` of each part of a distributed load (raises ``LoadError``)."""
+    y = load.y if load.y is not None else _plan_range(assembly, 1)
+    rect = shapely.box(load.x[0], y[0], load.x[1], y[1])
+    faces = _upward_faces(assembly)
+    eps = (1e-9 * assembly.size) ** 2
+    parts = []
+    for block, face, poly in top_surface(assembly):
+        part = rect.intersection(poly)
+        for piece in getattr(part, "geoms", [part]):
+            if not isinstance(piece, shapely.Polygon) or piece.area <= eps:
+                continue
+            if assembly.blocks[block].support:
+                raise LoadError(
+                    "x", f"the rectangle x = {list(load.x)}, y = {list(y)} covers the top of support block "
+                    f"{assembly.names[block]!r}, whose equilibrium is not enforced",
+                    "narrow x (or y) to the free blocks",
+                )
+            c = piece.centroid
+            parts.append((block, np.array([c.x, c.y, float(faces.z(face, c.x, c.y))]), float(piece.area)))
+    if not parts:
+        raise LoadError("x", f"the rectangle x = {list(load.x)}, y = {list(y)} covers no block's top surface",
+                        "give a plan rectangle over the structure")
+    return parts
+
+
+@lru_cache(maxsize=256)
+def resolve(pattern: LoadPattern, assembly: Assembly) -> AppliedLoads:
+    """The forces a pattern applies to ``assembly`` (see module docstring); cached.
+
+    Raises
+    ------
+    LoadError
+        An unknown block, a support block, ``at`` farther than the block's size from its
+        centroid, ``on_top`` outside the plan or over a support, a distributed rectangle
+        that covers no top surface or covers a support's.
+    """
+    blocks, points, forces, scaled, sources = [], [], [], [], []
+    for k, load in enumerate(pattern.point):
+        try:
+            i, p = _point(assembly, load)
+        except LoadError as exc:
+            raise exc.within(f"point[{k}]") from None
+        blocks.append(i)
+        points.append(p)
+        forces.append(load.force)
+        scaled.append(load.scaled)
+        sources.append(f"point[{k}]")
+    for k, load in enumerate(pattern.distributed):
+        try:
+            parts = _distributed(assembly, load)
+        except LoadError as exc:
+            raise exc.within(f"distributed[{k}]") from None
+        for i, p, area in parts:
+            blocks.append(i)
+            points.append(p)
+            forces.append((0.0, 0.0, -load.pressure * area))
+            scaled.append(load.scaled)
+            sources.append(f"distributed[{k}]")
+    return AppliedLoads(
+        pattern, assembly, np.array(blocks, dtype=np.int64), np.array(points, dtype=float).reshape(-1, 3),
+        np.array(forces, dtype=float).reshape(-1, 3), np.array(scaled, dtype=bool), tuple(sources),
+    )
+
+
+def load_vectors(model: Model, pattern: LoadPattern) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``(b_fixed, b_live)`` of ``pattern`` in ``model``'s row layout (:meth:`AppliedLoads.vectors`)."""
+    return resolve(pattern, model.assembly).vectors(model)
+
+
+def check_in_plane(model: Model, pattern: LoadPattern, settlements: Mapping[str, ArrayLike] | None = None) -> None:
+    """Raise ``ValueError`` when ``model`` is planar and the loads or support motions leave its plane."""
+    if model.kind != "planar":
+        return
+    if not (resolve(pattern, model.assembly).in_plane(model.plane) and motions_in_plane(model.plane, settlements)):
+        raise ValueError(
+            "this scene has loads or support motions out of the model's plane: solve it with the spatial model"
+        )
+
+
+def scene_vectors(
+    model: Model,
+    alpha: float | None = None,
+    loads: LoadPattern | None = None,
+    settlements: Mapping[str, ArrayLike] | None = None,
+) -> tuple[LoadPattern, NDArray[np.float64], NDArray[np.float64]]:
+    """The pattern of a call that takes ``alpha`` or ``loads`` (:func:`as_pattern`), checked
+    against ``model``'s plane with the support motions (:func:`check_in_plane`), and its
+    ``(b_fixed, b_live)`` (:func:`load_vectors`)."""
+    pattern = as_pattern(alpha, loads)
+    check_in_plane(model, pattern, settlements)
+    return (pattern, *load_vectors(model, pattern))

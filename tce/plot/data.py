@@ -1,0 +1,608 @@
+"""What the figures, the interactive view and the VTK export read from a results dataset.
+
+Everything here takes a results dataset (``docs/results.md``) and returns plain numbers,
+arrays and strings; nothing draws. The geometry comes from ``ds.attrs["assembly"]`` and
+the drawing choices from the ``[plots]`` table of the study text ``ds.attrs["study"]``
+(:class:`tce.study.schema.PlotsSection`), so a results file copied anywhere redraws the
+same figures.
+
+Conventions
+-----------
+- Units as in the dataset: m, kN, kN m; lambda is dimensionless.
+- **Forces on the supports.** The figures plot the force and moment each support
+  *receives from the structure* (the paper's "thrust exerted on the supports"), i.e. minus
+  the dataset's ``reaction``, in the frame of the structure (:class:`StructureFrame`):
+  ``H`` along the span (positive when it pushes the support outward), ``S`` across the
+  span, ``V`` vertical (positive downward: the load on the support) and ``M`` the moment
+  about the span axis (right-hand rule), about the support centroid.
+- A drawn **state** is one step of one scenario, asked for by load multiplier or
+  ``"max"`` (:func:`find_state`); two multipliers are the same step within
+  :data:`tce.study.runner.LAMBDA_TOL`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import tomllib
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from ..structures.assembly import Assembly
+from ..study.runner import same_lambda
+from ..study.schema import PLOT_KINDS, PlotsSection
+
+__all__ = [
+    "PlotSpec",
+    "PlotSpecError",
+    "State",
+    "StructureFrame",
+    "assembly",
+    "chain_interfaces",
+    "find_state",
+    "group_identical",
+    "hinge_segments",
+    "join_names",
+    "mechanism_groups",
+    "optimal_steps",
+    "outcome_note",
+    "plot_spec",
+    "scenarios",
+    "slug",
+    "state_pages",
+    "structure_frame",
+    "support_forces",
+    "swept_parameters",
+    "unique_note",
+]
+
+Target = float | str  # a load multiplier or "max"
+
+#: swept coordinates that may lie along ``scenario``, in the order studies expand them, with units
+SWEPT = {"alpha": "degree", "friction": "–", "cohesion": "kN/m²", "tensile_strength": "kN/m²",
+         "compressive_strength": "kN/m²", "magnitude": "× the settlements", "inner_radius": "m", "thickness": "m",
+         "depth": "m", "radius": "m"}
+#: figure kinds drawn by default (``base`` is asked for by name)
+DEFAULT_KINDS = tuple(k for k in PLOT_KINDS if k != "base")
+
+_OUTCOMES = {
+    "limit": "",
+    "unbounded": "unbounded: the support motion is incompatible with the material (no state of finite energy)",
+    "infeasible": "infeasible: no admissible state, not even at λ = 0",
+    "no_limit": "no limit: still admissible at the cap λ = {cap:.3g}",
+    "numerical": "numerical: the solver could not decide the limit",
+}
+#: note of a state flagged non-unique (``unique == 0``)
+NOT_UNIQUE = "not necessarily unique (rigid, no support motion): one admissible state of many"
+
+
+# ---------------------------------------------------------------------------- dataset access
+@lru_cache(maxsize=8)
+def _assembly_from_json(text: str) -> Assembly:
+    return Assembly.from_dict(json.loads(text))
+
+
+def assembly(ds: xr.Dataset) -> Assembly:
+    """The assembly stored in ``ds.attrs["assembly"]`` (parsed once per text)."""
+    try:
+        data = ds.attrs["assembly"]
+    except KeyError:
+        raise ValueError("the dataset has no 'assembly' attribute: geometry cannot be drawn") from None
+    return _assembly_from_json(data if isinstance(data, str) else json.dumps(data))
+
+
+def scenarios(ds: xr.Dataset) -> list[str]:
+    """Scenario names in dataset order."""
+    return [str(s) for s in ds["scenario"].values]
+
+
+def value(ds: xr.Dataset, name: str, scenario: str) -> NDArray:
+    """``ds[name]`` of one scenario as an ndarray (other dimensions in their stored order).
+
+    Indexes by position (the figures read hundreds of these: label-based selection would
+    cost more than the drawing)."""
+    var = ds.variables[name]
+    k = ds.indexes["scenario"].get_loc(scenario)
+    return np.asarray(var.values[(slice(None),) * var.dims.index("scenario") + (k,)])
+
+
+def text(ds: xr.Dataset, name: str, scenario: str, default: str = "") -> str:
+    """A per-scenario string variable (``default`` when absent)."""
+    return str(value(ds, name, scenario)) if name in ds else default
+
+
+def slug(name: str) -> str:
+    """``name`` made safe for a file name."""
+    return re.sub(r"[^A-Za-z0-9_.=-]+", "_", name).strip("_") or "scenario"
+
+
+def is_planar(ds: xr.Dataset, scenario: str) -> bool:
+    """True when the scenario ran on the planar model."""
+    return text(ds, "model", scenario) == "planar"
+
+
+def optimal_steps(ds: xr.Dataset, scenario: str) -> NDArray[np.int64]:
+    """Indices of the optimal steps of a scenario, sorted by lambda."""
+    lam = value(ds, "lam", scenario).astype(float)
+    ok = np.flatnonzero((value(ds, "status", scenario).astype(str) == "optimal") & np.isfinite(lam))
+    return ok[np.argsort(lam[ok], kind="stable")]
+
+
+def swept_parameters(ds: xr.Dataset, names: Sequence[str] | None = None) -> list[str]:
+    """Swept coordinates along ``scenario`` that take more than one value among ``names``."""
+    sel = ds if names is None else ds.sel(scenario=list(names))
+    out = []
+    for p in SWEPT:
+        if p in sel.coords and sel[p].dims == ("scenario",):
+            v = np.asarray(sel[p].values, dtype=float)
+            if len({round(x, 12) if math.isfinite(x) else "nan" for x in v}) > 1:
+                out.append(p)
+    return out
+
+
+# ---------------------------------------------------------------------------- what to draw
+class PlotSpecError(ValueError):
+    """A ``[plots]`` value (or its replacement) that cannot be drawn; ``key`` names it."""
+
+    def __init__(self, key: str, message: str) -> None:
+        super().__init__(f"{key}: {message}")
+        self.key = key
+        self.message = message
+
+
+@dataclass(frozen=True)
+class PlotSpec:
+    """What a results file draws: states, scenarios and kinds (the study's ``[plots]``).
+
+    Attributes
+    ----------
+    steps : tuple
+        Load multipliers and ``"max"``.
+    scenarios : tuple of str
+        Scenarios drawn in the per-scenario figures, the thrust curves and the view.
+    kinds : tuple of str
+        Figure kinds (:data:`tce.study.schema.PLOT_KINDS`).
+    """
+
+    steps: tuple[Target, ...]
+    scenarios: tuple[str, ...]
+    kinds: tuple[str, ...]
+
+
+def plot_spec(
+    ds: xr.Dataset,
+    steps: Sequence[Target] | None = None,
+    scenarios_: Sequence[str] | None = None,
+    kinds: Sequence[str] | None = None,
+) -> PlotSpec:
+    """The study's ``[plots]`` table, with any of its keys replaced by the arguments.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Its ``study`` attr holds the study text (absent or without ``[plots]``: defaults).
+    steps, scenarios_, kinds : sequence, optional
+        Replace ``[plots] steps``, ``scenarios`` (names or shell patterns), ``kinds``.
+
+    Raises
+    ------
+    PlotSpecError
+        A value is invalid or a scenario entry matches no scenario; ``key`` names the key.
+    """
+    table = {}
+    if ds.attrs.get("study"):
+        try:
+            table = dict(tomllib.loads(str(ds.attrs["study"])).get("plots", {}))
+        except tomllib.TOMLDecodeError:
+            table = {}
+    for key, given in (("steps", steps), ("scenarios", scenarios_), ("kinds", kinds)):
+        if given is not None:
+            table[key] = list(given)
+    from pydantic import ValidationError
+
+    try:
+        section = PlotsSection.model_validate(table)
+    except ValidationError as exc:
+        err = exc.errors()[0]
+        key = str(err["loc"][0]) if err["loc"] else "plots"
+        raise PlotSpecError(key, f"{err['msg']} (got {err.get('input')!r})") from None
+    names = scenarios(ds)
+    bad = section.unmatched(names)
+    if bad:
+        raise PlotSpecError("scenarios", f"no scenario named {bad[0]!r}; use one of {names[:8]}"
+                            f"{' ...' if len(names) > 8 else ''}")
+    drawn = section.select(names)
+    if section.scenarios is None and "load_x" in ds.coords:  # a load-position sweep: its critical positions
+        from .capacity import critical_scenarios
+
+        drawn = critical_scenarios(ds)
+    return PlotSpec(
+        steps=tuple(section.steps),
+        scenarios=tuple(drawn),
+        kinds=tuple(section.kinds or DEFAULT_KINDS),
+    )
+
+
+@dataclass(frozen=True)
+class State:
+    """One drawn state: the step of ``scenario`` asked for by ``target``.
+
+    Attributes
+    ----------
+    scenario : str
+    target : float or "max"
+    step : int or None
+        Index along ``step`` of an optimal step; None when there is no admissible state
+        to draw (``note`` says why).
+    lam : float
+        Multiplier of the state (NaN when ``step`` is None and ``target`` is ``"max"``).
+    note : str
+        Why nothing is drawn, or what to know about what is (non-unique, outcome).
+    """
+
+    scenario: str
+    target: Target
+    step: int | None
+    lam: float
+    note: str = ""
+
+    @property
+    def label(self) -> str:
+        """``λ = 0.100`` (``= λmax`` at the limit)."""
+        if not math.isfinite(self.lam):
+            return "λmax"
+        return f"λ = {self.lam:.3f}" + (" = λmax" if self.target == "max" else "")
+
+
+def find_state(ds: xr.Dataset, scenario: str, target: Target) -> State:
+    """The step of ``scenario`` at multiplier ``target`` (or at lambda_max for ``"max"``).
+
+    ``"max"`` is the optimal step at ``lambda_max``; without a limit (outcome
+    ``no_limit``), the last optimal step. A number is the step at that multiplier if it
+    was solved; if that step is not optimal, or the multiplier lies above the smallest one
+    found inadmissible, the state has no step and its note says so.
+    """
+    lam = value(ds, "lam", scenario).astype(float)
+    status = value(ds, "status", scenario).astype(str)
+    ok = optimal_steps(ds, scenario)
+    outcome = text(ds, "outcome", scenario, "limit")
+    lmax = float(value(ds, "lambda_max", scenario))
+    if target == "max":
+        if math.isfinite(lmax):
+            at = [k for k in ok if same_lambda(lam[k], lmax)]
+            if at:
+                return State(scenario, target, int(at[-1]), float(lam[at[-1]]), _notes(ds, scenario, at[-1]))
+        if outcome == "no_limit" and ok.size:
+            k = int(ok[-1])
+            return State(scenario, float(lam[k]), k, float(lam[k]), _notes(ds, scenario, k))
+        return State(scenario, target, None, float("nan"), outcome_note(ds, scenario) or "no λmax")
+    target = float(target)
+    hits = [k for k in range(len(lam)) if math.isfinite(lam[k]) and same_lambda(lam[k], target)]
+    if hits:
+        k = hits[0]
+        if status[k] == "optimal":
+            return State(scenario, target, k, float(lam[k]), _notes(ds, scenario, k))
+        return State(scenario, target, None, target, f"{status[k]}: no admissible state")
+    upper = float(value(ds, "lambda_upper", scenario)) if "lambda_upper" in ds else float("nan")
+    if not ok.size:
+        return State(scenario, target, None, target, outcome_note(ds, scenario) or "no admissible state")
+    if math.isfinite(upper) and target >= upper:
+        return State(scenario, target, None, target, f"no admissible state above λmax = {lmax:.3f}")
+    return State(scenario, target, None, target, "not solved (tce plot solves it on demand)")
+
+
+def _notes(ds: xr.Dataset, scenario: str, step: int) -> str:
+    notes = [outcome_note(ds, scenario)]
+    if "unique" in ds and float(ds["unique"].sel(scenario=scenario, step=step)) == 0.0:
+        notes.append(NOT_UNIQUE)
+    return "; ".join(n for n in notes if n)
+
+
+def outcome_note(ds: xr.Dataset, scenario: str) -> str:
+    """What a reader must know about a scenario whose outcome is not ``limit`` ("" if it is).
+
+    A ``no_limit`` outcome carries its explanation (``no_limit_reason``, from
+    :func:`tce.analysis.diagnose.no_limit_reason`) when the dataset has one.
+    """
+    outcome = text(ds, "outcome", scenario, "limit")
+    if outcome not in _OUTCOMES:
+        return outcome
+    lam = value(ds, "lam", scenario).astype(float)
+    cap = float(np.nanmax(lam)) if np.isfinite(lam).any() else float("nan")
+    note = _OUTCOMES[outcome].format(cap=cap)
+    why = text(ds, "no_limit_reason", scenario) if outcome == "no_limit" else ""
+    return f"{note}: {why}" if why else note
+
+
+def unique_note(ds: xr.Dataset, scenario: str) -> str:
+    """:data:`NOT_UNIQUE` when every optimal step of the scenario is flagged non-unique."""
+    if "unique" not in ds:
+        return ""
+    ok = optimal_steps(ds, scenario)
+    u = value(ds, "unique", scenario).astype(float)[ok]
+    return NOT_UNIQUE if ok.size and np.all(u == 0.0) else ""
+
+
+# ---------------------------------------------------------------------------- what each figure holds
+MAX_COLUMNS = 4  # state panels per row
+MAX_ROWS = 6  # rows of state panels per page
+
+
+def state_pages(names: Sequence[str], targets: Sequence[object]) -> list[list[tuple[str, object]]]:
+    """Panels ``(scenario, target)`` of :func:`states_figure`, split into pages.
+
+    Several targets: one column per scenario (at most :data:`MAX_COLUMNS` a page), one row
+    per target. One target: the scenarios in two columns (at most :data:`MAX_ROWS` rows a
+    page).
+    """
+    names, targets = list(names), list(targets)
+    per = MAX_COLUMNS if len(targets) > 1 else 2 * MAX_ROWS
+    return [[(s, t) for s in names[i:i + per] for t in targets] for i in range(0, len(names), per)]
+
+
+def mechanism_groups(ds: xr.Dataset, names: Sequence[str]) -> list[list[str]]:
+    """Scenarios of ``names`` grouped by identical collapse mechanism (scenarios without one
+    are left out). The direct limit analysis does not see settlements, so all the
+    scenarios of one structure, material and direction share theirs."""
+    mech = []
+    for s in names:
+        if "mechanism" not in ds:
+            break
+        v = np.asarray(ds["mechanism"].sel(scenario=s).transpose("block", "dof").values, float)
+        if np.all(np.isfinite(v)) and np.any(v):
+            mech.append((s, v, value(ds, "interface_mode", s).astype(str)))
+    groups: list[list[int]] = []
+    for i, (_, v, m) in enumerate(mech):
+        for g in groups:
+            _, v0, m0 = mech[g[0]]
+            if np.allclose(v0, v, rtol=1e-6, atol=1e-9 * np.abs(v0).max()) and np.array_equal(m0, m):
+                g.append(i)
+                break
+        else:
+            groups.append([i])
+    return [[mech[i][0] for i in g] for g in groups]
+
+
+# ---------------------------------------------------------------------------- frame of the structure
+@dataclass(frozen=True)
+class StructureFrame:
+    """Horizontal directions in which support forces are read.
+
+    Attributes
+    ----------
+    outward : dict
+        Support name -> unit horizontal vector of ``H`` (along the span, pointing away
+        from the structure; for a single support, the structure's long axis).
+    across : dict
+        Support name -> unit horizontal vector of ``S`` (``e_z x outward`` for radial
+        supports; one direction for all the supports of a line-like structure).
+    moment_axis : dict
+        Support name -> axis of ``M``: the span (line, single) or the tangential
+        direction (radial), so that ``M`` is the moment that rocks the structure over
+        its supports.
+    kind : {"line", "radial", "single"}
+        Supports on one line (an arch: the span), around a centre (a dome), or one.
+    labels : dict
+        Axis label of each component ``H``, ``S``, ``V``, ``M`` with its sign.
+    """
+
+    outward: dict[str, NDArray[np.float64]]
+    across: dict[str, NDArray[np.float64]]
+    moment_axis: dict[str, NDArray[np.float64]]
+    kind: str
+    labels: dict[str, str]
+
+
+def _axis_name(v: NDArray[np.float64]) -> str:
+    for k, name in enumerate("xyz"):
+        if abs(abs(v[k]) - 1.0) < 1e-9:
+            return ("+" if v[k] > 0 else "-") + name
+    return f"{math.degrees(math.atan2(v[1], v[0])):.0f}° from +x"
+
+
+def _positive(v: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``v`` with its largest component positive."""
+    return v if v[np.argmax(np.abs(v))] > 0 else -v
+
+
+def structure_frame(asm: Assembly) -> StructureFrame:
+    """The frame of :class:`StructureFrame` for an assembly.
+
+    Support centroids on one horizontal line (principal direction of their plan
+    positions, second singular value below 1e-6 of the first) give a ``line``: the span is
+    that line, oriented with its largest component positive; each support's ``H`` points
+    away from the free blocks' centroid along it. Three or more supports off a line give
+    ``radial`` directions from that centroid. One support gives ``single``: the span is the
+    principal horizontal axis of the free blocks' centroids (x when they have none).
+    """
+    cen = asm.centroids
+    free = list(asm.free_indices)
+    w = asm.weights[free]
+    centre = (w[:, None] * cen[free]).sum(axis=0) / w.sum() if free else cen.mean(axis=0)
+    sup = list(asm.support_names)
+    p = {s: cen[asm.index[s]][:2] for s in sup}
+    ez = np.array([0.0, 0.0, 1.0])
+
+    def horizontal(v2: NDArray[np.float64]) -> NDArray[np.float64]:
+        v = np.array([v2[0], v2[1], 0.0])
+        return v / np.linalg.norm(v)
+
+    def principal(points: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        d = points - points.mean(axis=0)
+        _, sv, vt = np.linalg.svd(d, full_matrices=False)
+        return vt[0], sv
+
+    vertical = "V vertical (kN)\n+ presses the support down"
+    if len(sup) >= 2:
+        axis, sv = principal(np.array(list(p.values())))
+        if len(sv) < 2 or sv[1] <= 1e-6 * sv[0]:
+            e = _positive(horizontal(axis))
+            out = {s: (e if (p[s] - centre[:2]) @ e[:2] >= 0 else -e) for s in sup}
+            across = np.cross(ez, e)
+            span = _axis_name(e)[1:]
+            labels = {"H": f"H along the span {span} (kN)\n+ pushes the support outward",
+                      "S": f"S across the span (kN)\n+ towards {_axis_name(across)}", "V": vertical,
+                      "M": f"M about the span axis (kN m)\n+ right-handed about {_axis_name(e)}"}
+            return StructureFrame(out, {s: across for s in sup}, {s: e for s in sup}, "line", labels)
+        out = {s: horizontal(p[s] - centre[:2]) for s in sup}
+        tangential = {s: np.cross(ez, out[s]) for s in sup}
+        labels = {"H": "H radial (kN)\n+ pushes the support outward",
+                  "S": "S tangential (kN)\n+ counter-clockwise in plan", "V": vertical,
+                  "M": "M about the tangential axis (kN m)\n+ tips the support outward"}
+        return StructureFrame(out, tangential, tangential, "radial", labels)
+    pts = cen[free][:, :2] if len(free) >= 2 else np.zeros((2, 2))
+    axis, sv = principal(pts)
+    e = _positive(horizontal(axis)) if sv[0] > 0 and (len(sv) < 2 or sv[1] < 0.99 * sv[0]) else np.array([1.0, 0, 0])
+    across = np.cross(ez, e)
+    labels = {"H": f"H along the structure (kN)\n+ towards {_axis_name(e)}",
+              "S": f"S across the structure (kN)\n+ towards {_axis_name(across)}", "V": vertical,
+              "M": f"M about the long axis (kN m)\n+ right-handed about {_axis_name(e)}"}
+    return StructureFrame({s: e for s in sup}, {s: across for s in sup}, {s: e for s in sup}, "single", labels)
+
+
+def support_forces(ds: xr.Dataset, scenario: str, frame: StructureFrame) -> dict[str, NDArray[np.float64]]:
+    """Forces and moment each support receives from the structure, in ``frame``.
+
+    Returns
+    -------
+    dict
+        ``"H"``, ``"S"``, ``"V"``, ``"M"``: arrays ``(n_steps, n_supports)`` (kN, kN m),
+        supports in dataset order: minus ``reaction`` read along ``frame.outward``,
+        ``frame.across``, ``-e_z`` (so the weight on a support is positive) and
+        ``frame.moment_axis``. NaN where the step is not optimal.
+    """
+    sup = [str(s) for s in ds["support"].values]
+    r = np.asarray(ds["reaction"].sel(scenario=scenario).transpose("step", "support", "component").values, float)
+    f, m = -r[..., :3], -r[..., 3:]
+
+    def along(vec: NDArray[np.float64], axes: dict[str, NDArray[np.float64]]) -> NDArray[np.float64]:
+        return np.einsum("ksj,sj->ks", vec, np.stack([axes[s] for s in sup]))
+
+    return {"H": along(f, frame.outward), "S": along(f, frame.across), "V": -f[..., 2],
+            "M": along(m, frame.moment_axis)}
+
+
+# ---------------------------------------------------------------------------- geometry helpers
+def chain_interfaces(asm: Assembly) -> list[int] | None:
+    """Interfaces along the structure's single line of blocks, from one end to the other.
+
+    A structure is a single line of blocks (an arch, a column) when its blocks and
+    interfaces form a path: every block touches at most two others and the graph is
+    connected without a cycle. Returns the interface indices in order from the first
+    support (or from the path's first end), or None when it is not a line (a wall, a
+    dome): no line of thrust exists there.
+    """
+    n = len(asm.blocks)
+    adj: dict[int, list[tuple[int, int]]] = {k: [] for k in range(n)}
+    for i, itf in enumerate(asm.interfaces):
+        if itf.a != itf.b:
+            adj[itf.a].append((itf.b, i))
+            adj[itf.b].append((itf.a, i))
+    if n < 2 or len(asm.interfaces) != n - 1 or any(len(v) > 2 for v in adj.values()):
+        return None
+    ends = [k for k in range(n) if len(adj[k]) == 1]
+    if len(ends) != 2:
+        return None
+    start = min(ends, key=lambda k: (not asm.blocks[k].support, k))
+    order, prev, node = [], -1, start
+    while True:
+        nxt = [(b, i) for b, i in adj[node] if b != prev]
+        if not nxt:
+            break
+        prev, (node, i) = node, nxt[0]
+        order.append(i)
+    return order if len(order) == n - 1 else None
+
+
+def hinge_segments(ds: xr.Dataset, scenario: str, asm: Assembly) -> NDArray[np.float64]:
+    """Hinge lines of the collapse mechanism, clipped to their interfaces, ``(n, 2, 3)`` (m).
+
+    A hinging interface (``interface_mode == "hinge"``) turns about the line through its
+    ``hinge_point`` along the relative rotation of its blocks, ``w_B - w_A`` (from
+    ``mechanism``); the segment is that line's chord through the interface polygon.
+    Interfaces whose relative rotation vanishes are skipped.
+    """
+    if "interface_mode" not in ds or "mechanism" not in ds:
+        return np.empty((0, 2, 3))
+    mode = value(ds, "interface_mode", scenario).astype(str)
+    hp = np.asarray(ds["hinge_point"].sel(scenario=scenario).transpose("interface", "xyz").values, float)
+    vel = np.asarray(ds["mechanism"].sel(scenario=scenario).sel(block=list(asm.names)).transpose("block", "dof").values,
+                     float)
+    if not np.all(np.isfinite(vel)):
+        return np.empty((0, 2, 3))
+    segs = []
+    for k in np.flatnonzero((mode == "hinge") & np.all(np.isfinite(hp), axis=1)):
+        itf = asm.interfaces[k]
+        axis = vel[itf.b, 3:] - vel[itf.a, 3:]
+        norm = np.linalg.norm(axis)
+        if norm <= 1e-12 * max(np.abs(vel[:, 3:]).max(), 1e-300):
+            continue
+        seg = _chord(itf.points, itf.normal, hp[k], axis / norm)
+        if seg is not None:
+            segs.append(seg)
+    return np.array(segs).reshape(-1, 2, 3)
+
+
+def _chord(poly: NDArray[np.float64], normal: NDArray[np.float64], p0: NDArray[np.float64],
+           a: NDArray[np.float64]) -> NDArray[np.float64] | None:
+    """The part of the line ``p0 + t a`` inside the convex polygon ``poly`` (in its plane)."""
+    a = a - (a @ normal) * normal
+    if np.linalg.norm(a) < 1e-9:
+        return None
+    a = a / np.linalg.norm(a)
+    c = poly.mean(axis=0)
+    tol = 1e-6 * float(np.ptp(poly, axis=0).max())  # a hinge on an edge of the polygon is inside it
+    lo, hi = -np.inf, np.inf
+    m = len(poly)
+    for j in range(m):
+        q, r = poly[j], poly[(j + 1) % m]
+        inward = np.cross(normal, r - q)
+        if inward @ (c - q) < 0:
+            inward = -inward
+        num, den = inward @ (p0 - q), inward @ a  # inside: num + t den >= 0
+        if abs(den) < 1e-9 * np.linalg.norm(inward):  # the line runs along this edge
+            if num < -tol * np.linalg.norm(inward):
+                return None
+            continue
+        t = -num / den
+        lo, hi = (max(lo, t), hi) if den > 0 else (lo, min(hi, t))
+    if not (np.isfinite(lo) and np.isfinite(hi)) or hi - lo <= 1e-12:
+        return None
+    return np.array([p0 + lo * a, p0 + hi * a])
+
+
+# ---------------------------------------------------------------------------- curves
+def group_identical(curves: Sequence[tuple[NDArray, NDArray]], atol: float) -> list[list[int]]:
+    """Groups of curves ``(x, y)`` that coincide: same x, y within ``atol`` everywhere.
+
+    Returns
+    -------
+    list of list of int
+        Indices into ``curves``, each group in input order, groups ordered by their first
+        member.
+    """
+    groups: list[list[int]] = []
+    for i, (x, y) in enumerate(curves):
+        for g in groups:
+            x0, y0 = curves[g[0]]
+            if len(x0) == len(x) and np.allclose(x0, x, rtol=0, atol=1e-12) and np.allclose(
+                y0, y, rtol=0, atol=atol, equal_nan=True
+            ):
+                g.append(i)
+                break
+        else:
+            groups.append([i])
+    return groups
+
+
+def join_names(names: Iterable[str], limit: int = 4) -> str:
+    """``a, b, c`` (``a, b, … (+3)`` beyond ``limit``)."""
+    names = list(names)
+    head = ", ".join(names[:limit])
+    return head + (f", … (+{len(names) - limit})" if len(names) > limit else "")

@@ -1,0 +1,199 @@
+"""Write the figures and the interactive view of a results dataset, each drawn once.
+
+:func:`write_figures` reads what to draw from the study's ``[plots]`` table
+(:func:`tce.plot.data.plot_spec`), solves the drawn states the file does not hold
+(:mod:`tce.plot.states`), and renders one file per figure, in parallel worker processes
+when there are many (:data:`PARALLEL_AT`). Files (``<tag>`` appended to each stem when
+given):
+
+``capacity.png``        lambda_max against the position of a moving load (``capacity``; load-position
+                        sweeps; :mod:`tce.plot.capacity`)
+``thrust.png``          forces on the supports against lambda (kind ``thrust``)
+``states.png``          drawn states, ``states_2.png`` ... for further pages (``states``)
+``thrust_lines.png``    lines of thrust per drawn state (``thrust_lines``; one line of blocks only)
+``base.png``            pressure points on the support interfaces (``base``)
+``mechanism.png``       collapse mechanism, ``mechanism_2.png`` ... for other mechanisms (``mechanism``)
+``summary.png``         lambda_max against the swept parameters (``summary``; sweeps only)
+``bracket.png``         lambda_max against a swept material parameter with the non-associative
+                        bracket (``bracket``; non-associative materials; :mod:`tce.plot.materials`)
+``view.html``           the interactive 3D view (``view``; :mod:`tce.plot.view`)
+
+The number of figures does not grow with the number of scenarios beyond those the
+``[plots]`` table draws: a large sweep gets ``summary.png`` and what its table names.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .data import PlotSpec, assembly, chain_interfaces, mechanism_groups, plot_spec, state_pages, swept_parameters
+from .states import missing_states, solve_states
+
+__all__ = ["PARALLEL_AT", "figure_tasks", "write_figures"]
+
+log = logging.getLogger(__name__)
+
+#: render in parallel (when ``jobs > 1``) from this many files on
+PARALLEL_AT = 8
+#: PNG options: a screen resolution and fast compression (drawing, not squeezing, is the cost)
+PNG = dict(dpi=100, pil_kwargs={"compress_level": 1})
+
+
+@dataclass(frozen=True)
+class Task:
+    """One file to write: ``kind`` drawn with ``args`` into ``name``."""
+
+    name: str
+    kind: str
+    args: tuple
+
+
+def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
+    """The files :func:`write_figures` writes for ``spec``, in order (see module docstring).
+
+    A kind asked for that does not apply (no scenario drawn, no line of blocks, nothing
+    swept, no mechanism) is logged and left out.
+    """
+    def name(stem: str, ext: str = "png") -> str:
+        return f"{stem}_{tag}.{ext}" if tag else f"{stem}.{ext}"
+
+    names = list(spec.scenarios)
+    steps = list(spec.steps)
+    tasks: list[Task] = []
+    skipped: list[str] = []
+    for kind in spec.kinds:
+        if kind == "summary":
+            if swept_parameters(ds):
+                tasks.append(Task(name("summary"), kind, ()))
+            else:
+                skipped.append("summary (nothing swept)")
+            continue
+        if kind == "capacity":
+            if "load_x" in ds.coords:
+                tasks.append(Task(name("capacity"), kind, ()))
+            else:
+                skipped.append("capacity (no load-position sweep)")
+            continue
+        if kind == "bracket":
+            from .materials import SWEPT
+
+            if "lambda_nonassoc" in ds and any(p in ds.coords and len(np.unique(ds[p].values)) > 1 for p in SWEPT):
+                tasks.append(Task(name("bracket"), kind, ()))
+            else:
+                skipped.append("bracket (no non-associative material swept: the summary has lambda_max)")
+            continue
+        if not names:
+            skipped.append(f"{kind} (no scenario drawn: name them in [plots] scenarios)")
+            continue
+        if kind == "thrust":
+            tasks.append(Task(name("thrust"), kind, (tuple(names),)))
+        elif kind == "states":
+            for k, page in enumerate(state_pages(names, steps)):
+                tasks.append(Task(name("states" if k == 0 else f"states_{k + 1}"), kind, (tuple(page),)))
+        elif kind == "thrust_lines":
+            if chain_interfaces(assembly(ds)) is None:
+                skipped.append("thrust_lines (the structure is not one line of blocks)")
+            else:
+                tasks.append(Task(name("thrust_lines"), kind, (tuple(names), tuple(steps))))
+        elif kind == "base":
+            tasks.append(Task(name("base"), kind, (tuple(names), tuple(steps))))
+        elif kind == "mechanism":
+            groups = mechanism_groups(ds, names)
+            if not groups:
+                skipped.append("mechanism (no scenario drawn has one)")
+            for k, group in enumerate(groups):
+                tasks.append(Task(name("mechanism" if k == 0 else f"mechanism_{k + 1}"), kind, (tuple(group),)))
+        elif kind == "view":
+            tasks.append(Task(name("view", "html"), kind, (tuple(names),)))
+    for what in skipped:
+        log.info("not drawn: %s", what)
+    return tasks
+
+
+def _builders() -> dict[str, Callable]:
+    from . import capacity, figures, materials, view
+
+    return {
+        "capacity": capacity.influence_line,
+        "bracket": materials.bracket_figure,
+        "thrust": figures.thrust_curves,
+        "states": figures.states_figure,
+        "thrust_lines": figures.thrust_lines,
+        "base": figures.base_figure,
+        "mechanism": figures.mechanism_view,
+        "summary": figures.summary_figure,
+        "view": view.view_html,
+    }
+
+
+def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
+    """Draw one task and write its file (atomically: a temporary file, then a rename)."""
+    path = Path(outdir) / task.name
+    tmp = path.with_name(f".{path.name}.tmp")
+    out = _builders()[task.kind](ds, *task.args)
+    try:
+        if isinstance(out, str):
+            tmp.write_text(out, encoding="utf-8")
+        else:
+            out.savefig(tmp, format=path.suffix[1:], **PNG)
+        tmp.replace(path)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return path
+
+
+def _subset(ds: xr.Dataset, task: Task) -> xr.Dataset:
+    """The part of ``ds`` a task reads (what a worker process receives)."""
+    if task.kind in ("summary", "bracket", "capacity"):
+        return ds.drop_vars([k for k, v in ds.data_vars.items() if "step" in v.dims or "interface" in v.dims])
+    names = {a for arg in task.args for a in arg if isinstance(a, str)}
+    names |= {a[0] for arg in task.args for a in arg if isinstance(a, tuple)}
+    return ds.sel(scenario=[s for s in ds["scenario"].values if s in names])
+
+
+def write_figures(
+    ds: xr.Dataset, outdir: Path | str, spec: PlotSpec | None = None, jobs: int = 1, tag: str = ""
+) -> list[Path]:
+    """Write every figure of ``spec`` (default: the study's ``[plots]``) into ``outdir``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Results dataset (``docs/results.md``).
+    outdir : path
+        Created if missing.
+    spec : PlotSpec, optional
+    jobs : int
+        Worker processes for the drawing (used from :data:`PARALLEL_AT` files on).
+    tag : str
+        Appended to every file stem (figures drawn on demand).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written, in the order of :func:`figure_tasks`.
+    """
+    spec = spec or plot_spec(ds)
+    todo = missing_states(ds, spec.scenarios, [t for t in spec.steps if t != "max"])
+    if todo:
+        try:
+            ds = solve_states(ds, todo)
+        except ValueError as exc:
+            log.warning("drawn states not solved (%s): their panels say so", exc)
+    tasks = figure_tasks(ds, spec, tag)
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    if jobs > 1 and len(tasks) >= PARALLEL_AT:
+        import joblib
+
+        log.info("drawing %d files on %d workers", len(tasks), jobs)
+        return list(joblib.Parallel(n_jobs=min(jobs, len(tasks)))(
+            joblib.delayed(render)(_subset(ds, t), t, outdir) for t in tasks
+        ))
+    return [render(ds, t, outdir) for t in tasks]

@@ -1,0 +1,159 @@
+"""How many worker processes a run uses: in-process when the work is smaller than starting workers.
+
+A parallel run pays, per worker, a process start, the imports of numpy, scipy, xarray, Clarabel
+and tce, and the pickling of every scenario and answer: :data:`WORKER_START_S` seconds of wall
+time, whatever the study. Most paper studies solve in well under that (the Fig. 8 study's
+whole solver work is about 30 ms), so running them on all cores makes them slower (2.4x on
+this project's machine). :func:`choose_jobs` estimates the study's solver work from the
+first scenario's analysis (built in the calling process, where an in-process run reuses it)
+and one timed solve, and runs in-process unless the work saved by ``k`` workers exceeds
+their start-up. ``--jobs N`` (``jobs=N``) is never second-guessed.
+
+Estimate of the work, seconds::
+
+    sum over scenarios (increments + 2) * t_solve + (groups - 1) * t_build
+
+with ``increments = lambda_max / step + 1`` from the direct limit of the scenario's direction
+(``lam_cap / step + 1`` when there is none), ``t_solve`` a warm TCE solve of the first
+scenario and ``t_build`` the time to build its analysis (assembly, model). An assembly whose
+model has more than :data:`LARGE_MODEL` unknowns is taken as large work without solving
+anything (one solve of it costs about a worker start).
+
+Dask: xarray imports dask, when it is installed, the first time it makes a Dataset
+(``xarray.namedarray.pycompat.array_type("dask")``), about 0.8 s per process on this
+project's machine. The ``tce`` program sets ``TCE_NO_DASK=1`` unless ``--backend dask`` is
+chosen; :func:`block_dask_import` (called when this module is imported with that variable
+set, in the program and in its loky workers, which inherit the environment) makes that import
+fail fast, which xarray takes as "dask not installed". xarray remembers whether dask is
+installed from its own import on, so :mod:`tce.study` imports this module first.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import os
+import sys
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # imported lazily: this module must load before anything imports xarray
+    from ..core.analysis import Analysis
+    from .schema import Scenario
+
+__all__ = ["LARGE_MODEL", "WORKER_START_S", "JobsChoice", "block_dask_import", "choose_jobs", "estimate_work"]
+
+log = logging.getLogger(__name__)
+
+#: Wall seconds to start one loky worker and import tce's stack in it (measured 2-3 s on this
+#: project's machine when idle, 6-8 s when shared; the lower figure keeps big studies parallel).
+WORKER_START_S = 3.0
+#: Unknowns above which a model is taken as large work without a timed solve.
+LARGE_MODEL = 20_000
+#: Environment variable that keeps dask from being imported (see module docstring).
+NO_DASK = "TCE_NO_DASK"
+
+
+def block_dask_import() -> bool:
+    """Make ``import dask`` fail in this process; True if blocked. Nothing is done once dask
+    or xarray is imported (xarray has then already taken note that dask is installed)."""
+    if sys.modules.get("dask") is not None or "xarray" in sys.modules:
+        return False
+    sys.modules["dask"] = None  # type: ignore[assignment]  # import raises ModuleNotFoundError
+    return True
+
+
+if os.environ.get(NO_DASK) == "1":
+    block_dask_import()
+
+
+@dataclass(frozen=True)
+class JobsChoice:
+    """How many processes run the scenarios, and why.
+
+    Attributes
+    ----------
+    jobs : int
+        Worker processes (1: in the calling process).
+    reason : str
+        The decision in words (logged at info).
+    work_s : float
+        Estimated solver work of the study (s); NaN when not estimated.
+    """
+
+    jobs: int
+    reason: str
+    work_s: float = float("nan")
+
+
+def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario], Analysis]) -> tuple[float, str]:
+    """Estimated solver work (s) of ``scenarios`` and how it was reckoned (module docstring).
+
+    Builds the first scenario's analysis with ``analysis_of(scenario)`` (the runner's cached
+    builder) and, for a model of at most :data:`LARGE_MODEL` unknowns, times one warm TCE
+    solve and the direct limit of each direction.
+    """
+    first = scenarios[0]
+    t0 = time.perf_counter()
+    an = analysis_of(first)
+    model = an.model(an.model_kind(first.alpha, first.settlements))
+    t_build = time.perf_counter() - t0
+    if model.n_vars > LARGE_MODEL:
+        return math.inf, f"a model of {model.n_vars} unknowns"
+    an.solve(0.0, first.alpha, first.settlements)  # set-up
+    t0 = time.perf_counter()
+    an.solve(0.0, first.alpha, first.settlements)
+    t_solve = time.perf_counter() - t0
+    an.reset_solvers()
+    solves = 0.0
+    for sc in scenarios:
+        step, cap = sc.loads["lambda_step"], sc.loads["lambda_cap"]
+        lam = an.limit(sc.alpha).lambda_max if sc.group == first.group else math.nan
+        increments = min(lam, cap) / step + 1 if math.isfinite(lam) else cap / step + 1
+        solves += increments + 2
+    groups = len({sc.group for sc in scenarios})
+    work = solves * t_solve + (groups - 1) * t_build
+    return work, f"about {solves:.0f} solves of {t_solve * 1e3:.2g} ms and {groups} model(s) of {t_build:.2g} s"
+
+
+def choose_jobs(
+    scenarios: Sequence[Scenario],
+    jobs: int | None,
+    analysis_of: Callable[[Scenario], Analysis],
+    backend: str = "loky",
+    cpus: int | None = None,
+) -> JobsChoice:
+    """How many processes should solve ``scenarios`` (module docstring).
+
+    Parameters
+    ----------
+    scenarios : sequence of Scenario
+        The scenarios still to solve.
+    jobs : int or None
+        Workers asked for (``--jobs``): used as given. None: decide.
+    analysis_of : callable
+        ``scenario -> Analysis``, the runner's cached builder (an in-process run reuses what
+        the estimate built).
+    backend : str
+        ``"dask"`` runs on a cluster: all ``cpus`` workers, no estimate.
+    cpus : int, optional
+        Cores available (default ``os.cpu_count()``).
+    """
+    cpus = cpus or os.cpu_count() or 1
+    if jobs is not None:
+        return JobsChoice(jobs, f"{jobs} worker(s), as asked (--jobs {jobs})")
+    if backend == "dask":
+        return JobsChoice(cpus, f"{cpus} Dask worker(s), one per core")
+    k = min(cpus, len(scenarios))
+    if k <= 1:
+        why = "one core" if cpus <= 1 else "one scenario to solve"
+        return JobsChoice(1, f"in-process: {why}")
+    work, how = estimate_work(scenarios, analysis_of)
+    threshold = WORKER_START_S * k / (k - 1)  # parallel wins when work (1 - 1/k) > start-up
+    if work > threshold:
+        return JobsChoice(k, f"{k} workers: the study's work ({how}; {work:.3g} s) exceeds "
+                             f"{threshold:.3g} s, what starting {k} workers would cost", work)
+    return JobsChoice(1, f"in-process: the study's work ({how}; {work:.3g} s) is below "
+                         f"{threshold:.3g} s, what starting {k} workers would cost", work)

@@ -1,0 +1,88 @@
+"""Choosing in-process or parallel runs, and keeping dask out of the ``tce`` program."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tce.core.analysis import Analysis
+from tce.core.material import Material
+from tce.structures.arch import semicircular_arch
+from tce.study import jobs as jobs_module
+from tce.study.jobs import LARGE_MODEL, choose_jobs, estimate_work
+from tce.study.runner import _analysis as _runner_analysis, run_study
+from tce.study.schema import load_study
+
+STUDIES = Path(__file__).resolve().parents[1] / "studies"
+
+
+FIG8 = load_study(STUDIES / "fig7_8_inplane.toml")
+
+
+def _analysis(sc):
+    """The runner's analysis of a scenario (as run_study builds it)."""
+    return _runner_analysis(sc, FIG8.assembly(sc.structure))
+
+
+@pytest.fixture(scope="module")
+def fig8():
+    return FIG8.scenarios()
+
+
+def test_jobs_asked_for_are_used(fig8):
+    assert choose_jobs(fig8, 3, _analysis).jobs == 3
+    assert choose_jobs(fig8, 1, _analysis, cpus=8).jobs == 1
+    assert choose_jobs(fig8, None, _analysis, backend="dask", cpus=4).jobs == 4
+
+
+def test_one_scenario_or_one_core_runs_in_process(fig8):
+    assert choose_jobs(fig8[:1], None, _analysis, cpus=8).jobs == 1
+    assert choose_jobs(fig8, None, _analysis, cpus=1).jobs == 1
+
+
+def test_small_study_runs_in_process(fig8):
+    choice = choose_jobs(fig8, None, _analysis, cpus=2)
+    assert choice.jobs == 1 and choice.reason.startswith("in-process")
+    # the estimate counts the increments up to the direct limit (0.243 / 0.02) plus the bracket
+    assert 4 * (0.243 / 0.02 + 3) == pytest.approx(float(choice.reason.split("about ")[1].split(" ")[0]), rel=0.1)
+    assert 0 < choice.work_s < jobs_module.WORKER_START_S
+
+
+def test_work_above_worker_start_up_goes_parallel(fig8, monkeypatch):
+    monkeypatch.setattr(jobs_module, "WORKER_START_S", 0.0)
+    choice = choose_jobs(fig8, None, _analysis, cpus=2)
+    assert choice.jobs == 2 and "2 workers" in choice.reason
+    assert choose_jobs(fig8, None, _analysis, cpus=8).jobs == 4  # never more workers than scenarios
+
+
+def test_large_model_is_large_work_without_a_solve(fig8):
+    big = Analysis(semicircular_arch(voussoirs=LARGE_MODEL // 4 + 10), Material(0.8))  # planar: 4 unknowns a joint
+    work, how = estimate_work(fig8, lambda sc: big)
+    assert work == float("inf") and "unknowns" in how
+    assert not big._solvers and not big._limits  # nothing was solved
+    assert choose_jobs(fig8, None, lambda sc: big, cpus=2).jobs == 2
+
+
+def test_run_logs_its_choice(tmp_path, caplog):
+    study = load_study(STUDIES / "fig7_8_inplane.toml")
+    with caplog.at_level("INFO", logger="tce"):
+        run_study(study, tmp_path, plots=False)
+    assert any(r.message.startswith("running fig7_8_inplane: 4 scenarios; in-process: the study's work")
+               for r in caplog.records)
+
+
+@pytest.mark.parametrize("jobs", [[], ["--jobs", "2"]], ids=["default", "two workers"])
+def test_tce_program_does_not_import_dask(tmp_path, jobs):
+    # the program, in-process or with workers (which inherit TCE_NO_DASK), runs without dask
+    code = (
+        "import sys\n"
+        "from tce.study.cli import main\n"
+        f"sys.argv = ['tce', 'run', {str(STUDIES / 'fig9_outofplane.toml')!r}, '--out', {str(tmp_path)!r}, '--no-plots', *{jobs!r}]\n"
+        "rc = main()\n"
+        "print(rc, sys.modules.get('dask', 'absent'))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split()[-2:] == ["0", "None"]  # blocked: never imported

@@ -1,0 +1,390 @@
+"""General loads (issue 12): point and distributed loads, fixed or scaled by lambda.
+
+Validation against references tce did not produce: closed forms of rigid blocks (rocking,
+sliding, overturning of a column) and the paper's arch against a linear program written
+here from its geometry (scipy's HiGHS, not tce's model or solver).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from helpers import block_on_support
+from scipy.optimize import linprog
+
+from tce.analysis.diagnose import diagnose
+from tce.analysis.loadpath import load_path
+from tce.analysis.thickness import arch_minimum_thickness
+from tce.core.analysis import Analysis
+from tce.core.cvx import CvxTCE
+from tce.core.loads import DistributedLoad, LoadError, LoadPattern, PointLoad, as_pattern, top_surface
+from tce.core.material import Material
+from tce.structures.arch import semicircular_arch
+from tce.structures.assembly import Assembly, Block, Interface
+from tce.structures.geometry import box
+
+UNIT_WEIGHT = 20.0  # kN/m^3
+
+
+def column(n: int, side: float = 0.5, unit_weight: float = UNIT_WEIGHT) -> Assembly:
+    """``n`` equal cubes of ``side`` stacked on a wider support slab (cube k from z = k side)."""
+    s = side
+    blocks = [Block("base", box([-s, -s, -0.2], [s, s, 0.0]), unit_weight, support=True)]
+    blocks += [Block(f"c{k + 1}", box([-s / 2, -s / 2, k * s], [s / 2, s / 2, (k + 1) * s]), unit_weight) for k in range(n)]
+    interfaces = []
+    for k in range(n):
+        z = k * s
+        pts = np.array([[-s / 2, -s / 2, z], [s / 2, -s / 2, z], [s / 2, s / 2, z], [-s / 2, s / 2, z]])
+        interfaces.append(Interface(k, k + 1, pts, [0, 0, 1]))
+    return Assembly(tuple(blocks), tuple(interfaces))
+
+
+def point(force, **kw) -> LoadPattern:
+    """A pattern whose only live load is one point load (lateral pattern off)."""
+    return LoadPattern(lateral=False, point=[PointLoad(force=force, **kw)])
+
+
+# ---------------------------------------------------------------------------- closed forms
+@pytest.mark.parametrize("model", ["auto", "spatial"])
+@pytest.mark.parametrize("height", [1.0, 0.6, 0.25])
+def test_single_block_rocks_at_w_b_over_h(model, height):
+    # block of width 0.4 (half-width b = 0.2), height 1.0, depth 0.3 on a slab; horizontal
+    # live load P at `height` above the base: rocking about the far edge at P = W b / h
+    width, h, depth = 0.4, 1.0, 0.3
+    a = block_on_support(width, h, depth, UNIT_WEIGHT)
+    W = UNIT_WEIGHT * width * h * depth
+    lim = Analysis(a, Material(), model=model).limit(loads=point([1.0, 0, 0], block="block", at=[-0.2, 0.0, height]))
+    assert lim.status == "optimal"
+    assert lim.lambda_max == pytest.approx(W * (width / 2) / height, rel=1e-7)
+    assert lim.mechanism.hinges == [0]
+    assert lim.lambda_kinematic == pytest.approx(lim.lambda_max, rel=1e-7)
+
+
+@pytest.mark.parametrize("model", ["auto", "spatial"])
+def test_single_block_slides_at_mu_w(model):
+    # a squat block (half-width 0.4, load at 0.5: rocking at 0.8 W) slides first at mu W
+    a = block_on_support(0.8, 1.0, 0.3, UNIT_WEIGHT)
+    W = UNIT_WEIGHT * 0.8 * 1.0 * 0.3
+    lim = Analysis(a, Material(0.2), model=model).limit(loads=point([1.0, 0, 0], block="block", at=[0.0, 0.0, 0.5]))
+    assert lim.status == "optimal"
+    assert lim.lambda_max == pytest.approx(0.2 * W, rel=1e-7)
+    assert lim.mechanism.sliding == [0]
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 5])
+def test_column_lateral_pattern_one_over_n(n):
+    lim = Analysis(column(n), Material()).limit(0.0)
+    assert lim.lambda_max == pytest.approx(1.0 / n, rel=1e-7)
+
+
+@pytest.mark.parametrize("direction", [[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.6, 0.8, 0.0]])
+@pytest.mark.parametrize("n", [1, 2, 4])
+def test_column_top_point_load_overturns_about_the_base_edge(n, direction):
+    # one horizontal point load P d on the top face of the top cube: the column (and every
+    # part of it above a joint) stands while the resultant of weight and load meets its
+    # square base, |P h d_x| and |P h d_y| <= (n W) s / 2 with h = n s: overturning about the
+    # base edge facing the larger component of d
+    s = 0.5
+    W = UNIT_WEIGHT * s**3
+    d = np.asarray(direction)
+    lim = Analysis(column(n, s), Material()).limit(loads=point(list(d), block=f"c{n}", at=[0.0, 0.0, n * s]))
+    arm = (s / 2) / max(abs(d[0]), abs(d[1]))
+    assert lim.lambda_max == pytest.approx(n * W * arm / (n * s), rel=1e-7)
+
+
+def test_surcharge_on_a_block_raises_its_rocking_limit():
+    # a fixed distributed load q on the right half of the top face (resultant Q at x = b/4)
+    # and the lateral pattern: lam W h/2 = W b/2 + Q b/4 about the right edge
+    b, h, d, q = 0.4, 1.0, 0.3, 7.0
+    a = block_on_support(b, h, d, UNIT_WEIGHT)
+    W = UNIT_WEIGHT * b * h * d
+    Q = q * (b / 2) * d
+    half = LoadPattern(distributed=[DistributedLoad(x=[0.0, b / 2], y=[-d / 2, d / 2], pressure=q, scaled=False)])
+    lim = Analysis(a, Material()).limit(loads=half)
+    assert lim.lambda_max == pytest.approx((W * b / 2 + Q * b / 4) / (W * h / 2), rel=1e-7)
+    full = LoadPattern(distributed=[DistributedLoad(x=[-b / 2, b / 2], y=[-d / 2, d / 2], pressure=q, scaled=False)])
+    assert Analysis(a, Material()).limit(loads=full).lambda_max == pytest.approx((W + 2 * Q) * b / (W * h), rel=1e-7)
+
+
+# ---------------------------------------------------------------------------- no limit
+def test_vertical_load_over_the_support_interface_has_no_limit():
+    a = block_on_support()
+    an = Analysis(a, Material())
+    pattern = point([0.0, 0.0, -1.0], block="block", at=[0.05, 0.0, 1.0])
+    lim = an.limit(loads=pattern)
+    assert lim.status == "unbounded" and lim.lambda_max == math.inf
+    lp = load_path(an, step=1.0, lam_cap=20.0, loads=pattern)
+    assert lp.outcome == "no_limit" and lp.status == "no_limit" and not lp.ok
+    assert math.isnan(lp.lambda_max)
+    assert all(s.status == "optimal" for s in lp.steps)
+
+
+def test_arch_load_over_the_springing_has_no_limit(arch):
+    # over the left springing the extrados belongs to v02; straight below lie the joints
+    # v01|v02 and left|v01: a Heyman arch carries a vertical load there at any multiplier
+    an = Analysis(arch, Material())
+    pattern = point([0.0, 0.0, -1.0], on_top=[-1.1, 0.0])
+    assert an.applied_loads(loads=pattern).blocks.tolist() == [arch.index["v02"]]
+    assert an.limit(loads=pattern).status == "unbounded"
+    lp = load_path(an, step=2.0, lam_cap=20.0, loads=pattern)
+    assert lp.outcome == "no_limit" and math.isnan(lp.lambda_max)
+
+
+# ---------------------------------------------------------------------------- lateral as points
+@pytest.mark.parametrize("alpha", [0.0, 90.0, 30.0])
+def test_lateral_pattern_equals_explicit_point_loads_at_centroids(arch, alpha):
+    a = math.radians(alpha)
+    loads = [
+        PointLoad(force=[w * math.cos(a), w * math.sin(a), 0.0], block=arch.names[i], scaled=True)
+        for i, w in zip(arch.free_indices, arch.weights[list(arch.free_indices)])
+    ]
+    explicit = LoadPattern(alpha=alpha, lateral=False, point=loads)
+    an = Analysis(arch, Material(0.8))
+    ref = an.limit(alpha)
+    lim = an.limit(loads=explicit)
+    assert lim.model == ref.model
+    assert lim.lambda_max == pytest.approx(ref.lambda_max, rel=1e-9)
+    # a TCE solve below the limit: the same reactions
+    U = {"right": [0.001, 0, 0, 0, 0, 0]}
+    r0, r1 = an.solve(0.1, alpha, U), an.solve(0.1, settlements=U, loads=explicit)
+    assert r0.ok and r1.ok
+    np.testing.assert_allclose(r1.support_wrenches, r0.support_wrenches, atol=1e-7 * arch.total_weight)
+
+
+# ---------------------------------------------------------------------------- independent LP
+def _arch_lp(k: int, mu: float | None, ri=1.0, t=0.2, depth=0.25, n=14, gamma=UNIT_WEIGHT) -> float:
+    """Collapse load (kN) of a vertical point load on the extrados midpoint of voussoir k
+    (1-based) of a semicircular arch: max P s.t. 2D equilibrium (moments about the origin),
+    fn >= 0 at both ends of every joint, |ft| <= mu fn (no limit when mu is None)."""
+    ro = ri + t
+    th = np.pi * (1 - np.arange(n + 1) / n)
+    c, s = np.cos(th), np.sin(th)
+    c[[0, -1]], s[[0, -1]] = [-1.0, 1.0], 0.0
+    # unknowns: joint j (0..n), end e (intrados, extrados), component (fn, ft); then P
+    nv = 4 * (n + 1) + 1
+    A = np.zeros((3 * n, nv))
+    b = np.zeros(3 * n)
+    for j in range(n + 1):
+        nrm = np.array([s[j], -c[j]])  # tangent towards decreasing angle: from block j into j+1
+        tan = np.array([-nrm[1], nrm[0]])
+        for e, r in enumerate((ri, ro)):
+            p = r * np.array([c[j], s[j]])
+            for comp, d in enumerate((nrm, tan)):
+                col = 4 * j + 2 * e + comp
+                for blk, sign in ((j, 1.0), (j - 1, -1.0)):  # + on voussoir j (B), - on j-1 (A)
+                    if 0 <= blk < n:
+                        f = sign * d
+                        A[3 * blk : 3 * blk + 3, col] += [f[0], f[1], p[1] * f[0] - p[0] * f[1]]
+    for i in range(n):  # self-weight of voussoir i (1-based i + 1): a quadrilateral
+        poly = np.array([[ri * c[i], ri * s[i]], [ri * c[i + 1], ri * s[i + 1]],
+                         [ro * c[i + 1], ro * s[i + 1]], [ro * c[i], ro * s[i]]])
+        x, z = poly[:, 0], poly[:, 1]
+        cr = x * np.roll(z, -1) - np.roll(x, -1) * z
+        area = cr.sum() / 2
+        cx = ((x + np.roll(x, -1)) * cr).sum() / (6 * area)
+        w = gamma * abs(area) * depth
+        b[3 * i : 3 * i + 3] = -np.array([0.0, -w, cx * w])  # A F + P load + weight = 0; (0, -w) at (cx, cz)
+    q = ro * np.array([(c[k - 1] + c[k]) / 2, (s[k - 1] + s[k]) / 2])  # extrados chord midpoint
+    A[3 * (k - 1) : 3 * k, -1] = [0.0, -1.0, q[0]]  # (0, -1) at q: moment z fx - x fz = q_x
+    bounds = [(0, None) if j % 2 == 0 else (None, None) for j in range(nv - 1)] + [(None, None)]
+    A_ub, b_ub = [], []
+    if mu is not None:
+        for j in range(0, nv - 1, 2):
+            for sign in (1.0, -1.0):
+                row = np.zeros(nv)
+                row[j + 1], row[j] = sign, -mu
+                A_ub.append(row)
+                b_ub.append(0.0)
+    cost = np.zeros(nv)
+    cost[-1] = -1.0
+    res = linprog(cost, A_ub=np.array(A_ub) if A_ub else None, b_ub=b_ub or None, A_eq=A, b_eq=b, bounds=bounds,
+                  method="highs", options=dict(primal_feasibility_tolerance=1e-10, dual_feasibility_tolerance=1e-10))
+    assert res.status == 0, res.message
+    return float(res.x[-1])
+
+
+def _extrados_midpoint(k: int, ri=1.0, t=0.2, n=14) -> list[float]:
+    th = np.pi * (1 - np.array([k - 1, k]) / n)
+    return [(ri + t) * float(np.cos(th).mean()), 0.0, (ri + t) * float(np.sin(th).mean())]
+
+
+@pytest.mark.parametrize("mu", [None, 0.8])
+@pytest.mark.parametrize("k", [4, 5, 6, 7])
+def test_arch_point_load_against_an_independent_lp(arch, k, mu):
+    reference = _arch_lp(k, mu)
+    at = _extrados_midpoint(k)
+    by_block = point([0.0, 0.0, -1.0], block=f"v{k:02d}", at=at)
+    on_top = point([0.0, 0.0, -1.0], on_top=at[:2])
+    for model in ("auto", "spatial"):
+        an = Analysis(arch, Material(mu), model=model)
+        for pattern in (by_block, on_top):
+            lim = an.limit(loads=pattern)
+            assert lim.model == ("planar" if model == "auto" else "spatial")
+            # the limit solver's tolerance is 1e-10 on the scaled problem (measured: <= 4e-10)
+            assert lim.lambda_max == pytest.approx(reference, rel=1e-8)
+            assert lim.certificate_gap < 1e-8
+
+
+# ---------------------------------------------------------------------------- planar model
+def test_loads_off_the_plane_run_on_the_spatial_model(arch):
+    an = Analysis(arch, Material())
+    at = _extrados_midpoint(6)
+    off = point([0.0, 0.0, -1.0], block="v06", at=[at[0], 0.05, at[2]])
+    sideways = point([0.0, 0.3, -1.0], block="v06", at=at)
+    pair = LoadPattern(lateral=False, point=[PointLoad(force=[0, 0, -0.5], block="v06", at=[at[0], y, at[2]])
+                                             for y in (-0.05, 0.05)])
+    assert an.model_kind(loads=off) == "spatial" and an.limit(loads=off).model == "spatial"
+    assert an.model_kind(loads=sideways) == "spatial"
+    # two loads balanced about the plane: every block's wrench is in it, so planar is exact
+    assert an.model_kind(loads=pair) == "planar"
+    spatial = Analysis(arch, Material(), model="spatial")
+    assert an.limit(loads=pair).lambda_max == pytest.approx(spatial.limit(loads=pair).lambda_max, rel=1e-7)
+    # the eccentric load has no more capacity than the balanced pair (by symmetry and
+    # convexity: the mean of its admissible state and its mirror image carries the pair)
+    assert an.limit(loads=off).lambda_max <= an.limit(loads=pair).lambda_max * (1 + 1e-9)
+    with pytest.raises(ValueError, match="plane"):
+        Analysis(arch, Material(), model="planar").solve(0.5, loads=off)
+
+
+# ---------------------------------------------------------------------------- distributed loads
+@pytest.mark.parametrize("x", [(-1.2, 1.2), (-1.2, -0.9), (-0.3, 0.1), (0.95, 1.2)])
+def test_distributed_load_covers_the_plan_once(arch, x):
+    # the exposed top surface of the arch is its extrados (joints under the next voussoir and
+    # the supports under v01 and v14 are hidden): the parts add up to the plan rectangle
+    q = 3.0
+    applied = Analysis(arch, Material()).applied_loads(loads=LoadPattern(distributed=[DistributedLoad(x=x, pressure=q)]))
+    total = -applied.forces[:, 2].sum()
+    assert total == pytest.approx(q * (x[1] - x[0]) * 0.25, rel=1e-12)
+    assert not any(arch.blocks[i].support for i in applied.blocks)
+    # every part's point lies on its block's extrados chord (radius of a chord at angle step pi/14)
+    r = np.hypot(applied.points[:, 0], applied.points[:, 2])
+    assert np.all((r <= 1.2 + 1e-12) & (r >= 1.2 * math.cos(math.pi / 28) - 1e-12))
+    areas = sum(p.area for _, _, p in top_surface(arch))
+    assert areas == pytest.approx(2.4 * 0.25, rel=1e-12)
+
+
+def test_distributed_load_as_equivalent_point_loads(arch):
+    # a live pressure over part of the extrados equals its parts as point loads
+    pattern = LoadPattern(lateral=False, distributed=[DistributedLoad(x=(-0.5, 0.0), pressure=4.0)])
+    an = Analysis(arch, Material())
+    applied = an.applied_loads(loads=pattern)
+    points = LoadPattern(lateral=False, point=[
+        PointLoad(force=f, block=arch.names[i], at=p) for i, p, f in zip(applied.blocks, applied.points, applied.forces)
+    ])
+    assert an.limit(loads=pattern).lambda_max == pytest.approx(an.limit(loads=points).lambda_max, rel=1e-9)
+
+
+# ---------------------------------------------------------------------------- downstream
+def test_load_path_bisection_meets_the_direct_limit(arch):
+    an = Analysis(arch, Material(0.8))
+    pattern = LoadPattern(lateral=False, point=[PointLoad(force=[0, 0, -1.0], on_top=[-0.25, 0.0])],
+                          distributed=[DistributedLoad(x=(-1.2, 1.2), pressure=0.5, scaled=False)])
+    lp = load_path(an, settlements={"right": [0.001, 0, 0, 0, 0, 0]}, step=0.2, atol=1e-7, loads=pattern)
+    assert lp.outcome == "limit" and lp.loads == pattern and math.isnan(lp.alpha)
+    assert abs(lp.gap) <= 1e-7 and lp.at_limit.ok
+    assert lp.limit.lambda_kinematic == pytest.approx(lp.lambda_direct, rel=1e-6)
+    # a fixed surcharge over the span raises the capacity of the point load
+    alone = an.limit(loads=point([0, 0, -1.0], on_top=[-0.25, 0.0])).lambda_max
+    assert lp.lambda_direct > alone
+
+
+def test_diagnose_a_pattern_beyond_its_limit(arch):
+    an = Analysis(arch, Material())
+    pattern = point([0, 0, -1.0], on_top=[-0.25, 0.0])
+    lim = an.limit(loads=pattern)
+    d = diagnose(an, 1.01 * lim.lambda_max, loads=pattern)
+    assert d.status == "infeasible" and "load pattern's live part" in d.summary
+    assert sum(m == "hinge" for m in d.mechanism.modes) == 4
+
+
+def test_minimum_thickness_under_a_point_load():
+    # the thinnest arch (centreline radius 1.1 m) that carries a 0.2 kN live load at x = -0.25 m
+    pattern = point([0, 0, -0.2], on_top=[-0.25, 0.0])
+    loaded = arch_minimum_thickness(1.1, 8, 0.25, tol=1e-3, loads=pattern, lam=1.0)
+    # at the thickness found the load is (just) carried, below the bracket it is not
+    t = loaded.thickness
+    at = Analysis(semicircular_arch(1.1 - t / 2, t, 0.25, 8), Material()).limit(loads=pattern)
+    below = Analysis(semicircular_arch(1.1 - loaded.lower / 2, loaded.lower, 0.25, 8), Material()).limit(loads=pattern)
+    assert at.lambda_max >= 1.0 > below.lambda_max
+
+
+def test_cvxpy_cross_check_with_a_pattern(arch):
+    mat = Material(0.8, normal_stiffness=1e5)
+    pattern = LoadPattern(lateral=False, point=[PointLoad(force=[0.1, 0, -1.0], on_top=[0.3, 0.0])],
+                          distributed=[DistributedLoad(x=(-1.2, 0.0), pressure=0.3, scaled=False)])
+    an = Analysis(arch, mat)
+    U = {"right": [0.0005, 0, 0, 0, 0, 0]}
+    r = an.solve(0.5, settlements=U, loads=pattern)
+    cvx = CvxTCE(an.model(r.model), mat).solve(0.5, settlements=U, loads=pattern)
+    assert r.ok and cvx.status == "optimal"
+    np.testing.assert_allclose(cvx.support_wrenches, r.support_wrenches, atol=1e-5 * arch.total_weight)
+
+
+# ---------------------------------------------------------------------------- declarations
+def test_default_pattern_is_the_alpha_of_before(arch):
+    an = Analysis(arch, Material())
+    m = an.model("planar")
+    b_fixed, b_live = an.solver("planar").vectors(LoadPattern(alpha=0.0))
+    assert b_fixed is m.b_dead and b_live is m.b_lateral(0.0)
+    assert an.limit(0.0) is an.limit(loads=LoadPattern(alpha=0.0))  # one cache entry per pattern
+
+
+@pytest.mark.parametrize("make, key", [
+    (lambda: PointLoad(force=[0, 0, 0], block="v01"), "force"),
+    (lambda: PointLoad(force=[0, 0, float("nan")], block="v01"), "force"),
+    (lambda: PointLoad(force=[0, 0, -1]), ""),
+    (lambda: PointLoad(force=[0, 0, -1], block="v01", on_top=[0, 0]), ""),
+    (lambda: PointLoad(force=[0, 0, -1], on_top=[0, 0], at=[0, 0, 1]), "at"),
+    (lambda: DistributedLoad(x=[1.0, 0.0], pressure=1.0), "x"),
+    (lambda: DistributedLoad(x=[0.0, 1.0], pressure=0.0), "pressure"),
+    (lambda: LoadPattern(lateral=False), "lateral"),
+    (lambda: LoadPattern(lateral=False, point=[{"force": [0, 0, -1], "block": "v01", "scaled": False}]), "lateral"),
+    (lambda: LoadPattern(point=[{"force": [0, 0, -1], "blok": "v01"}]), "point[0].blok"),
+    (lambda: LoadPattern(alpha=float("inf")), "alpha"),
+])
+def test_bad_declarations_name_their_key(make, key):
+    with pytest.raises(LoadError) as info:
+        make()
+    assert info.value.key == key
+
+
+@pytest.mark.parametrize("load, key, words", [
+    (PointLoad(force=[0, 0, -1], block="v99"), "point[0].block", "not a block"),
+    (PointLoad(force=[0, 0, -1], block="left"), "point[0].block", "support block"),
+    (PointLoad(force=[0, 0, -1], block="v06", at=[5.0, 0.0, 1.0]), "point[0].at", "size"),
+    (PointLoad(force=[0, 0, -1], on_top=[3.0, 0.0]), "point[0].on_top", "outside the plan"),
+    (PointLoad(force=[0, 0, -1], on_top=[0.0, 0.5]), "point[0].on_top", "outside the plan"),
+    (DistributedLoad(x=[2.0, 3.0], pressure=1.0), "distributed[0].x", "covers no block"),
+])
+def test_loads_that_cannot_be_applied_name_their_key(arch, load, key, words):
+    kind = "point" if isinstance(load, PointLoad) else "distributed"
+    with pytest.raises(LoadError, match=words) as info:
+        Analysis(arch, Material()).limit(loads=LoadPattern(**{kind: [load]}))
+    assert info.value.key == key
+
+
+def test_loads_on_a_support_top_are_refused():
+    a = block_on_support()  # the slab's top shows around the block
+    with pytest.raises(LoadError, match="support block 'base'"):
+        Analysis(a, Material()).applied_loads(loads=point([0, 0, -1], on_top=[0.35, 0.0]))
+    with pytest.raises(LoadError, match="support block 'base'"):
+        Analysis(a, Material()).applied_loads(loads=LoadPattern(distributed=[DistributedLoad(x=[-0.3, 0.3], pressure=1.0)]))
+
+
+def test_alpha_and_pattern_given_once():
+    assert as_pattern(30.0) == LoadPattern(alpha=30.0)
+    assert as_pattern(0.0, LoadPattern(alpha=0.0)) == LoadPattern()
+    with pytest.raises(ValueError, match="once"):
+        as_pattern(30.0, LoadPattern(alpha=0.0))
+
+
+def test_moving_load_and_round_trip():
+    p = LoadPattern(lateral=False, point=[PointLoad(force=[0, 0, -1], on_top=[0.0, 0.1]),
+                                          PointLoad(force=[0, 0, -2], on_top=[0.5, 0.0], scaled=False)])
+    moved = p.moved(-0.4)
+    assert moved.point[0].on_top == (-0.4, 0.1) and moved.point[1].on_top == (0.5, 0.0)
+    assert LoadPattern.from_dict(moved.to_dict()) == moved
+    with pytest.raises(LoadError, match="no scaled point load with on_top"):
+        LoadPattern(point=[PointLoad(force=[0, 0, -1], block="v01")]).moved(0.0)
