@@ -104,12 +104,14 @@ class Analysis:
         U = np.zeros((len(names), 6))
         for name, v in sett.items():
             U[names.index(name)] = v
+        U = U.ravel()
+        U.flags.writeable = False  # shared by every answer of the scene: nobody edits it
         if self.choice == "spatial" or self.plane is None:
-            return "spatial", U.ravel()
+            return "spatial", U
         inplane = applied.in_plane(self.plane) and motions_in_plane(self.plane, sett)
         if self.choice == "planar" and not inplane:
             raise ValueError("model='planar' but the scene's loads or support motions leave the plane")
-        return ("planar" if inplane else "spatial"), U.ravel()
+        return ("planar" if inplane else "spatial"), U
 
     def model(self, kind: str) -> Model:
         """The operators of model ``kind`` (built on first use)."""

@@ -42,7 +42,8 @@ from numpy.typing import NDArray
 
 from .model import Model
 
-__all__ = ["ConeRows", "Scaling", "cone_rows", "cone_violation", "law_violation"]
+__all__ = [
+    "LawCheck","ConeRows", "Scaling", "cone_rows", "cone_violation", "law_violation"]
 
 
 @dataclass(frozen=True)
@@ -191,6 +192,50 @@ def cone_rows(
     return ConeRows(M, n_zero, n_nonneg, 0 if soc is None else soc[0].shape[0] // 3, h if np.any(h) else None)
 
 
+class LawCheck:
+    """The violation of a contact law by a force state, with its per-contact bounds computed
+    once (a load path checks every answer with the same law).
+
+    Per contact with area ``A`` and ``g = c A + shear_capacity``: ``max(0, -(fn + t A))``,
+    ``max(0, fn - fc A)`` with a compressive strength, and ``||ft|| - mu fn - g`` with
+    friction (``||ft|| - g`` for ``mu = 0``); nothing more for Heyman. For the paper's law
+    this is ``max(0, -fn, ||ft|| - mu fn)``. Arguments as :func:`cone_rows`.
+    """
+
+    def __init__(
+        self,
+        model: Model,
+        friction: float | None,
+        *,
+        cohesion: float = 0.0,
+        tensile_strength: float = 0.0,
+        compressive_strength: float | None = None,
+        shear_capacity: NDArray[np.float64] | None = None,
+    ) -> None:
+        area = np.asarray(model.contact_area, dtype=float)
+        g = _strength_terms(model, cohesion, compressive_strength, shear_capacity)
+        self.shape = (model.n_contacts, model.dim)
+        self.friction = None if friction is None else float(friction)
+        self.floor = tensile_strength * area if tensile_strength else None  # fn >= -t A
+        self.ceiling = None if compressive_strength is None else compressive_strength * area
+        self.g = g if np.any(g) else None
+
+    def __call__(self, forces: NDArray[np.float64]) -> float:
+        """Largest violation by ``forces`` ((nc, dim) or flat, kN), in kN."""
+        f = np.asarray(forces).reshape(self.shape)
+        if not len(f):
+            return 0.0
+        fn = f[:, 0]
+        worst = max(0.0, -float((fn if self.floor is None else fn + self.floor).min()))
+        if self.ceiling is not None:
+            worst = max(worst, float((fn - self.ceiling).max()))
+        if self.friction is not None:
+            ft = np.abs(f[:, 1]) if self.shape[1] == 2 else np.sqrt(f[:, 1] ** 2 + f[:, 2] ** 2)
+            excess = ft - self.friction * fn
+            worst = max(worst, float((excess if self.g is None else excess - self.g).max()))
+        return worst
+
+
 def cone_violation(
     model: Model,
     friction: float | None,
@@ -201,26 +246,12 @@ def cone_violation(
     compressive_strength: float | None = None,
     shear_capacity: NDArray[np.float64] | None = None,
 ) -> float:
-    """Largest violation of the contact law by ``forces`` ((nc, dim), kN), in kN.
-
-    Per contact with area ``A`` and ``g = c A + shear_capacity``: ``max(0, -(fn + t A))``,
-    ``max(0, fn - fc A)`` with a compressive strength, and ``||ft|| - mu fn - g`` with
-    friction (``||ft|| - g`` for ``mu = 0``); nothing more for Heyman. For the paper's law
-    this is ``max(0, -fn, ||ft|| - mu fn)`` as before.
-    """
-    f = np.asarray(forces).reshape(model.n_contacts, model.dim)
-    if not len(f):
-        return 0.0
-    area = np.asarray(model.contact_area, dtype=float)
-    g = _strength_terms(model, cohesion, compressive_strength, shear_capacity)
-    fn = f[:, 0]
-    worst = max(0.0, -float((fn + tensile_strength * area).min()))
-    if compressive_strength is not None:
-        worst = max(worst, float((fn - compressive_strength * area).max()))
-    if friction is not None:
-        ft = np.abs(f[:, 1]) if model.dim == 2 else np.sqrt(f[:, 1] ** 2 + f[:, 2] ** 2)
-        worst = max(worst, float((ft - float(friction) * fn - g).max()))
-    return worst
+    """Largest violation of the contact law by ``forces`` ((nc, dim), kN), in kN (see
+    :class:`LawCheck`, which keeps the bounds for repeated checks)."""
+    return LawCheck(
+        model, friction, cohesion=cohesion, tensile_strength=tensile_strength,
+        compressive_strength=compressive_strength, shear_capacity=shear_capacity,
+    )(forces)
 
 
 def law_violation(rows: ConeRows, forces: NDArray[np.float64]) -> float:

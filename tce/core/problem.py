@@ -48,14 +48,15 @@ take it as a vector. The builders:
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, partial
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .conic import ConeRows, Scaling, cone_rows, cone_violation, law_violation
+from .conic import ConeRows, LawCheck, Scaling, cone_rows, law_violation
 from .material import Material
 from .model import Model
 
@@ -113,6 +114,15 @@ class ConicProblem:
         return self.A.shape
 
 
+def _matvec(A: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+    """``x -> A @ x``, dense for an operator of at most 65,536 entries: scipy's sparse
+    dispatch costs more than the whole product there (about 15 us a call, on the hot
+    path of every load step)."""
+    if A.shape[0] * A.shape[1] <= 1 << 16:
+        return np.asarray(A.toarray()).__matmul__
+    return sp.csr_matrix(A).__matmul__
+
+
 class Formulation:
     """What the problems of one model and contact law share, built once and scaled.
 
@@ -148,7 +158,14 @@ class Formulation:
         self.row_div = self.scaling.rows(model)
         self.A_eq = sp.csc_matrix(sp.diags(W / self.row_div) @ model.A_eq)
         self.law = rows if rows is not None else cone_rows(model, material.friction, **material.strengths)
-        self._own_law = rows is None
+        if rows is None:
+            self.law_check: Callable[[NDArray[np.float64]], float] = LawCheck(
+                model, material.friction, **material.strengths
+            )
+        else:
+            self.law_check = partial(law_violation, rows)
+        self.A_eq_times = _matvec(model.A_eq)
+        self.B_sup_times = _matvec(model.B_sup)
         n = model.n_vars
         if material.rigid:
             self.D: NDArray[np.float64] | None = None
@@ -197,17 +214,13 @@ class Formulation:
         the material's cohesion and strengths, the violation of each of its bounds) and
         :func:`tce.core.conic.law_violation` of the rows for another law.
         """
-        eq = (self.model.A_eq @ F + rhs) / self.row_div
-        if self._own_law:
-            law = cone_violation(self.model, self.material.friction, F, **self.material.strengths)
-        else:
-            law = law_violation(self.law, F)
-        return float(np.abs(eq).max(initial=0.0)), law / self.scaling.force
+        eq = (self.A_eq_times(F) + rhs) / self.row_div
+        return float(np.abs(eq).max(initial=0.0)), self.law_check(F) / self.scaling.force
 
     def energy(self, F: NDArray[np.float64], U: NDArray[np.float64], wrench: NDArray[np.float64] | None = None) -> float:
         """Total complementary energy ``1/2 F'DF - U' B_sup F`` (kN m); ``wrench`` is
         ``B_sup F`` when the caller has it."""
-        e = -float((self.model.B_sup @ F if wrench is None else wrench) @ U)
+        e = -float((self.B_sup_times(F) if wrench is None else wrench) @ U)
         if self.D is not None:
             e += 0.5 * float(F @ (self.D * F))
         return e

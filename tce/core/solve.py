@@ -213,7 +213,8 @@ class TCESolver:
         self.scaling = self.formulation.scaling
         self._warm: ClarabelSolver | None = None
         self._warm_q: NDArray[np.float64] | None = None
-        self._q_last: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+        #: (copy of the last U, its q, the U array itself, whether q is rescaled, whether anything moves)
+        self._q_last: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], bool, bool] | None = None
         self._feas: ClarabelSolver | None = None
         self._recession_cache: dict[bytes, tuple[float, float, NDArray[np.float64]]] = {}
         self._vectors_last: tuple[LoadPattern, tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None
@@ -239,11 +240,12 @@ class TCESolver:
         """Scaled linear objective for support motions ``U``; the last one is kept, so a load
         path (same ``U``) gets the same array back and the warm solver updates only ``b``."""
         last = self._q_last
-        if last is not None and np.array_equal(last[0], U):
+        # a read-only U (Analysis.path's) that is the very array of the last call is unchanged
+        if last is not None and ((U is last[2] and not U.flags.writeable) or np.array_equal(last[0], U)):
             return last[1]
         q = self.formulation.q(U)
         q.flags.writeable = False
-        self._q_last = (np.array(U, dtype=float), q)
+        self._q_last = (np.array(U, dtype=float), q, U, q_scale(q) != 1.0, bool(np.any(U)))
         return q
 
     def _check_scene(self, loads: LoadPattern, U: NDArray[np.float64]) -> None:
@@ -255,7 +257,7 @@ class TCESolver:
         """The warm solver: set up on the first call, then only its vectors are updated
         (``b`` alone while ``U`` is unchanged; iterative refinement as ``options.refine``)."""
         f, q = self.formulation, self._q(U)
-        if q_scale(q) != 1.0:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
+        if self._q_last[3]:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
             return solve_once(tce_problem(f, rhs, U), self.options.settings(refine=self.options.refine))
         if self._warm is None:
             self._warm = ClarabelSolver(tce_problem(f, rhs, U), self.options.settings(refine=self.options.refine))
@@ -439,13 +441,13 @@ class TCESolver:
             tce = eq = cone = float("nan")
         else:
             forces = F.reshape(model.n_contacts, model.dim)
-            wrench = model.B_sup @ F
+            wrench = self.formulation.B_sup_times(F)
             wrenches = wrench.reshape(-1, 6)
             eq, cone = res
             tce = self.formulation.energy(F, U, wrench)
         if self.formulation.D is not None:
             unique: bool | None = True
-        elif not np.any(U):
+        elif not (self._q_last[4] if self._q_last is not None and self._q_last[2] is U else np.any(U)):
             unique = False
         else:
             unique = None
