@@ -12,6 +12,8 @@ load pattern ``loads``.
 
 from __future__ import annotations
 
+import math
+
 import time
 from collections.abc import Callable, Mapping
 from typing import Literal
@@ -131,7 +133,7 @@ class Analysis:
         """Minimise the TCE for one scene (checked once, :meth:`scene`); see
         :meth:`tce.core.solve.TCESolver.solve`."""
         t0 = time.perf_counter()
-        if not np.isfinite(lam):
+        if not math.isfinite(lam):
             raise ValueError(f"lam must be a finite number, got {lam!r}")
         pattern = as_pattern(alpha, loads)
         kind, U = self.scene(settlements=settlements, loads=pattern)
@@ -147,7 +149,7 @@ class Analysis:
 
         def solve(lam: float) -> TCEResult:
             t0 = time.perf_counter()
-            if not np.isfinite(lam):
+            if not math.isfinite(lam):
                 raise ValueError(f"lam must be a finite number, got {lam!r}")
             return self.solver(kind).solve_scene(lam, pattern, U, t0)
 

@@ -56,7 +56,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .conic import ConeRows, LawCheck, Scaling, cone_rows, law_violation
+from .conic import ConeRows, LawCheck, Scaling, cone_rows, law_violation, matvec
 from .material import Material
 from .model import Model
 
@@ -114,15 +114,6 @@ class ConicProblem:
         return self.A.shape
 
 
-def _matvec(A: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
-    """``x -> A @ x``, dense for an operator of at most 65,536 entries: scipy's sparse
-    dispatch costs more than the whole product there (about 15 us a call, on the hot
-    path of every load step)."""
-    if A.shape[0] * A.shape[1] <= 1 << 16:
-        return np.asarray(A.toarray()).__matmul__
-    return sp.csr_matrix(A).__matmul__
-
-
 class Formulation:
     """What the problems of one model and contact law share, built once and scaled.
 
@@ -164,8 +155,9 @@ class Formulation:
             )
         else:
             self.law_check = partial(law_violation, rows)
-        self.A_eq_times = _matvec(model.A_eq)
-        self.B_sup_times = _matvec(model.B_sup)
+        self.A_eq_times = matvec(model.A_eq)
+        self._eq_rel_times = matvec(sp.diags(1.0 / self.row_div) @ model.A_eq)
+        self.B_sup_times = matvec(model.B_sup)
         n = model.n_vars
         if material.rigid:
             self.D: NDArray[np.float64] | None = None
@@ -214,7 +206,12 @@ class Formulation:
         the material's cohesion and strengths, the violation of each of its bounds) and
         :func:`tce.core.conic.law_violation` of the rows for another law.
         """
-        eq = (self.A_eq_times(F) + rhs) / self.row_div
+        return self.residuals_scaled(F, self.b_eq(rhs))
+
+    def residuals_scaled(self, F: NDArray[np.float64], b_eq: NDArray[np.float64]) -> tuple[float, float]:
+        """:meth:`residuals` for the scaled right-hand side ``b_eq = -rhs / row_div`` (the first
+        ``m_eq`` entries of :func:`tce_b`, which a solve has already computed)."""
+        eq = self._eq_rel_times(F) - b_eq
         return float(np.abs(eq).max(initial=0.0)), self.law_check(F) / self.scaling.force
 
     def energy(self, F: NDArray[np.float64], U: NDArray[np.float64], wrench: NDArray[np.float64] | None = None) -> float:
@@ -244,14 +241,14 @@ def tce_b(f: Formulation, rhs: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.concatenate([f.b_eq(rhs), f.law_h])
 
 
-def tce_problem(f: Formulation, rhs: NDArray[np.float64], U: NDArray[np.float64]) -> ConicProblem:
-    """The TCE minimum for right-hand side ``rhs`` and support motions ``U`` (module docstring).
+def tce_problem(f: Formulation, b: NDArray[np.float64], U: NDArray[np.float64]) -> ConicProblem:
+    """The TCE minimum for the scaled right-hand side ``b = tce_b(f, rhs)`` and support motions
+    ``U`` (module docstring).
 
     Unknowns ``x = F / W`` (n); rows: ``m_eq`` equalities, then the contact law.
     """
     law = f.law
     A = sp.vstack([f.A_eq, -law.M]).tocsc()
-    b = tce_b(f, rhs)
     cones = _cones(("zero", f.A_eq.shape[0] + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
     # the objective's scale is free: a q far from order one (a compliance of 1e-18 with a 1 mm
     # motion puts |q| near 1e15 once P is normalised, and Clarabel then misreads the scene as

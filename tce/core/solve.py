@@ -253,18 +253,19 @@ class TCESolver:
         check_in_plane(self.model, loads, {n: U[6 * i : 6 * i + 6] for i, n in enumerate(names)})
 
     # ------------------------------------------------------------ clarabel calls
-    def _main(self, U: NDArray[np.float64], rhs: NDArray[np.float64]) -> Solution:
-        """The warm solver: set up on the first call, then only its vectors are updated
-        (``b`` alone while ``U`` is unchanged; iterative refinement as ``options.refine``)."""
+    def _main(self, U: NDArray[np.float64], b: NDArray[np.float64]) -> Solution:
+        """The warm solver for the scaled right-hand side ``b`` (:func:`tce.core.problem.tce_b`):
+        set up on the first call, then only its vectors are updated (``b`` alone while ``U`` is
+        unchanged; iterative refinement as ``options.refine``)."""
         f, q = self.formulation, self._q(U)
         if self._q_last[3]:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
-            return solve_once(tce_problem(f, rhs, U), self.options.settings(refine=self.options.refine))
+            return solve_once(tce_problem(f, b, U), self.options.settings(refine=self.options.refine))
         if self._warm is None:
-            self._warm = ClarabelSolver(tce_problem(f, rhs, U), self.options.settings(refine=self.options.refine))
+            self._warm = ClarabelSolver(tce_problem(f, b, U), self.options.settings(refine=self.options.refine))
         elif q is self._warm_q:
-            self._warm.update(b=tce_b(f, rhs))
+            self._warm.update(b=b)
         else:
-            self._warm.update(q=q, b=tce_b(f, rhs))
+            self._warm.update(q=q, b=b)
         self._warm_q = q
         return self._warm.solve()
 
@@ -362,14 +363,16 @@ class TCESolver:
         pattern = loads if isinstance(loads, LoadPattern) else as_pattern(loads)
         b_fixed, b_live = self.vectors(pattern)
         rhs = b_fixed + lam * b_live
-        sol = self._main(U, rhs)
+        b = tce_b(self.formulation, rhs)
+        b_eq = b[: self.formulation.A_eq.shape[0]]
+        sol = self._main(U, b)
         stime, setup = sol.solve_time, sol.setup_time
         notes = [f"clarabel: {sol.status}"]
         status, retry, F, res = "numerical", "", None, None
 
         if sol.solved:
             F = self.formulation.forces(sol.x)
-            res = self.formulation.residuals(F, rhs)
+            res = self.formulation.residuals_scaled(F, b_eq)
             if self._passes(res):
                 status = "optimal"
             else:
@@ -400,13 +403,13 @@ class TCESolver:
             for name, robust in (("rescaled", False), ("robust settings", True)):
                 if status != "numerical":
                     break
-                sol2 = solve_once(tce_problem(self.formulation, rhs, U), self.options.settings(robust=robust))
+                sol2 = solve_once(tce_problem(self.formulation, b, U), self.options.settings(robust=robust))
                 stime += sol2.solve_time
                 setup += sol2.setup_time
                 notes.append(f"{name} retry: {sol2.status}")
                 if sol2.solved:
                     F2 = self.formulation.forces(sol2.x)
-                    res = self.formulation.residuals(F2, rhs)
+                    res = self.formulation.residuals_scaled(F2, b_eq)
                     if self._passes(res):
                         status, retry, F = "optimal", name, F2
         if status != "optimal":
@@ -453,9 +456,10 @@ class TCESolver:
             unique = None
         if retry:
             log.debug("solve at lam=%g of %s: %s decided by %s (%s)", lam, loads, status, retry, message)
-        return TCEResult(
+        return TCEResult.of_fields(dict(
             status=status,
             message=message,
+            solver=SOLVER_NAME,
             solve_time=solve_time,
             wall_time=wall,
             lam=float(lam),
@@ -473,4 +477,4 @@ class TCESolver:
             setup_time=setup_time,
             retry=retry,
             interface_map=model.interface_map,
-        )
+        ))
