@@ -206,3 +206,22 @@ def test_material_checks():
 def test_uniqueness_flag(arch):
     assert Analysis(arch, Material()).solve(0.0).unique is False
     assert Analysis(arch, Material(0.8, normal_stiffness=1e6)).solve(0.0).unique is True
+
+
+def test_results_built_from_fields_equal_the_constructed_ones(arch):
+    """``Result.of_fields`` (the hot path's constructor) gives the object ``cls(**fields)``
+    gives, and refuses a missing or unknown field instead of leaving it unset."""
+    from dataclasses import fields
+
+    from tce.core.solve import TCEResult
+
+    r = Analysis(arch, Material(0.8)).solve(0.1)
+    values = {f.name: getattr(r, f.name) for f in fields(TCEResult)}
+    built = TCEResult(**values)
+    assert vars(built) == vars(TCEResult.of_fields(values)) and type(r) is TCEResult
+    with pytest.raises(TypeError, match="retry"):
+        TCEResult.of_fields({k: v for k, v in values.items() if k != "retry"})
+    with pytest.raises(TypeError, match="colour"):
+        TCEResult.of_fields({**values, "colour": "red"})
+    with pytest.raises(AttributeError):
+        r.lam = 0.2  # still frozen
