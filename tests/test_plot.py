@@ -9,7 +9,9 @@ and direct TCE solves at the drawn multipliers.
 
 from __future__ import annotations
 
+import logging
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -394,3 +396,19 @@ def test_write_figures_each_once(planar: xr.Dataset, tmp_path: Path) -> None:
     assert names == ["thrust.png", "states.png", "thrust_lines.png", "mechanism.png", "view.html"]
     assert all(f.stat().st_size > 1000 for f in files)
     assert not list(tmp_path.glob(".*.tmp"))
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_drawing_reports_progress_file_by_file(planar: xr.Dataset, tmp_path: Path, jobs: int,
+                                               monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture) -> None:
+    """Drawing says which file is under way and how many are done, drawn in-process or by
+    workers (``PARALLEL_AT`` lowered so that these five files go to two workers)."""
+    from tce.plot import output
+
+    monkeypatch.setattr(output, "PARALLEL_AT", 2)
+    with caplog.at_level(logging.INFO, logger="tce"):
+        files = write_figures(planar, tmp_path, jobs=jobs)
+    assert [f.name for f in files] == ["thrust.png", "states.png", "thrust_lines.png", "mechanism.png", "view.html"]
+    lines = [r.getMessage() for r in caplog.records if r.name == "tce.study.progress"]
+    assert any(re.match(r"figures: 5/5 files \(view\.html\), \d+ s", m) for m in lines), lines
+    assert (jobs == 2) == any("drawing 5 files on 2 workers" in r.getMessage() for r in caplog.records)

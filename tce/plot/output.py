@@ -33,6 +33,7 @@ import numpy as np
 import xarray as xr
 
 from .data import PlotSpec, assembly, chain_interfaces, mechanism_groups, plot_spec, state_pages, swept_parameters
+from ..study.progress import Progress, track
 from .states import missing_states, solve_states
 
 __all__ = ["PARALLEL_AT", "figure_tasks", "write_figures"]
@@ -193,7 +194,14 @@ def write_figures(
         import joblib
 
         log.info("drawing %d files on %d workers", len(tasks), jobs)
-        return list(joblib.Parallel(n_jobs=min(jobs, len(tasks)))(
+        drawn = joblib.Parallel(n_jobs=min(jobs, len(tasks)), return_as="generator")(
             joblib.delayed(render)(_subset(ds, t), t, outdir) for t in tasks
-        ))
-    return [render(ds, t, outdir) for t in tasks]
+        )
+        files = []
+        with Progress(len(tasks), "figures", unit="file") as bar:
+            for path in drawn:  # in task order, as they finish
+                bar.note(path.name)
+                bar.update()
+                files.append(path)
+        return files
+    return [render(ds, t, outdir) for t in track(tasks, "figures", unit="file", label=lambda t: t.name)]
