@@ -64,3 +64,28 @@ def test_mechanism_certificate(arch, alpha, mu):
     assert lim.lambda_kinematic == pytest.approx(lim.lambda_max, rel=1e-6)
     assert lim.certificate_gap < 1e-6
     assert lim.admissibility < 1e-6
+
+
+def test_large_meshes_are_factorised_by_faer_with_the_same_limit(monkeypatch):
+    """The KKT factorisation is chosen per model (``kkt_method``: faer for large meshes,
+    qdldl for chains and small models) and does not change the answer: a dome made to count
+    as large gives the qdldl limit to 1e-9; an arch (a chain) stays on qdldl whatever its size."""
+    from tce.core import problem
+    from tce.core.clarabel_solver import SolverOptions
+    from tce.core.limit import LimitSolver
+    from tce.core.model import build_model
+    from tce.structures.arch import semicircular_arch
+    from tce.structures.dome import hemispherical_dome
+
+    dome = build_model(hemispherical_dome(sectors=8, courses=4).validate(), "spatial")
+    arch = build_model(semicircular_arch().validate(), "spatial")
+    qdldl = LimitSolver(dome, Material(0.8)).solve(0.0)
+    assert problem.Formulation(dome, Material(0.8)).kkt == "qdldl"
+    monkeypatch.setattr(problem, "FAER_FROM", 100)
+    f = problem.Formulation(dome, Material(0.8))
+    assert f.kkt == "faer" and problem.kkt_method(arch) == "qdldl"
+    s = SolverOptions().settings(kkt=f.kkt)
+    assert s.direct_solve_method == "faer" and s.max_threads == 1
+    faer = LimitSolver(dome, Material(0.8)).solve(0.0)
+    assert qdldl.status == faer.status == "optimal"
+    assert faer.lambda_max == pytest.approx(qdldl.lambda_max, rel=1e-9)

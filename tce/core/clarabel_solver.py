@@ -60,7 +60,9 @@ class SolverOptions:
     max_iter: int = 200
     refine: bool = False
 
-    def settings(self, robust: bool = False, tight: bool = False, refine: bool = True) -> clarabel.DefaultSettings:
+    def settings(
+        self, robust: bool = False, tight: bool = False, refine: bool = True, kkt: str = "qdldl"
+    ) -> clarabel.DefaultSettings:
         """Clarabel settings.
 
         Parameters
@@ -72,6 +74,9 @@ class SolverOptions:
             phase-1 residual too close to ``feas_tol`` to be trusted).
         refine : bool
             Iterative refinement of the KKT solves (the warm solver passes ``self.refine``).
+        kkt : {"qdldl", "faer"}
+            Clarabel's direct KKT factorisation (:func:`tce.core.problem.kkt_method` chooses
+            per model); faer runs on one thread, so its times are the same on any machine.
         """
         s = clarabel.DefaultSettings()
         s.verbose = False
@@ -84,6 +89,9 @@ class SolverOptions:
         s.tol_ktratio = 1e-7
         s.max_iter = self.max_iter
         s.iterative_refinement_enable = refine or robust
+        s.direct_solve_method = kkt
+        if kkt == "faer":
+            s.max_threads = 1
         if robust:
             s.max_iter = 5 * self.max_iter
             s.equilibrate_max_iter = 50

@@ -235,11 +235,11 @@ class LimitSolver:
         problem = limit_problem(f, b_fixed, b_live)
         # without iterative refinement first (0.6x the time on a 10,100-block dome, lambda
         # within 1e-10); an answer that is not clean is solved again with it
-        sol = solve_once(problem, self.options.settings(refine=False))
+        sol = solve_once(problem, self.options.settings(refine=False, kkt=f.kkt))
         retried, spent = "", (0.0, 0.0)
         if sol.status not in ("PrimalInfeasible", "DualInfeasible") and not self._clean(sol, b_fixed, b_live):
             retried, spent = f" (after {sol.status} without iterative refinement)", (sol.solve_time, sol.setup_time)
-            sol = solve_once(problem, self.options.settings(refine=True))
+            sol = solve_once(problem, self.options.settings(refine=True, kkt=f.kkt))
         common = dict(alpha=alpha, loads=loads, model=model.kind, solve_time=sol.solve_time + spent[0],
                       setup_time=sol.setup_time + spent[1],
                       iterations=sol.iterations)
@@ -342,7 +342,7 @@ class LimitSolver:
         model, f = self.model, self.formulation
         allowed = np.ones(model.n_contacts, dtype=bool) if contacts is None else np.asarray(contacts, dtype=bool)
         b_live = scene_vectors(model, alpha, loads)[2]
-        sol = solve_once(lateral_ray_problem(f, b_live, allowed), self.options.settings())
+        sol = solve_once(lateral_ray_problem(f, b_live, allowed), self.options.settings(kkt=f.kkt))
         if not sol.solved:
             return None
         F = f.forces(sol.x)

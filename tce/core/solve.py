@@ -259,9 +259,9 @@ class TCESolver:
         unchanged; iterative refinement as ``options.refine``)."""
         f, q = self.formulation, self._q(U)
         if self._q_last[3]:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
-            return solve_once(tce_problem(f, b, U), self.options.settings(refine=self.options.refine))
+            return solve_once(tce_problem(f, b, U), self.options.settings(refine=self.options.refine, kkt=f.kkt))
         if self._warm is None:
-            self._warm = ClarabelSolver(tce_problem(f, b, U), self.options.settings(refine=self.options.refine))
+            self._warm = ClarabelSolver(tce_problem(f, b, U), self.options.settings(refine=self.options.refine, kkt=f.kkt))
         elif q is self._warm_q:
             self._warm.update(b=b)
         else:
@@ -285,7 +285,7 @@ class TCESolver:
         """:meth:`phase1` for a right-hand side ``rhs``."""
         f = self.formulation
         if self._feas is None:
-            self._feas = ClarabelSolver(phase1_problem(f, rhs), self.options.settings())
+            self._feas = ClarabelSolver(phase1_problem(f, rhs), self.options.settings(kkt=self.formulation.kkt))
         else:
             self._feas.update(b=phase1_b(f, rhs))
         sol = self._feas.solve()
@@ -294,7 +294,7 @@ class TCESolver:
         if not r <= self.options.feas_tol and not r > self.PHASE1_BAND * self.options.feas_tol:
             # undecided, or too close to feas_tol for the default tolerances: decide again
             # with tight ones (a fresh solver, so also a fresh equilibration)
-            sol = solve_once(phase1_problem(f, rhs), self.options.settings(tight=True))
+            sol = solve_once(phase1_problem(f, rhs), self.options.settings(tight=True, kkt=f.kkt))
             t += sol.solve_time
             if sol.solved:
                 r = float(np.nanmin([r, float(sol.x[-1])]))  # each is reached by some admissible state
@@ -317,7 +317,7 @@ class TCESolver:
     def _recession(self, U: NDArray[np.float64]) -> tuple[float, float, NDArray[np.float64]]:
         key = np.asarray(U, dtype=float).tobytes()
         if key not in self._recession_cache:
-            sol = solve_once(recession_problem(self.formulation, np.asarray(U, dtype=float)), self.options.settings())
+            sol = solve_once(recession_problem(self.formulation, np.asarray(U, dtype=float)), self.options.settings(kkt=self.formulation.kkt))
             val = sol.objective if sol.solved else float("nan")
             d = sol.x if sol.solved else np.full(self.model.n_vars, np.nan)
             self._recession_cache[key] = (val, sol.solve_time, d)
@@ -403,7 +403,7 @@ class TCESolver:
             for name, robust in (("rescaled", False), ("robust settings", True)):
                 if status != "numerical":
                     break
-                sol2 = solve_once(tce_problem(self.formulation, b, U), self.options.settings(robust=robust))
+                sol2 = solve_once(tce_problem(self.formulation, b, U), self.options.settings(robust=robust, kkt=self.formulation.kkt))
                 stime += sol2.solve_time
                 setup += sol2.setup_time
                 notes.append(f"{name} retry: {sol2.status}")
