@@ -64,6 +64,7 @@ __all__ = [
     "ConicProblem",
     "Formulation",
     "lateral_ray_problem",
+    "least_violation_problem",
     "limit_problem",
     "phase1_b",
     "phase1_problem",
@@ -361,6 +362,63 @@ def limit_problem(f: Formulation, b_fixed: NDArray[np.float64], b_live: NDArray[
     q[-1] = -1.0
     cones = _cones(("zero", m + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
     return ConicProblem("limit", sp.csc_matrix((n + 1, n + 1)), q, A, b, cones)
+
+
+def least_violation_problem(
+    f: Formulation, rhs: NDArray[np.float64], target: ConeRows, normal_ref: NDArray[np.float64]
+) -> ConicProblem:
+    """The state of least violation of a second law ``target`` among the equilibrium states
+    that meet ``f.law`` (used by :mod:`tce.analysis.nonassoc` to pick, among the optimal
+    states of a fixed-capacity limit problem, one that meets the Coulomb law)::
+
+        min  t  s.t.  A_eq F + rhs = 0,   M F + h in K             (f.law, exactly)
+                      T F + g + t e in K_T,  |T_0 F + g_0| <= t    (target, slack t)
+                      |fn_k - normal_ref_k| <= t  where normal_ref_k is finite
+                      t >= 0
+
+    ``e`` is 1 on the target's nonnegative rows and on the first row of each of its
+    second-order cones, so ``t`` bounds :func:`tce.core.conic.law_violation` of ``target``;
+    ``T_0`` are its zero rows. Unknowns ``(x, t)`` (n + 1, ``t`` in units of ``W``); rows:
+    ``m_eq`` equalities and the law's zero rows; the law's nonnegative rows, ``2 n_zero``
+    rows for the target's zero rows, its nonnegative rows, ``2 k`` rows for the ``k``
+    normal forces held, ``t >= 0``; the law's cones, then the target's.
+    """
+    law = f.law
+    m, n = f.A_eq.shape
+    W = f.scaling.force
+    g = target.offset() / W
+    held = np.flatnonzero(np.isfinite(normal_ref))
+    S = sp.csr_matrix((np.ones(len(held)), (np.arange(len(held)), held * f.model.dim)), shape=(len(held), n))
+    u = np.asarray(normal_ref, dtype=float)[held] / W
+    col = lambda k, v=0.0: sp.csr_matrix(np.full((k, 1), v)) if v and k else sp.csr_matrix((k, 1))  # noqa: E731
+    nz_t, nn_t = target.n_zero, target.n_nonneg
+    head = np.zeros(3 * target.n_soc)
+    head[0::3] = 1.0
+    A = sp.vstack(
+        [
+            sp.hstack([f.A_eq, col(m)]),
+            sp.hstack([-law.zero, col(law.n_zero)]),
+            sp.hstack([-law.nonneg, col(law.n_nonneg)]),
+            sp.hstack([-target.zero, col(nz_t, -1.0)]),
+            sp.hstack([target.zero, col(nz_t, -1.0)]),
+            sp.hstack([-target.nonneg, col(nn_t, -1.0)]),
+            sp.hstack([-S, col(len(held), -1.0)]),
+            sp.hstack([S, col(len(held), -1.0)]),
+            sp.hstack([sp.csr_matrix((1, n)), col(1, -1.0)]),
+            sp.hstack([-law.soc, col(3 * law.n_soc)]),
+            sp.hstack([-target.soc, sp.csr_matrix(-head[:, None])]),
+        ]
+    ).tocsc()
+    h = f.law_h
+    nz, nn = law.n_zero, law.n_nonneg
+    b = np.concatenate(
+        [f.b_eq(rhs), h[:nz], h[nz : nz + nn], g[:nz_t], -g[:nz_t], g[nz_t : nz_t + nn_t], -u, u, [0.0],
+         h[nz + nn :], g[nz_t + nn_t :]]
+    )
+    q = np.zeros(n + 1)
+    q[-1] = 1.0
+    cones = _cones(("zero", m + nz), ("nonneg", nn + 2 * nz_t + nn_t + 2 * len(held) + 1), n_soc=law.n_soc + target.n_soc)
+    return ConicProblem("least-violation", sp.csc_matrix((n + 1, n + 1)), q, A, b, cones)
 
 
 # ----------------------------------------------------------------------------------------
