@@ -25,6 +25,7 @@ from tce.core.conic import cone_rows, cone_violation, law_violation
 from tce.core.limit import LimitSolver
 from tce.core.model import build_model
 from tce.structures.assembly import Assembly, Block, Interface
+from tce.structures.contacts import detect_interfaces
 from tce.structures.geometry import box
 from tce.study.cli import main
 from tce.study.schema import StudyError, parse_study
@@ -327,6 +328,58 @@ def test_equal_when_the_mechanism_has_no_sliding() -> None:
     assert "sliding" not in an.limit(0.0).mechanism.modes
     r = nonassociative_limit(an, 0.0)
     assert r.lambda_nonassoc == pytest.approx(r.lambda_assoc, rel=1e-8)
+
+
+def running_bond_wall(courses: int = 6, per_course: int = 5, L: float = 0.4, H: float = 0.175) -> Assembly:
+    """A running-bond wall of the kind Ferris and Tin-Loi (2001) analysed: ``courses`` courses of
+    L x H x 1 m blocks, ``per_course`` to a course, half blocks at the ends of alternate courses,
+    on a support."""
+    blocks = [Block("base", box([-0.5, 0, -H], [per_course * L + 0.5, 1.0, 0.0]), 10.0, support=True)]
+    for c in range(courses):
+        widths = [0.5] + [1.0] * (per_course - 1) + [0.5] if c % 2 == 0 else [1.0] * per_course
+        x = 0.0
+        for j, w in enumerate(widths):
+            blocks.append(Block(f"b{c}_{j}", box([x, 0, c * H], [x + w * L, 1.0, (c + 1) * H]), 10.0))
+            x += w * L
+    a = Assembly(tuple(blocks), ())
+    return Assembly(a.blocks, tuple(detect_interfaces(a)))
+
+
+def test_running_bond_wall_reaches_a_fixed_point() -> None:
+    """The plain scheme cycles on this wall (lambda between 0.641341 and 0.641355, the normal
+    forces of contacts outside the mechanism moving by 1e-4 W: the sub-problems' optimal states
+    are not unique). What is returned must be a non-associative collapse state, checked here on
+    the returned arrays: equilibrium at lambda_nonassoc, the Coulomb law met, and every contact
+    that slides in the mechanism at its Coulomb capacity, sliding without opening."""
+    mu = 0.65
+    assembly = running_bond_wall()
+    an = Analysis(assembly, Material(mu, flow="non-associative"))
+    r = nonassociative_limit(an, 0.0)
+    assert r.status == "converged" and r.ok
+    assert r.lambda_nonassoc < r.lambda_assoc - 1e-4  # a real bracket, not the associative state
+    W = assembly.total_weight
+    F = r.forces
+    fn, ft = F[:, 0], np.abs(F[:, 1])  # planar model: one tangential component
+    tol = 1e-6 * W
+    assert fn.min() >= -tol and (ft - mu * fn).max() <= tol  # Coulomb, written here
+    model = an.model(r.model)
+    lateral = model.b_lateral(0.0)
+    residual = model.A_eq @ F.ravel() + model.b_dead + r.lambda_nonassoc * lateral
+    assert np.abs(residual).max() <= 1e-8 * W
+    # contact velocities of the mechanism, written here: v_B - v_A at each contact point
+    v = r.mechanism.velocities
+    a = assembly
+    ia = np.array([i.a for i in a.interfaces])[model.contact_interface]
+    ib = np.array([i.b for i in a.interfaces])[model.contact_interface]
+    p, c = model.contact_points, a.centroids
+    rel = (v[ib, :3] + np.cross(v[ib, 3:], p - c[ib])) - (v[ia, :3] + np.cross(v[ia, 3:], p - c[ia]))
+    normal = np.array([a.interfaces[k].normal for k in model.contact_interface])
+    dn = np.einsum("ij,ij->i", rel, normal)
+    dt = np.linalg.norm(rel - dn[:, None] * normal, axis=1)
+    sliding = dt > 1e-4
+    assert sliding.sum() > 0
+    assert (mu * fn[sliding] - ft[sliding]).max() <= tol  # sliding only at the capacity
+    assert np.abs(dn[sliding & (fn > tol)]).max() <= 1e-4  # and without opening
 
 
 def test_heyman_and_zero_friction_need_no_iteration() -> None:
