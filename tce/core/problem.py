@@ -390,7 +390,11 @@ def least_violation_problem(
     held = np.flatnonzero(np.isfinite(normal_ref))
     S = sp.csr_matrix((np.ones(len(held)), (np.arange(len(held)), held * f.model.dim)), shape=(len(held), n))
     u = np.asarray(normal_ref, dtype=float)[held] / W
-    col = lambda k, v=0.0: sp.csr_matrix(np.full((k, 1), v)) if v and k else sp.csr_matrix((k, 1))  # noqa: E731
+
+    def col(k: int, v: float = 0.0) -> sp.csr_matrix:
+        """The column of ``t`` over ``k`` rows, every entry ``v``."""
+        return sp.csr_matrix(np.full((k, 1), v)) if v and k else sp.csr_matrix((k, 1))
+
     nz_t, nn_t = target.n_zero, target.n_nonneg
     head = np.zeros(3 * target.n_soc)
     head[0::3] = 1.0
