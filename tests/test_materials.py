@@ -474,6 +474,7 @@ def test_study_dataset_carries_the_bracket_and_the_figure(tmp_path: Path) -> Non
     np.testing.assert_allclose(ds["lambda_assoc"].values, ds["lambda_direct"].values, rtol=0, atol=0)
     assert np.all(ds["lambda_nonassoc"].values <= ds["lambda_assoc"].values * (1 + 1e-7))
     assert ds["lambda_nonassoc"].attrs["units"] == "1" and "nonassoc_iterations" in ds
+    assert np.all(ds["nonassoc_consistency"].values <= 1e-6) and ds["nonassoc_consistency"].attrs["units"] == "1"
     assert write_material_figures(ds, tmp_path) == [tmp_path / "bracket.png"]
     assert (tmp_path / "bracket.png").stat().st_size > 10_000
 

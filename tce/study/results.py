@@ -150,6 +150,8 @@ META: dict[str, tuple[str, str]] = {
     "nonassoc_converged": ("-", "1 when the scheme reached a fixed point, else 0"),
     "nonassoc_admissibility": ("1", "violation of the Coulomb law by the final state, over the total weight"),
     "nonassoc_dilatancy": ("1", "largest opening of a loaded sliding contact in the final mechanism (0: none)"),
+    "nonassoc_consistency": ("1", "at the contacts sliding in the final mechanism, the largest |fn - fn_used| "
+                             "and shortfall of the shear below its Coulomb capacity, over the total weight"),
 }
 
 
@@ -303,6 +305,7 @@ def _nonassoc_vars(na: NonAssocResult) -> dict[str, tuple]:
         "nonassoc_converged": int(na.converged),
         "nonassoc_admissibility": na.admissibility,
         "nonassoc_dilatancy": na.dilatancy,
+        "nonassoc_consistency": na.consistency,
     }
     out: dict[str, tuple] = {k: (("scenario",), np.asarray([v])) for k, v in scalars.items()}
     out["nonassoc_status"] = (("scenario",), _text([na.status]))
