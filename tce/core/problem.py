@@ -177,7 +177,6 @@ class Formulation:
         else:
             self.law_check = partial(law_violation, rows)
         self.kkt = kkt_method(model)
-        self.A_eq_times = matvec(model.A_eq)
         self._eq_rel_times = matvec(sp.diags(1.0 / self.row_div) @ model.A_eq)
         self.B_sup_times = matvec(model.B_sup)
         n = model.n_vars

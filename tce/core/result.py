@@ -18,6 +18,7 @@ solves use their own outcome words where the four do not fit (a load path ends i
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from functools import cache
 from typing import Any, ClassVar, TypeVar
 
 from .clarabel_solver import SOLVER_NAME
@@ -27,6 +28,12 @@ __all__ = ["STATUSES", "Result"]
 STATUSES = ("optimal", "infeasible", "unbounded", "numerical")
 
 R = TypeVar("R", bound="Result")
+
+
+@cache
+def _field_names(cls: type) -> frozenset[str]:
+    """The names of a result class's fields (computed once per class)."""
+    return frozenset(f.name for f in fields(cls))
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -74,10 +81,7 @@ class Result:
         TypeError
             When ``values`` does not name exactly the class's fields.
         """
-        names = cls.__dict__.get("_field_names")
-        if names is None:
-            names = frozenset(f.name for f in fields(cls))
-            type.__setattr__(cls, "_field_names", names)
+        names = _field_names(cls)
         if values.keys() != names:
             raise TypeError(f"{cls.__name__}.of_fields: fields {sorted(names ^ values.keys())} missing or unknown")
         obj = object.__new__(cls)
