@@ -292,7 +292,7 @@ class _Doc:
 #: keys of a tce JSON file, of one of its blocks and of one of its interfaces
 _TCE_KEYS = ("format", "version", "units", "unit_weight", "blocks", "interfaces", "meta")
 _BLOCK_KEYS = ("name", "vertices", "faces", "support", "unit_weight")
-_INTERFACE_KEYS = ("a", "b", "points", "normal")
+_INTERFACE_KEYS = ("a", "b", "points", "normal", "stiffness")
 
 
 def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
@@ -342,6 +342,7 @@ def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
             interfaces.append(dict(
                 a=doc.text(f"{key}.a", it["a"]), b=doc.text(f"{key}.b", it["b"]),
                 points=doc.points(f"{key}.points", it["points"]).tolist(), normal=normal, label=key,
+                stiffness=doc.number(f"{key}.stiffness", it["stiffness"], positive=True) if "stiffness" in it else 1.0,
             ))
     return RawAssembly(
         blocks,
@@ -677,7 +678,7 @@ def _file_interfaces(
             if n @ n_ab < 0:
                 log.info("%s: %s: the stored normal points from B into A; oriented from A into B", path, name)
             n_ab = n if n @ n_ab > 0 else -n
-        out.append(Interface(a, b, pts, n_ab))
+        out.append(Interface(a, b, pts, n_ab, stiffness=it.get("stiffness", 1.0)))
     return out
 
 
