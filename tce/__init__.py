@@ -19,6 +19,14 @@ modules of their new homes.
 
 from __future__ import annotations
 
+import os as _os
+import sys as _sys
+
+if _sys.argv and _os.path.basename(_sys.argv[0]) == "tce":  # the tce program: Ctrl-C from now on in one line
+    from .signals import handle_signals as _handle_signals
+
+    _handle_signals(raising=False)
+
 import importlib
 import importlib.abc
 import importlib.util

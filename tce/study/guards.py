@@ -25,8 +25,6 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 if TYPE_CHECKING:
     from .schema import StudyFile
 
@@ -102,6 +100,8 @@ def check_text(path: Path, text: str) -> None:
     """Refuse TOML text nested more than :data:`MAX_TOML_DEPTH` deep, in one linear pass
     before it is parsed (the parser recurses once per level of arrays and inline tables,
     and takes time quadratic in the length of a dotted key)."""
+    import numpy as np  # here: the tce program imports this module before it handles Ctrl-C
+
     bare = _TOML_COMMENT.sub("", _TOML_STRING.sub("s", text))
     chain = re.search(r"[\w-]+(?:[ \t]*\.[ \t]*[\w-]+){%d,}" % MAX_TOML_DEPTH, bare)
     codes = np.frombuffer(bare.encode("utf-8"), dtype=np.uint8)
