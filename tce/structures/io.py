@@ -308,11 +308,11 @@ def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
         raise InputLimitError(f"{path}: {len(raw_blocks)} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
     units = doc.obj("units", d.get("units", {}), ("length", "force"))
     lu, fu = units.get("length", "m"), units.get("force", "kN")
-    if lu not in _LENGTH:
+    if not isinstance(lu, str) or lu not in _LENGTH:
         raise doc.fail("units.length", f"must be one of {list(_LENGTH)}, got {doc._got(lu)}")
-    if fu not in _FORCE:
+    if not isinstance(fu, str) or fu not in _FORCE:
         raise doc.fail("units.force", f"must be one of {list(_FORCE)}, got {doc._got(fu)}")
-    if "version" in d and d["version"] != 1:
+    if "version" in d and (d["version"] != 1 or isinstance(d["version"], bool)):
         raise doc.fail("version", f"this tce reads version 1, got {doc._got(d['version'])}")
     if "format" in d and d["format"] != "tce-assembly":
         raise doc.fail("format", f'must be "tce-assembly", got {doc._got(d["format"])}')
