@@ -532,7 +532,9 @@ def folder_lock(directory: Path) -> Iterator[Path]:
         os.ftruncate(fd, 0)
         os.pwrite(fd, record.encode(), 0)
         os.fsync(fd)
-    except OSError as exc:
+    except OSError as exc:  # a full disk: the lock is ours, remove it with its empty record
+        with contextlib.suppress(OSError):
+            os.unlink(path)
         os.close(fd)
         raise storage_error(path, exc) from None
     try:

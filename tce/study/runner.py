@@ -22,7 +22,8 @@ Faults (``docs/studies.md``, "Faults and resuming"):
   kept, ``results.nc`` is not replaced, and a rerun solves only what is missing.
 - Ctrl-C (:class:`KeyboardInterrupt`) stops the workers at once (a worker that is writing
   a file finishes it first), removes the temporary files and re-raises.
-- Workers ignore Ctrl-C (the parent decides) and end within a second if the parent dies.
+- Workers ignore Ctrl-C from their start (the parent decides: :mod:`tce.signals`) and
+  end within a second, silently, if the parent dies.
 - One run at a time per study folder (:func:`tce.study.results.folder_lock`); the folder
   is created and locked before anything is solved, so an unwritable destination fails
   with :class:`RunError` before the run.
@@ -68,9 +69,11 @@ from .results import (
     write_scenario,
 )
 from .schema import Scenario, Study, build_material
+from ..signals import quiet_children
 
 __all__ = [
     "LAMBDA_TOL",
+    "FigureFault",
     "RunError",
     "RunFault",
     "RunReport",
@@ -112,6 +115,11 @@ class RunFault(RuntimeError):
     def __init__(self, report: RunReport) -> None:
         super().__init__("\n".join(report.faults))
         self.report = report
+
+
+class FigureFault(RunFault):
+    """``results.nc`` was written, but its figures could not be (a full or unwritable disk;
+    exit code 3 in the CLI): ``tce plot`` draws them again."""
 
 
 @dataclass
@@ -285,7 +293,7 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
     while True:
         try:
             task = conn.recv()
-        except EOFError:
+        except (EOFError, OSError):  # the parent ended (a reset connection when it was killed)
             return
         if task is None:
             return
@@ -297,7 +305,10 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
             reply = ("storage", sc.name, str(exc))
         except Exception as exc:  # noqa: BLE001 - reported to the parent with its traceback
             reply = ("error", sc.name, f"{type(exc).__name__}: {exc}", traceback.format_exc())
-        conn.send(reply)
+        try:
+            conn.send(reply)
+        except OSError:  # the parent ended: the scenario's file is written, a rerun reuses it
+            return
 
 
 # ----------------------------------------------------------------------------- caller side
@@ -393,7 +404,8 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
     def start() -> Any:
         conn, child = ctx.Pipe()
         process = ctx.Process(target=_worker, args=(child, str(directory), os.getpid(), level), daemon=True)
-        process.start()
+        with quiet_children():  # a Ctrl-C while it imports its modules is the parent's to handle
+            process.start()
         child.close()
         workers[conn] = [process, None]
         return conn
@@ -564,6 +576,8 @@ def run_study(
     RunFault
         The run ended with a fault; every finished scenario is on disk, ``results.nc``
         was not replaced.
+    FigureFault
+        ``results.nc`` was written but a figure could not be (a :class:`RunFault`).
     KeyboardInterrupt
         Ctrl-C; every finished scenario is on disk.
     """
@@ -622,5 +636,9 @@ def run_study(
             raise RunFault(report) from None
         log.info("wrote %s", report.results)
         if plots:
-            report.figures = list(plots(ds, directory, jobs))
+            try:
+                report.figures = list(plots(ds, directory, jobs))
+            except OSError as exc:  # a full or unwritable disk: results.nc is written
+                report.faults.append(str(storage_error(Path(exc.filename or directory), exc)))
+                raise FigureFault(report) from None
     return report

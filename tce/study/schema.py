@@ -41,6 +41,8 @@ from ..core.material import Material
 from ..structures.assembly import Assembly
 from ..structures.io import MAX_BLOCKS, InputLimitError
 from ..structures.params import did_you_mean
+from . import guards
+from .guards import StudyError
 
 __all__ = [
     "MAX_BLOCKS",
@@ -65,10 +67,6 @@ MATERIAL_SWEEPS = ("friction", "cohesion", "tensile_strength", "compressive_stre
 RESERVED_NAMES = frozenset(
     ["CON", "PRN", "AUX", "NUL"] + [f"{p}{k}" for p in ("COM", "LPT") for k in range(1, 10)]
 )
-
-
-class StudyError(ValueError):
-    """A study file that cannot be run; the message says where and how to fix it."""
 
 
 class _Strict(BaseModel):
@@ -785,14 +783,22 @@ def _short(value: Any) -> str:
 def parse_study(text: str, path: Path | str = "<study>") -> Study:
     """Validate study TOML ``text`` (see :func:`load_study`; ``path`` is for messages)."""
     path = Path(path)
+    guards.check_text(path, text)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise StudyError(f"{path}: not valid TOML: {exc}; fix: correct the syntax") from None
+    except RecursionError:
+        raise StudyError(
+            f"{path}: nested more than MAX_TOML_DEPTH = {guards.MAX_TOML_DEPTH} deep; fix: a study needs tables "
+            "of values and lists, no deeper"
+        ) from None
+    guards.check_tree(path, data)
     try:
         spec = StudyFile.model_validate(data)
     except ValidationError as exc:
         raise StudyError(_describe(path, exc)) from None
+    guards.check_work(path, spec)
     if isinstance(spec.structure, FileStructure):
         where = (path.parent / spec.structure.path).resolve()
         spec = spec.model_copy(update={"structure": spec.structure.model_copy(update={"path": str(where)})})
@@ -807,6 +813,7 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
             raise StudyError(f"{path}: sweep.load_x: {exc.problem} in [loads]; fix: {exc.fix}") from None
     study = Study(path, text, spec)
     _check_scenarios(study)
+    guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])))
     _check_plots(study)
     return study
 
@@ -821,11 +828,7 @@ def load_study(path: Path | str) -> Study:
         structure that cannot be built, or moves a support the structure does not have.
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise StudyError(f"{path}: cannot read the study file ({exc}); fix: give a readable TOML file") from None
-    return parse_study(text, path)
+    return parse_study(guards.read_study_text(path), path)
 
 
 def build_structure(section: dict[str, Any]) -> Assembly:
