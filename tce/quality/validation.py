@@ -43,6 +43,7 @@ from ..structures.geometry import box
 __all__ = [
     "CASES",
     "ValidationCase",
+    "block_on_strips",
     "crown_thrust",
     "format_validation",
     "friction_bound",
@@ -145,10 +146,23 @@ def _mu_sliding() -> float:
 
 
 # --------------------------------------------------------------------------- crushing case
-def stress_block_column(strips: int = 40, b: float = 0.4, d: float = 0.3, h: float = 1.0, fc: float = 40.0,
-                        unit_weight: float = 20.0) -> float:
-    """lambda_max of one block (``b`` wide along x, ``d`` deep, ``h`` tall, m) on a support, its
-    base joint cut into ``strips`` strips across x, compressive strength ``fc`` (kN/m^2).
+def block_on_strips(strips: int, b: float = 0.4, d: float = 0.3, h: float = 1.0, unit_weight: float = 20.0) -> Assembly:
+    """One block (``b`` wide along x, ``d`` deep, ``h`` tall, m) on a wider support slab, its base
+    joint given as ``strips`` interfaces, strips of width ``b / strips`` along x."""
+    support = Block("base", box([-b, -d, -0.2], [b, d, 0.0]), unit_weight, True)
+    block = Block("block", box([-b / 2, -d / 2, 0.0], [b / 2, d / 2, h]), unit_weight, False)
+    x = np.linspace(-b / 2, b / 2, strips + 1)
+    faces = tuple(
+        Interface(0, 1, np.array([[x0, -d / 2, 0.0], [x1, -d / 2, 0.0], [x1, d / 2, 0.0], [x0, d / 2, 0.0]]),
+                  np.array([0.0, 0.0, 1.0]))
+        for x0, x1 in zip(x[:-1], x[1:])
+    )
+    return Assembly((support, block), faces, {})
+
+
+def stress_block_column(strips: int = 40, fc: float = 40.0) -> float:
+    """lambda_max of :func:`block_on_strips` (defaults: 0.4 x 0.3 x 1 m, 20 kN/m^3) under the
+    lateral pattern, compressive strength ``fc`` (kN/m^2), Heyman friction.
 
     The closed form (rigid-plastic stress block, docs/materials.md): the compressed zone is
     ``x = W / (fc d)`` at the toe and the resultant at ``x / 2`` from it, so moments about that
@@ -156,15 +170,7 @@ def stress_block_column(strips: int = 40, b: float = 0.4, d: float = 0.3, h: flo
     ``lam = (b - W / (fc d)) / h``. With strips each strip's resultant stays at its centre, so
     the model reaches it exactly when ``x`` is a whole number of strips.
     """
-    xs = [-b / 2 + b * k / strips for k in range(strips + 1)]
-    support = Block("support", box([-b, -d / 2, -0.2], [b, d / 2, 0.0]), unit_weight, True)
-    block = Block("block", box([-b / 2, -d / 2, 0.0], [b / 2, d / 2, h]), unit_weight, False)
-    faces = []
-    for x0, x1 in zip(xs[:-1], xs[1:]):
-        pts = np.array([[x0, -d / 2, 0.0], [x1, -d / 2, 0.0], [x1, d / 2, 0.0], [x0, d / 2, 0.0]])
-        faces.append(Interface(0, 1, pts, np.array([0.0, 0.0, 1.0])))
-    asm = Assembly((support, block), tuple(faces), {})
-    return Analysis(asm, Material(compressive_strength=fc)).limit(0.0).lambda_max
+    return Analysis(block_on_strips(strips), Material(compressive_strength=fc)).limit(0.0).lambda_max
 
 
 def _stress_block_closed_form(b: float = 0.4, d: float = 0.3, h: float = 1.0, fc: float = 40.0,
