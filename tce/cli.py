@@ -160,6 +160,8 @@ def _parser() -> argparse.ArgumentParser:
         "status, residual, retry used and time. Exit code 1 if a case fails.",
     )
     check.add_argument("--select", metavar="TEXT", default=None, help="only the cases whose name contains TEXT")
+    check.add_argument("--validation", action="store_true",
+                       help="instead, the validation atlas: tce against published values (docs/validation.md)")
 
     bench = sub.add_parser(
         "bench",

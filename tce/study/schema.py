@@ -109,6 +109,7 @@ class ArchStructure(_Strict):
     voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
     unit_weight: Positive = 20.0
     support_height: Positive | None = None
+    joints: Literal["radial", "vertical"] = "radial"
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
