@@ -34,11 +34,12 @@ declaration (``point[0].block``; a study adds ``loads.``) and the fix.
 
 from __future__ import annotations
 
+import logging
 import weakref
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property, lru_cache
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
@@ -47,6 +48,9 @@ from numpy.typing import ArrayLike, NDArray
 from ..structures.assembly import Assembly
 from ..structures.params import did_you_mean
 from .model import EZ, Model, Plane, lateral_direction, motions_in_plane
+
+if TYPE_CHECKING:
+    from .vehicles import Vehicle
 
 __all__ = [
     "AppliedLoads",
@@ -61,6 +65,8 @@ __all__ = [
     "scene_vectors",
     "top_surface",
 ]
+
+log = logging.getLogger(__name__)
 
 #: a face is part of the top surface when its outward normal has a z component above this
 UPWARD = 1e-6
@@ -234,6 +240,9 @@ class LoadPattern:
         only the scaled loads (then at least one is needed).
     point : sequence of PointLoad (or dicts of its keys)
     distributed : sequence of DistributedLoad (or dicts of its keys)
+    vehicle : sequence of :class:`tce.core.vehicles.Vehicle` (or dicts of its keys)
+        Axle groups moving as one (:mod:`tce.core.vehicles`); wheels off the deck are
+        dropped with a note (:attr:`AppliedLoads.notes`).
 
     A pattern with only ``alpha`` (``lateral`` true, no loads) is the default pattern: the
     right-hand sides are exactly the model's ``b_dead`` and ``b_lateral(alpha)``. Patterns
@@ -244,54 +253,83 @@ class LoadPattern:
     lateral: bool = True
     point: tuple[PointLoad, ...] = ()
     distributed: tuple[DistributedLoad, ...] = ()
+    vehicle: tuple[Vehicle, ...] = ()
 
     def __post_init__(self) -> None:
+        from .vehicles import Vehicle
+
         (alpha,) = _vector([self.alpha], 1, "alpha", "degrees")
         object.__setattr__(self, "alpha", alpha)
         if not isinstance(self.lateral, bool):
             raise LoadError("lateral", f"not true or false ({self.lateral!r})", "write true or false")
         object.__setattr__(self, "point", _items(PointLoad, self.point, "point"))
         object.__setattr__(self, "distributed", _items(DistributedLoad, self.distributed, "distributed"))
-        if not self.lateral and not any(p.scaled for p in (*self.point, *self.distributed)):
+        object.__setattr__(self, "vehicle", _items(Vehicle, self.vehicle, "vehicle"))
+        if not self.lateral and not any(p.scaled for p in (*self.point, *self.distributed, *self.vehicle)):
             raise LoadError(
                 "lateral", "lateral = false and no scaled load: lambda would multiply nothing",
-                "add a point or distributed load with scaled = true, or set lateral = true",
+                "add a point or distributed load or a vehicle with scaled = true, or set lateral = true",
             )
 
     @property
     def default(self) -> bool:
         """True for the paper's pattern alone (self-weight and the lateral pattern)."""
-        return self.lateral and not self.point and not self.distributed
+        return self.lateral and not self.point and not self.distributed and not self.vehicle
 
     @property
     def direction(self) -> float:
         """``alpha`` when the lateral pattern is part of the live load, else NaN."""
         return self.alpha if self.lateral else float("nan")
 
+    @property
+    def reference_x(self) -> float:
+        """Plan abscissa (m) of the moving group's reference: the first scaled vehicle's
+        reference point, else the first scaled ``on_top`` point load (NaN: nothing moves)."""
+        for v in self.vehicle:
+            if v.scaled:
+                return v.x
+        for p in self.point:
+            if p.scaled and p.on_top is not None:
+                return p.on_top[0]
+        return float("nan")
+
     def moved(self, x: float) -> LoadPattern:
-        """The pattern with every scaled ``on_top`` point load moved to plan abscissa ``x`` (m).
+        """The pattern with its moving loads (the scaled vehicles and the scaled ``on_top``
+        point loads) moved as one rigid group, its reference (:attr:`reference_x`) to plan
+        abscissa ``x`` (m): every moving load keeps its offset from the reference, so
+        loads declared at different positions never merge.
 
         Raises
         ------
         LoadError
-            No scaled ``on_top`` point load to move.
+            Nothing to move.
         """
-        if not any(p.scaled and p.on_top is not None for p in self.point):
-            raise LoadError("point", "no scaled point load with on_top to move", "give one with on_top = [x, y] and scaled = true")
+        ref = self.reference_x
+        if ref != ref:
+            raise LoadError(
+                "point", "no scaled point load with on_top and no scaled vehicle to move",
+                "give a point load with on_top = [x, y] and scaled = true, or a vehicle",
+            )
         (x,) = _vector([x], 1, "load_x", "m")
+        dx = x - ref
         point = tuple(
-            replace(p, on_top=(x, p.on_top[1])) if p.scaled and p.on_top is not None else p for p in self.point
+            replace(p, on_top=(p.on_top[0] + dx, p.on_top[1])) if p.scaled and p.on_top is not None else p
+            for p in self.point
         )
-        return replace(self, point=point)
+        vehicle = tuple(v.at(v.x + dx) if v.scaled else v for v in self.vehicle)
+        return replace(self, point=point, vehicle=vehicle)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data (JSON-ready), the keys of a study's ``[loads]`` table."""
-        return {
+        out = {
             "alpha": self.alpha,
             "lateral": self.lateral,
             "point": [p.to_dict() for p in self.point],
             "distributed": [d.to_dict() for d in self.distributed],
         }
+        if self.vehicle:  # absent otherwise: the patterns of earlier versions read the same
+            out["vehicle"] = [v.to_dict() for v in self.vehicle]
+        return out
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> LoadPattern:
@@ -434,7 +472,11 @@ class AppliedLoads:
     scaled : (k,) bool
         True for the live loads.
     sources : tuple of str
-        The declaration each force comes from (``point[0]``, ``distributed[1]``).
+        The declaration each force comes from (``point[0]``, ``distributed[1]``,
+        ``vehicle[0].axle[1].wheel[0]``).
+    notes : tuple of str
+        One line per load dropped because it lies off the deck (a vehicle's wheel, or part
+        of its contact patch, :func:`tce.core.vehicles.wheel_loads`).
     """
 
     pattern: LoadPattern
@@ -444,6 +486,7 @@ class AppliedLoads:
     forces: NDArray[np.float64] = field(repr=False)
     scaled: NDArray[np.bool_] = field(repr=False)
     sources: tuple[str, ...] = field(repr=False)
+    notes: tuple[str, ...] = field(default=(), repr=False)
 
     @cached_property
     def wrenches(self) -> NDArray[np.float64]:
@@ -616,9 +659,25 @@ def resolve(pattern: LoadPattern, assembly: Assembly) -> AppliedLoads:
             forces.append((0.0, 0.0, -load.pressure * area))
             scaled.append(load.scaled)
             sources.append(f"distributed[{k}]")
+    notes: list[str] = []
+    if pattern.vehicle:
+        from .vehicles import wheel_loads
+
+        for k, vehicle in enumerate(pattern.vehicle):
+            wheels, dropped = wheel_loads(vehicle, assembly, f"vehicle[{k}]")
+            notes += dropped
+            for wheel in wheels:
+                for i, p, fz in wheel.parts:
+                    blocks.append(i)
+                    points.append(p)
+                    forces.append((0.0, 0.0, fz))
+                    scaled.append(vehicle.scaled)
+                    sources.append(wheel.source)
+        for note in notes:
+            log.info("%s", note)
     return AppliedLoads(
         pattern, assembly, np.array(blocks, dtype=np.int64), np.array(points, dtype=float).reshape(-1, 3),
-        np.array(forces, dtype=float).reshape(-1, 3), np.array(scaled, dtype=bool), tuple(sources),
+        np.array(forces, dtype=float).reshape(-1, 3), np.array(scaled, dtype=bool), tuple(sources), tuple(notes),
     )
 
 
