@@ -46,8 +46,9 @@ from ..core.analysis import Analysis
 from ..core.loads import LoadError, LoadPattern
 from ..core.result import Result
 from ..core.vehicles import deck_edges, deck_range
+from ..structures.assembly import Assembly
 
-__all__ = ["DELTA", "TIE_RTOL", "CriticalResult", "critical_position", "moving_offsets"]
+__all__ = ["DELTA", "TIE_RTOL", "CriticalResult", "critical_position", "moving_offsets", "search_bounds"]
 
 #: a breakpoint is evaluated this fraction of the range before and after it
 DELTA = 1e-7
@@ -110,10 +111,17 @@ def moving_offsets(pattern: LoadPattern) -> list[tuple[float, float]]:
     return out
 
 
-def _bounds(pattern: LoadPattern, deck: tuple[float, float]) -> tuple[float, float]:
-    """Reference positions with a moving load on the deck: some axle of a vehicle, every
-    moving point load (a point load off the deck is an error, not a dropped wheel)."""
-    d0, d1 = deck
+def search_bounds(pattern: LoadPattern, assembly: Assembly) -> tuple[float, float]:
+    """Reference positions (m) with a moving load on the deck (:func:`tce.core.vehicles.deck_range`):
+    some axle of a vehicle, and every moving point load (a point load off the deck is an
+    error, not a dropped wheel).
+
+    Raises
+    ------
+    LoadError
+        Moving point loads farther apart than the deck is long.
+    """
+    d0, d1 = deck_range(assembly)
     ref = pattern.reference_x
     veh = [v.x - ref + dx for v in pattern.vehicle if v.scaled for dx, _ in v.axles]
     pts = [p.on_top[0] - ref for p in pattern.point if p.scaled and p.on_top is not None]
@@ -169,7 +177,7 @@ def critical_position(
     xtol = 1e-4 * length if xtol is None else float(xtol)
     if not (math.isfinite(xtol) and xtol > 0):
         raise LoadError("xtol", f"{xtol!r}", "give a positive tolerance (m)")
-    lo, hi = _bounds(loads, deck) if bounds is None else (float(bounds[0]), float(bounds[1]))
+    lo, hi = search_bounds(loads, analysis.assembly) if bounds is None else (float(bounds[0]), float(bounds[1]))
     if not lo < hi:
         raise LoadError("bounds", f"[{lo:g}, {hi:g}] is empty", "give [from, to] with from < to (m)")
     delta = DELTA * (hi - lo)

@@ -32,12 +32,22 @@ from functools import cached_property
 from pathlib import Path
 from typing import Annotated, Any, Literal, get_args
 
-from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, field_validator, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    TypeAdapter,
+    ValidationError,
+    ValidationInfo,
+    field_validator,
+    model_validator,
+)
 
 from .. import __version__
 from ..analysis.loadpath import MAX_INCREMENTS
 from ..core.loads import LoadError, LoadPattern, resolve
 from ..core.material import Material
+from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.assembly import Assembly
 from ..structures.io import MAX_BLOCKS, InputLimitError
 from ..structures.params import did_you_mean
@@ -326,14 +336,50 @@ class DistributedLoadSection(_Strict):
     scaled: bool = True
 
 
+class VehicleSection(_Strict):
+    """``[[loads.vehicle]]``: axles (``[offset (m), load (kN)]``) moving as one, on wheels
+    (transverse offsets, m) with optional contact patches, or a ``standard`` vehicle of
+    :data:`tce.core.vehicles.STANDARD` (its keys given here replace the standard's);
+    :class:`tce.core.vehicles.Vehicle`."""
+
+    standard: Literal[tuple(STANDARD)] | None = None  # type: ignore[valid-type]
+    axles: list[Vector2] | None = None
+    wheels: list[float] | None = None
+    patch: Vector2 | None = None
+    x: float | None = None
+    y: float | None = None
+    name: str | None = None
+    scaled: bool | None = None
+
+    @model_validator(mode="after")
+    def _axles_or_standard(self) -> VehicleSection:
+        if (self.standard is None) == (self.axles is None):
+            raise ValueError(
+                "give either axles or standard; fix: axles = [[0.0, 100.0], [1.2, 100.0]] "
+                f"([offset (m), load (kN)]) or standard = one of {list(STANDARD)}"
+            )
+        return self
+
+    def declaration(self) -> dict[str, Any]:
+        """The keys of a :class:`tce.core.vehicles.Vehicle` (the standard's, replaced by those given)."""
+        given = self.model_dump(exclude_none=True, exclude={"standard"})
+        return dict(standard_vehicle(self.standard).to_dict(), **given) if self.standard else given
+
+
 class LoadsSection(_Strict):
     """``[loads]``: the load pattern (lateral directions in degrees, whether lambda multiplies
-    the lateral pattern, point and distributed loads), load-path step and bisection tolerance."""
+    the lateral pattern, point and distributed loads, vehicles), load-path step and bisection
+    tolerance; ``critical_position`` searches the position of the moving loads of least
+    lambda_max (:func:`tce.analysis.critical.critical_position`), from the positions
+    ``positions`` (m) besides its own."""
 
     alpha: float | list[float] = 0.0
     lateral: bool = True
     point: list[PointLoadSection] = Field(default_factory=list)
     distributed: list[DistributedLoadSection] = Field(default_factory=list)
+    vehicle: list[VehicleSection] = Field(default_factory=list)
+    critical_position: bool = False
+    positions: list[float] | None = None
     lambda_step: Positive = 0.02
     tolerance: Positive = 1e-6
     lambda_cap: Positive = 100.0
@@ -350,11 +396,17 @@ class LoadsSection(_Strict):
             lateral=self.lateral,
             point=[p.model_dump(exclude_none=True) for p in self.point],
             distributed=[d.model_dump(exclude_none=True) for d in self.distributed],
+            vehicle=[v.declaration() for v in self.vehicle],
         )
 
-    def path_settings(self) -> dict[str, float]:
-        """``lambda_step``, ``tolerance``, ``lambda_cap``: how the load path runs."""
-        return {"lambda_step": self.lambda_step, "tolerance": self.tolerance, "lambda_cap": self.lambda_cap}
+    def path_settings(self) -> dict[str, Any]:
+        """``lambda_step``, ``tolerance``, ``lambda_cap``: how the load path runs; with
+        ``critical_position``, also ``critical_position`` and ``positions`` (the search's
+        starting positions, m)."""
+        out: dict[str, Any] = {"lambda_step": self.lambda_step, "tolerance": self.tolerance, "lambda_cap": self.lambda_cap}
+        if self.critical_position:
+            out.update(critical_position=True, positions=list(self.positions or []))
+        return out
 
     @field_validator("alpha")
     @classmethod
@@ -363,6 +415,16 @@ class LoadsSection(_Strict):
             if not v:
                 raise ValueError("an empty list; fix: give at least one direction")
             _distinct("alpha", v)
+        return v
+
+    @field_validator("positions")
+    @classmethod
+    def _positions_need_the_search(cls, v: list[float] | None, info: ValidationInfo) -> list[float] | None:
+        if v is not None and not info.data.get("critical_position"):
+            raise ValueError(
+                "positions are the critical-position search's starting grid; fix: set critical_position = true "
+                "or sweep the positions with [sweep] load_x"
+            )
         return v
 
     @model_validator(mode="after")
@@ -516,7 +578,8 @@ class Scenario:
     structure, material : dict
         Validated ``[structure]`` and ``[material]`` sections with the swept values applied.
     loads : dict
-        ``lambda_step``, ``tolerance``, ``lambda_cap``.
+        ``lambda_step``, ``tolerance``, ``lambda_cap`` (and ``critical_position``,
+        ``positions`` when the study searches the critical position).
     assembly_digest : str
         SHA-256 of the built assembly (:func:`assembly_digest`): what the structure is,
         whatever file or generator it came from.
@@ -534,7 +597,7 @@ class Scenario:
     params: dict[str, float]
     structure: dict[str, Any]
     material: dict[str, Any]
-    loads: dict[str, float]
+    loads: dict[str, Any]
     assembly_digest: str
     draw: tuple[float, ...] = ()
 
@@ -805,6 +868,17 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
             base.moved(0.0)
         except LoadError as exc:
             raise StudyError(f"{path}: sweep.load_x: {exc.problem} in [loads]; fix: {exc.fix}") from None
+    if spec.loads.critical_position:
+        if spec.sweep.load_x is not None:
+            raise StudyError(
+                f"{path}: loads.critical_position: the search finds the position itself, a load_x sweep samples it; "
+                "fix: remove [sweep] load_x (give a starting grid as [loads] positions) or set critical_position = false"
+            )
+        if base.reference_x != base.reference_x:
+            raise StudyError(
+                f"{path}: loads.critical_position: nothing moves; fix: add a [[loads.vehicle]] or a [[loads.point]] "
+                "with on_top and scaled = true"
+            )
     study = Study(path, text, spec)
     _check_scenarios(study)
     _check_plots(study)
@@ -897,6 +971,8 @@ def _check_loads(study: Study, sc: Scenario, assembly: Assembly) -> None:
     pattern = sc.loads_pattern
     try:
         resolve(pattern, assembly)
+        if sc.loads.get("critical_position"):
+            _check_positions(study, sc, assembly)
     except LoadError as exc:
         # name load_x only for a load it moved
         moved = [f"point[{k}]." for k, p in enumerate(pattern.point) if p.scaled and p.on_top is not None]
@@ -905,6 +981,19 @@ def _check_loads(study: Study, sc: Scenario, assembly: Assembly) -> None:
         where = f" (with {', '.join(f'sweep.{k} = {v:g}' for k, v in swept.items())})" if swept else ""
         err = exc.within("loads")
         raise StudyError(f"{study.path}: {err.key}: {err.problem}{where}; fix: {err.fix}") from None
+
+
+def _check_positions(study: Study, sc: Scenario, assembly: Assembly) -> None:
+    """The starting positions of a critical-position search lie in its range."""
+    from ..analysis.critical import search_bounds
+
+    lo, hi = search_bounds(sc.loads_pattern, assembly)
+    for k, x in enumerate(sc.loads["positions"]):
+        if not lo <= x <= hi:
+            raise StudyError(
+                f"{study.path}: loads.positions[{k}]: {x:g} m is outside [{lo:.6g}, {hi:.6g}] m, the positions where a "
+                "moving load is on the deck; fix: give positions inside it"
+            )
 
 
 def _build_fix(section: BaseModel, exc: Exception, swept: dict[str, float]) -> str:
