@@ -136,3 +136,72 @@ def test_deck_edges_are_the_extrados_joints():
     assert edges == pytest.approx(np.sort(1.2 * np.cos(a)), abs=1e-12)
     assert deck_range(ARCH) == pytest.approx((-1.2, 1.2))
     assert isinstance(Vehicle(axles=[[0.0, 1.0]]).label, str)
+
+
+# ---------------------------------------------------------------------------- fill
+def _extrados(span=6.0, rise=1.5, t=0.4, n=12):
+    """Extrados joint ends (x, z) of the segmental arch, from its definition (independent)."""
+    R = (span**2 / 4 + rise**2) / (2 * rise)
+    zc = rise - R
+    half = np.arctan2(span / 2, -zc)
+    ang = np.linspace(np.pi / 2 + half, np.pi / 2 - half, n + 1)
+    return np.column_stack([(R + t) * np.cos(ang), zc + (R + t) * np.sin(ang)])
+
+
+def test_fill_weight_is_the_column_above_each_voussoir():
+    from tce.core.fill import Fill
+
+    bridge = segmental_arch(span=6.0, rise=1.5, thickness=0.4, depth=3.0, voussoirs=12)
+    je = _extrados()
+    road = je[:, 1].max() + 0.3
+    a = resolve(LoadPattern(lateral=False, fill=Fill(depth=0.3, unit_weight=18.0),
+                            vehicle=[dict(axles=[[0.0, 1.0]])]), bridge)
+    fill = np.array([s.startswith("fill") for s in a.sources])
+    # column over voussoir k: trapezoid between road and the extrados chord, 3 m deep
+    h = road - je[:, 1]
+    area = 0.5 * (h[:-1] + h[1:]) * np.diff(je[:, 0])
+    xc = (np.diff(je[:, 0]) / 3.0) * (h[:-1] + 2 * h[1:]) / (h[:-1] + h[1:]) + je[:-1, 0]
+    np.testing.assert_allclose(-a.forces[fill, 2], 18.0 * 3.0 * area, rtol=1e-12)
+    np.testing.assert_allclose(a.points[fill, 0], xc, rtol=1e-12, atol=1e-12)
+    assert not a.scaled[fill].any()
+    # at rest: -k0 n_x / n_z of the weight, towards the crown, at the same point
+    k = resolve(LoadPattern(lateral=False, fill=Fill(depth=0.3, unit_weight=18.0, k0=0.5, weight=False),
+                            vehicle=[dict(axles=[[0.0, 1.0]])]), bridge)
+    kf = np.array([s.startswith("fill") for s in k.sources])
+    slope = np.diff(je[:, 1]) / np.diff(je[:, 0])  # dz/dx of each chord: n_x / n_z = -slope
+    np.testing.assert_allclose(k.forces[kf, 0], 0.5 * slope * 18.0 * 3.0 * area, rtol=1e-10, atol=1e-9)
+    assert (k.forces[kf, 0][:6] > 0).all() and (k.forces[kf, 0][6:] < 0).all() and not k.forces[kf, 2].any()
+    off = resolve(LoadPattern(lateral=False, fill=Fill(depth=0.3, unit_weight=18.0, weight=False),
+                              vehicle=[dict(axles=[[0.0, 1.0]])]), bridge)
+    assert not any(s.startswith("fill") for s in off.sources)
+
+
+def test_wheel_load_dispersed_2_to_1_through_the_fill():
+    from tce.core.fill import DISPERSION_2_TO_1, Fill
+
+    assert np.tan(np.radians(DISPERSION_2_TO_1)) == pytest.approx(0.5)
+    bridge = segmental_arch(span=6.0, rise=1.5, thickness=0.4, depth=3.0, voussoirs=12)
+    je = _extrados()
+    x0 = 0.1  # over voussoir 7, near the crown joint at x = 0
+    z0 = np.interp(x0, je[:, 0], je[:, 1])
+    h = je[:, 1].max() + 0.5 - z0
+    L = 2 * h * 0.5  # 2:1: the spread length on each side is h / 2
+    a = resolve(LoadPattern(lateral=False, fill=Fill(depth=0.5, unit_weight=18.0, weight=False),
+                            vehicle=[dict(axles=[[0.0, 10.0]], x=x0)]), bridge)
+    live = a.scaled
+    assert a.forces[live, 2].sum() == pytest.approx(-10.0)
+    right = a.points[live, 0] > 0.0
+    assert -a.forces[live][right, 2].sum() == pytest.approx(10.0 * (x0 + L / 2) / L, rel=1e-9)
+    none = resolve(LoadPattern(lateral=False, fill=Fill(depth=0.5, unit_weight=18.0, weight=False, dispersion=0.0),
+                               vehicle=[dict(axles=[[0.0, 10.0]], x=x0)]), bridge)
+    assert none.points[none.scaled, 0] == pytest.approx([x0])
+
+
+@pytest.mark.parametrize("kwargs, key", [(dict(depth=-1.0, unit_weight=18.0), "depth"),
+                                         (dict(depth=0.3, unit_weight=0.0), "unit_weight"),
+                                         (dict(depth=0.3, unit_weight=18.0, dispersion=75.0), "dispersion"),
+                                         (dict(depth=0.3, unit_weight=18.0, k0=1.5), "k0")])
+def test_bad_fill_names_its_key(kwargs, key):
+    with pytest.raises(LoadError) as err:
+        LoadPattern(fill=kwargs)
+    assert err.value.key == f"fill.{key}"

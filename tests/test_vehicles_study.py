@@ -115,9 +115,12 @@ def test_same_critical_load_whatever_grid_on_the_6m_bridge() -> None:
 
 
 def test_study_files_of_the_repository_parse() -> None:
-    for name in ("arch_vehicle.toml", "bridge_axle.toml"):
+    for name in ("arch_vehicle.toml", "bridge_axle.toml", "bridge_fill.toml"):
         study = parse_study((ROOT / "studies" / name).read_text(), ROOT / "studies" / name)
         assert all(sc.loads["critical_position"] for sc in study.scenarios())
+    fill = parse_study((ROOT / "studies" / "bridge_fill.toml").read_text()).scenarios()[0].loads_pattern.fill
+    assert (fill.depth, fill.unit_weight, fill.k0, fill.weight) == (0.3, 18.0, 0.5, True)
+    assert fill.dispersion == pytest.approx(26.565051177)
 
 
 def test_standard_vehicle_and_load_x_sweep_move_the_vehicle(tmp_path) -> None:
@@ -150,6 +153,9 @@ def test_notes_of_wheels_off_the_deck_are_shown(tmp_path, capsys) -> None:
         (("axles = [[0.0, 1.0], [0.4, 1.0]]", "axles = [[0.0, 1.0], [0.0, 1.0]]"), "loads.vehicle[0].axles"),
         (("axles = [[0.0, 1.0], [0.4, 1.0]]", "axles = [[0.0, -1.0]]"), "loads.vehicle[0].axles[0]"),
         (("axles = [[0.0, 1.0], [0.4, 1.0]]", "axles = [[0.0, 1.0]]\nwheel = [0.0]"), "loads.vehicle[0].wheel"),
+        (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\n[scenarios.none]"), "loads.fill.unit_weight"),
+        (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\nunit_weight = 18.0\nk0 = 1.0\n[scenarios.none]"),
+         "loads.fill.k0"),
     ],
 )
 def test_bad_declarations_exit_2_naming_the_key(tmp_path, capsys, edit, key) -> None:

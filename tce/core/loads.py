@@ -50,6 +50,7 @@ from ..structures.params import did_you_mean
 from .model import EZ, Model, Plane, lateral_direction, motions_in_plane
 
 if TYPE_CHECKING:
+    from .fill import Fill
     from .vehicles import Vehicle
 
 __all__ = [
@@ -243,6 +244,9 @@ class LoadPattern:
     vehicle : sequence of :class:`tce.core.vehicles.Vehicle` (or dicts of its keys)
         Axle groups moving as one (:mod:`tce.core.vehicles`); wheels off the deck are
         dropped with a note (:attr:`AppliedLoads.notes`).
+    fill : :class:`tce.core.fill.Fill` (or a dict of its keys), optional
+        Fill over the top surface: its weight and at-rest pressure (fixed loads), and the
+        dispersion of the vehicles' wheel loads through it (:mod:`tce.core.fill`).
 
     A pattern with only ``alpha`` (``lateral`` true, no loads) is the default pattern: the
     right-hand sides are exactly the model's ``b_dead`` and ``b_lateral(alpha)``. Patterns
@@ -254,9 +258,18 @@ class LoadPattern:
     point: tuple[PointLoad, ...] = ()
     distributed: tuple[DistributedLoad, ...] = ()
     vehicle: tuple[Vehicle, ...] = ()
+    fill: Fill | None = None
 
     def __post_init__(self) -> None:
+        from .fill import Fill
         from .vehicles import Vehicle
+
+        if self.fill is not None and not isinstance(self.fill, Fill):
+            try:
+                (fill,) = _items(Fill, [self.fill], "fill")
+            except LoadError as exc:  # one table: fill.depth, not fill[0].depth
+                raise LoadError(exc.key.replace("fill[0]", "fill", 1), exc.problem, exc.fix) from None
+            object.__setattr__(self, "fill", fill)
 
         (alpha,) = _vector([self.alpha], 1, "alpha", "degrees")
         object.__setattr__(self, "alpha", alpha)
@@ -274,7 +287,7 @@ class LoadPattern:
     @property
     def default(self) -> bool:
         """True for the paper's pattern alone (self-weight and the lateral pattern)."""
-        return self.lateral and not self.point and not self.distributed and not self.vehicle
+        return self.lateral and not self.point and not self.distributed and not self.vehicle and self.fill is None
 
     @property
     def direction(self) -> float:
@@ -329,6 +342,8 @@ class LoadPattern:
         }
         if self.vehicle:  # absent otherwise: the patterns of earlier versions read the same
             out["vehicle"] = [v.to_dict() for v in self.vehicle]
+        if self.fill is not None:
+            out["fill"] = self.fill.to_dict()
         return out
 
     @classmethod
@@ -660,11 +675,20 @@ def resolve(pattern: LoadPattern, assembly: Assembly) -> AppliedLoads:
             scaled.append(load.scaled)
             sources.append(f"distributed[{k}]")
     notes: list[str] = []
+    if pattern.fill is not None:
+        from .fill import fill_forces
+
+        for k, (i, p, f) in enumerate(fill_forces(assembly, pattern.fill)):
+            blocks.append(i)
+            points.append(p)
+            forces.append(f)
+            scaled.append(False)
+            sources.append(f"fill[{k}]")
     if pattern.vehicle:
         from .vehicles import wheel_loads
 
         for k, vehicle in enumerate(pattern.vehicle):
-            wheels, dropped = wheel_loads(vehicle, assembly, f"vehicle[{k}]")
+            wheels, dropped = wheel_loads(vehicle, assembly, f"vehicle[{k}]", pattern.fill)
             notes += dropped
             for wheel in wheels:
                 for i, p, fz in wheel.parts:

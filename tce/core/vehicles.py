@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
@@ -31,6 +31,9 @@ from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
 from .loads import LoadError, _on_top, _upward_faces, _vector, top_surface
+
+if TYPE_CHECKING:
+    from .fill import Fill
 
 __all__ = [
     "STANDARD",
@@ -164,20 +167,38 @@ class VehicleLoad:
     parts: tuple[tuple[int, tuple[float, float, float], float], ...]  # (block, point, Fz in kN)
 
 
-def wheel_loads(vehicle: Vehicle, assembly: Assembly, key: str) -> tuple[list[VehicleLoad], list[str]]:
+def wheel_loads(
+    vehicle: Vehicle, assembly: Assembly, key: str, fill: Fill | None = None
+) -> tuple[list[VehicleLoad], list[str]]:
     """The wheels of ``vehicle`` that lie on the deck of ``assembly``, and a note for each
     wheel (or part of a patch) dropped because it lies off the deck.
 
     ``key`` names the vehicle in sources and notes (``vehicle[0]``). The deck is the top
     surface of the free blocks (:func:`tce.core.loads.top_surface`); a wheel over a support
-    block or outside the plan is off the deck.
+    block or outside the plan is off the deck. With a ``fill`` whose dispersion is on, each
+    wheel's patch (a point: 0 x 0) grows by the spread through the fill under the wheel's
+    centre (:meth:`tce.core.fill.Fill.spread`) on each side before it is laid on the deck.
     """
     loads: list[VehicleLoad] = []
     notes: list[str] = []
+    road = None
+    if fill is not None and fill.dispersion > 0.0:
+        from .fill import road_level
+
+        road = road_level(assembly, fill)
     for a, w, x, y, load in vehicle.wheel_points():
         source = f"{key}.axle[{a}].wheel[{w}]"
         where = f"{key} ({vehicle.label}) axle {a + 1} wheel {w + 1} at x = {x:.4g} m, y = {y:.4g} m"
-        if vehicle.patch is None:
+        patch = vehicle.patch
+        if road is not None and fill is not None:
+            try:
+                _, p = _on_top(assembly, (x, y))
+                spread = 2.0 * fill.spread(road - float(p[2]))
+            except LoadError:
+                spread = 0.0
+            base = patch or (0.0, 0.0)
+            patch = (base[0] + spread, base[1] + spread) if spread > 0.0 else vehicle.patch
+        if patch is None:
             try:
                 i, p = _on_top(assembly, (x, y))
             except LoadError:
@@ -188,7 +209,7 @@ def wheel_loads(vehicle: Vehicle, assembly: Assembly, key: str) -> tuple[list[Ve
                 continue
             loads.append(VehicleLoad(source, ((i, tuple(float(v) for v in p), -load),)))
             continue
-        parts, off = _patch_parts(assembly, x, y, vehicle.patch)
+        parts, off = _patch_parts(assembly, x, y, patch)
         if off > 1e-9:
             notes.append(f"{where}: {100.0 * off:.3g}% of its contact patch off the deck or over a support, dropped")
         if parts:

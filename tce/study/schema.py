@@ -47,6 +47,7 @@ from .. import __version__
 from ..analysis.loadpath import MAX_INCREMENTS
 from ..core.loads import LoadError, LoadPattern, resolve
 from ..core.material import Material
+from ..core.fill import DISPERSION_2_TO_1
 from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.assembly import Assembly
 from ..structures.io import MAX_BLOCKS, InputLimitError
@@ -366,6 +367,18 @@ class VehicleSection(_Strict):
         return dict(standard_vehicle(self.standard).to_dict(), **given) if self.standard else given
 
 
+class FillSection(_Strict):
+    """``[loads.fill]``: fill over the top surface (depth over the crown in m, unit weight in
+    kN/m^3, its weight on or off, the wheel loads' spread angle in degrees from the vertical,
+    the coefficient at rest ``k0``); :class:`tce.core.fill.Fill`."""
+
+    depth: NonNegative
+    unit_weight: Positive
+    weight: bool = True
+    dispersion: Annotated[float, Field(ge=0, le=60)] = DISPERSION_2_TO_1
+    k0: Annotated[float, Field(ge=0, lt=1)] = 0.0
+
+
 class LoadsSection(_Strict):
     """``[loads]``: the load pattern (lateral directions in degrees, whether lambda multiplies
     the lateral pattern, point and distributed loads, vehicles), load-path step and bisection
@@ -378,6 +391,7 @@ class LoadsSection(_Strict):
     point: list[PointLoadSection] = Field(default_factory=list)
     distributed: list[DistributedLoadSection] = Field(default_factory=list)
     vehicle: list[VehicleSection] = Field(default_factory=list)
+    fill: FillSection | None = None
     critical_position: bool = False
     positions: list[float] | None = None
     lambda_step: Positive = 0.02
@@ -397,6 +411,7 @@ class LoadsSection(_Strict):
             point=[p.model_dump(exclude_none=True) for p in self.point],
             distributed=[d.model_dump(exclude_none=True) for d in self.distributed],
             vehicle=[v.declaration() for v in self.vehicle],
+            fill=None if self.fill is None else self.fill.model_dump(),
         )
 
     def path_settings(self) -> dict[str, Any]:
