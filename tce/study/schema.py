@@ -187,6 +187,37 @@ class ArchOnPiersStructure(_Strict):
         return semicircular_arch_on_piers(**self.model_dump(exclude={"type"}))
 
 
+class ArchBridgeStructure(_Strict):
+    """``[structure] type = "arch_bridge"``: :func:`tce.structures.bridge.arch_bridge`."""
+
+    type: Literal["arch_bridge"]
+    spans: Annotated[int, Field(ge=1)] = 1
+    span: Positive = 6.0
+    rise: Positive = 1.5
+    thickness: Positive = 0.4
+    depth: Positive = 3.0
+    voussoirs: Annotated[int, Field(ge=1)] = 12
+    unit_weight: Positive = 20.0
+    pier_width: Positive = 1.0
+    pier_height: Positive = 3.0
+    piers: Literal["free", "fixed"] = "free"
+
+    @model_validator(mode="after")
+    def _not_too_many_blocks(self) -> ArchBridgeStructure:
+        if self.spans * (self.voussoirs + 2) + 1 > MAX_BLOCKS:
+            raise ValueError(
+                f"spans x (voussoirs + 2) + 1 = {self.spans * (self.voussoirs + 2) + 1} blocks, more than "
+                f"MAX_BLOCKS = {MAX_BLOCKS}; fix: use fewer spans or voussoirs"
+            )
+        return self
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.bridge import arch_bridge
+
+        return arch_bridge(**self.model_dump(exclude={"type"}))
+
+
 class BarrelVaultStructure(_Strict):
     """``[structure] type = "barrel_vault"``: :func:`tce.structures.vault.barrel_vault`."""
 
@@ -283,6 +314,7 @@ _STRUCTURES = (
     GroinVaultStructure,
     DomeStructure,
     FileStructure,
+    ArchBridgeStructure,
 )
 #: the ``[structure] type`` values, in the order docs/studies.md lists them
 STRUCTURE_TYPES = tuple(cls.model_fields["type"].annotation.__args__[0] for cls in _STRUCTURES)
@@ -294,7 +326,8 @@ Structure = Annotated[
     | BarrelVaultStructure
     | GroinVaultStructure
     | DomeStructure
-    | FileStructure,
+    | FileStructure
+    | ArchBridgeStructure,
     Field(discriminator="type"),
 ]
 
