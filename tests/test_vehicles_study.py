@@ -176,3 +176,37 @@ def test_a_vehicle_off_the_deck_everywhere_has_no_limit() -> None:
 
 def resolve_notes(an: Analysis, pattern: LoadPattern) -> tuple[str, ...]:
     return an.applied_loads(loads=pattern).notes
+
+
+# ---------------------------------------------------------------------------- assessment
+def test_adequacy_factor_scales_as_the_cone_says() -> None:
+    from tce.analysis.assessment import adequacy_factor
+
+    an = Analysis(segmental_arch(span=6.0, rise=1.5, thickness=0.4, depth=3.0, voussoirs=12))
+    p = LoadPattern(lateral=False, distributed=[dict(x=[-3.5, 3.5], pressure=10.0, scaled=False)],
+                    vehicle=[dict(axles=[[0.0, 2.0]], wheels=[-0.9, 0.9], x=-1.5)])
+    lam = an.limit(loads=p).lambda_max
+    for gd, gl in ((1.0, 1.0), (1.0, 1.5), (1.2, 1.5), (0.9, 2.0)):
+        assert adequacy_factor(an, p, gd, gl).lambda_max == pytest.approx(lam * gd / gl, rel=1e-7)
+    with pytest.raises(ValueError, match="live_factor"):
+        adequacy_factor(an, p, 1.0, 0.0)
+
+
+def test_assessment_study_reads_as_an_assessment(tmp_path, capsys) -> None:
+    text = STUDY + "\n[assessment]\ndead_factor = 1.1\nlive_factor = 1.5\n"
+    path = write(tmp_path, text.replace('name = "vehicle"', 'name = "assessed"'))
+    assert main(["run", str(path), "--out", str(tmp_path / "out"), "--jobs", "1", "--no-plots"]) == 0
+    ds = xr.load_dataset(tmp_path / "out" / "assessed" / "results.nc")
+    lam = float(ds["critical_lambda"].values[0])
+    assert float(ds["adequacy_factor"].values[0]) == pytest.approx(lam * 1.1 / 1.5, rel=1e-7)
+    capsys.readouterr()
+    assert main(["show", str(tmp_path / "out" / "assessed" / "results.nc")]) == 0
+    out = capsys.readouterr().out
+    assert "assessment (adequacy factor" in out and "partial factors dead 1.1, live 1.5" in out
+    assert f"adequacy factor {lam * 1.1 / 1.5:.4g}: NOT adequate" in out and "vehicle (2 kN)" in out
+
+
+def test_bad_partial_factor_exits_2(tmp_path, capsys) -> None:
+    path = write(tmp_path, STUDY + "\n[assessment]\ndead_factor = 0.0\n")
+    assert main(["run", str(path), "--out", str(tmp_path / "out"), "--no-plots"]) == 2
+    assert f"{path}: assessment.dead_factor" in capsys.readouterr().err and not (tmp_path / "out").exists()

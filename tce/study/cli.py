@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import math
 import sys
 from collections import Counter
 from collections.abc import Sequence
@@ -275,7 +276,33 @@ def _show(args: argparse.Namespace) -> int:
         _show_search(ds)
     if "load_notes" in ds:
         _show_notes(ds)
+    if "adequacy_factor" in ds:
+        _show_assessment(ds)
     return 0
+
+
+def _show_assessment(ds) -> None:
+    """The assessment of each scenario (``[assessment]``): the live load, where it is worst,
+    the collapse load, the partial factors and the adequacy factor."""
+    print("assessment (adequacy factor: multiplier of the factored live load at collapse under the factored "
+          "dead load; >= 1: adequate):")
+    for k, name in enumerate(ds["scenario"].values):
+        what = str(ds["assessed_vehicles"].values[k]) or "the live loads"
+        where = ""
+        if "critical_x" in ds and math.isfinite(ds["critical_x"].values[k]):
+            where = f" at its critical position x = {float(ds['critical_x'].values[k]):.4g} m"
+        lam = float(ds["lambda_max"].values[k])
+        collapse = f"collapses at {lam:.4g} x the declared live load" if math.isfinite(lam) else \
+            f"load path outcome {ds['outcome'].values[k]}"
+        gd, gl = float(ds["dead_factor"].values[k]), float(ds["live_factor"].values[k])
+        af, status = float(ds["adequacy_factor"].values[k]), str(ds["adequacy_status"].values[k])
+        if status == "optimal":
+            verdict = f"adequacy factor {af:.4g}: {'adequate' if af >= 1.0 else 'NOT adequate'}"
+        elif status == "unbounded":
+            verdict = "adequacy factor unbounded (carried at any multiplier): adequate"
+        else:
+            verdict = f"no adequacy factor ({status})"
+        print(f"  {name}: {what}{where}: {collapse} (unfactored); partial factors dead {gd:g}, live {gl:g}: {verdict}")
 
 
 def _show_search(ds) -> None:

@@ -21,8 +21,10 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.critical import CriticalResult
+from ..core.limit import LimitResult
+from ..core.loads import LoadPattern
 
-__all__ = ["CriticalPosition", "critical_positions", "position_groups", "with_critical"]
+__all__ = ["CriticalPosition", "critical_positions", "position_groups", "with_adequacy", "with_critical"]
 
 
 @dataclass(frozen=True)
@@ -113,3 +115,22 @@ def with_critical(ds: xr.Dataset, crit: CriticalResult) -> xr.Dataset:
         scan_x=(("scenario", "scan"), crit.x[None]),
         scan_lambda=(("scenario", "scan"), crit.lam[None]),
     ).assign_coords(scan=np.arange(len(crit.x)))
+
+
+def with_adequacy(
+    ds: xr.Dataset, limit: LimitResult, pattern: LoadPattern, dead_factor: float, live_factor: float
+) -> xr.Dataset:
+    """A one-scenario dataset with the adequacy factor (``[assessment]``): the factored
+    direct limit's ``lambda_max`` (NaN unless optimal, inf when unbounded) and status, the
+    partial factors, and the vehicles' names and total loads (kN) for the assessment's
+    wording."""
+    one = ("scenario",)
+    vehicles = "; ".join(f"{v.label} ({v.total:g} kN)" for v in pattern.vehicle if v.scaled)
+    value = limit.lambda_max if limit.status in ("optimal", "unbounded") else float("nan")
+    return ds.assign(
+        adequacy_factor=(one, [value]),
+        adequacy_status=(one, np.asarray([limit.status], dtype=object)),
+        assessed_vehicles=(one, np.asarray([vehicles], dtype=object)),
+        dead_factor=(one, [float(dead_factor)]),
+        live_factor=(one, [float(live_factor)]),
+    )

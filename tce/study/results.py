@@ -150,6 +150,12 @@ META: dict[str, tuple[str, str]] = {
     "scan": ("-", "position evaluated by the critical-position search"),
     "scan_x": ("m", "reference position evaluated by the critical-position search"),
     "scan_lambda": ("1", "direct lambda_max at scan_x (inf: carried at any multiplier)"),
+    # assessment ([assessment]; tce.analysis.assessment)
+    "adequacy_factor": ("1", "multiplier of the factored live load at collapse under the factored dead load (>= 1: adequate)"),
+    "adequacy_status": ("-", "status of the factored direct limit (optimal, unbounded, infeasible, numerical)"),
+    "assessed_vehicles": ("-", "the live vehicles assessed, with their total loads"),
+    "dead_factor": ("1", "partial factor on every fixed load (self-weight included) of the assessment"),
+    "live_factor": ("1", "partial factor on the live loads of the assessment"),
     "cohesion": ("kN/m^2", "cohesion of the joints"),
     "tensile_strength": ("kN/m^2", "tensile strength of the joints"),
     "compressive_strength": ("kN/m^2", "compressive strength of the joints (per contact vertex)"),

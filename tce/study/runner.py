@@ -54,9 +54,10 @@ from ..analysis.loadpath import LoadPathResult, load_path
 from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
+from ..analysis.assessment import adequacy_factor
 from ..analysis.critical import critical_position
 from .jobs import choose_jobs
-from .positions import with_critical
+from .positions import with_adequacy, with_critical
 from .results import (
     FolderLocked,
     StorageError,
@@ -197,6 +198,9 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     if analysis.material.flow == "non-associative":
         bracket = nonassociative_limit(analysis, loads=pattern)
     ds = scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+    if "dead_factor" in sc.loads:
+        factors = sc.loads["dead_factor"], sc.loads["live_factor"]
+        ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
     return ds if crit is None else with_critical(ds, crit)
 
 

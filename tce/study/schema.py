@@ -580,6 +580,15 @@ class PlotsSection(_Strict):
         return [n for n in names if any(fnmatch.fnmatchcase(n, p) for p in self.scenarios)]
 
 
+class AssessmentSection(_Strict):
+    """``[assessment]``: partial factors on the dead (every fixed load, self-weight
+    included) and live loads; the results carry the adequacy factor
+    (:func:`tce.analysis.assessment.adequacy_factor`) and ``tce show`` reads as an assessment."""
+
+    dead_factor: Positive = 1.0
+    live_factor: Positive = 1.0
+
+
 class StudyFile(_Strict):
     """The whole study file."""
 
@@ -592,6 +601,7 @@ class StudyFile(_Strict):
         dict[Annotated[str, Field(min_length=1, max_length=100)], dict[str, Vector6]], Field(min_length=1)
     ] = Field(default_factory=lambda: {"none": {}})
     plots: PlotsSection = PlotsSection()
+    assessment: AssessmentSection | None = None
 
     @field_validator("sweep")
     @classmethod
@@ -741,6 +751,8 @@ class Study:
         axes = [("alpha", spec.loads.alphas)] + spec.sweep.items()
         names = [k for k, _ in axes]
         loads = spec.loads.path_settings()
+        if spec.assessment is not None:
+            loads.update(spec.assessment.model_dump())
         for case, motions in spec.scenarios.items():
             for values in itertools.product(*(v for _, v in axes)):
                 p = dict(zip(names, (float(v) for v in values), strict=True))
