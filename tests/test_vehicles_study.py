@@ -210,3 +210,13 @@ def test_bad_partial_factor_exits_2(tmp_path, capsys) -> None:
     path = write(tmp_path, STUDY + "\n[assessment]\ndead_factor = 0.0\n")
     assert main(["run", str(path), "--out", str(tmp_path / "out"), "--no-plots"]) == 2
     assert f"{path}: assessment.dead_factor" in capsys.readouterr().err and not (tmp_path / "out").exists()
+
+
+def test_search_in_workers_and_resumed_gives_the_same_dataset(run, tmp_path) -> None:
+    _, ds = run
+    path = write(tmp_path, STUDY)
+    for _ in range(2):  # solved by two workers, then reused
+        assert main(["run", str(path), "--out", str(tmp_path / "out"), "--jobs", "2", "--no-plots"]) == 0
+        other = xr.load_dataset(tmp_path / "out" / "vehicle" / "results.nc")
+        for name in ("critical_x", "critical_lambda", "lambda_max", "scan_x", "scan_lambda"):
+            np.testing.assert_array_equal(other[name].values, ds[name].values)
