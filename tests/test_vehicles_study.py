@@ -15,7 +15,7 @@ from tce.analysis.critical import critical_position
 from tce.core.analysis import Analysis
 from tce.core.loads import LoadPattern
 from tce.structures.arch import segmental_arch
-from tce.study.cli import main
+from tce.cli import main
 from tce.study.schema import parse_study
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -3,7 +3,7 @@ horizontal pressure. Each part can be switched off.
 
 The fill is a soil layer whose surface (the road) lies ``depth`` above the highest point of
 the free blocks' exposed top surface (the crown's extrados); it bears on that top surface
-(:func:`tce.core.loads.top_surface`). It is a load, not blocks: its weight and pressure are
+(:func:`tce.core.surface.top_surface`). It is a load, not blocks: its weight and pressure are
 fixed loads (part of ``b_fixed``), and it adds no strength of its own.
 
 - **Weight** (``weight = true``): each exposed top-surface piece of a free block carries the
@@ -40,7 +40,7 @@ import numpy as np
 import shapely
 
 from ..structures.assembly import Assembly
-from .loads import LoadError, _upward_faces, _vector, top_surface
+from .surface import LoadError, _upward_faces, _vector, top_surface
 
 __all__ = ["DISPERSION_2_TO_1", "Fill", "fill_forces", "road_level"]
 

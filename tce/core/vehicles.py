@@ -30,7 +30,7 @@ import shapely
 from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
-from .loads import LoadError, _on_top, _upward_faces, _vector, top_surface
+from .surface import LoadError, _on_top, _upward_faces, _vector, top_surface
 
 if TYPE_CHECKING:
     from .fill import Fill
@@ -174,7 +174,7 @@ def wheel_loads(
     wheel (or part of a patch) dropped because it lies off the deck.
 
     ``key`` names the vehicle in sources and notes (``vehicle[0]``). The deck is the top
-    surface of the free blocks (:func:`tce.core.loads.top_surface`); a wheel over a support
+    surface of the free blocks (:func:`tce.core.surface.top_surface`); a wheel over a support
     block or outside the plan is off the deck. With a ``fill`` whose dispersion is on, each
     wheel's patch (a point: 0 x 0) grows by the spread through the fill under the wheel's
     centre (:meth:`tce.core.fill.Fill.spread`) on each side before it is laid on the deck.
