@@ -27,6 +27,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import logging
+import math
 import sys
 from collections import Counter
 from collections.abc import Iterator, Sequence
@@ -353,7 +354,60 @@ def _show(args: argparse.Namespace) -> int:
                 print(f"{name}: no_limit: {why}")
     if "load_x" in ds.coords:
         _show_critical(ds)
+    if "critical_x" in ds:
+        _show_search(ds)
+    if "load_notes" in ds:
+        _show_notes(ds)
+    if "adequacy_factor" in ds:
+        _show_assessment(ds)
     return 0
+
+
+def _show_assessment(ds) -> None:
+    """The assessment of each scenario (``[assessment]``): the live load, where it is worst,
+    the collapse load, the partial factors and the adequacy factor."""
+    print("assessment (adequacy factor: multiplier of the factored live load at collapse under the factored "
+          "dead load; >= 1: adequate):")
+    for k, name in enumerate(ds["scenario"].values):
+        what = str(ds["assessed_vehicles"].values[k]) or "the live loads"
+        where = ""
+        if "critical_x" in ds and math.isfinite(ds["critical_x"].values[k]):
+            where = f" at its critical position x = {float(ds['critical_x'].values[k]):.4g} m"
+        lam = float(ds["lambda_max"].values[k])
+        collapse = f"collapses at {lam:.4g} x the declared live load" if math.isfinite(lam) else \
+            f"load path outcome {ds['outcome'].values[k]}"
+        gd, gl = float(ds["dead_factor"].values[k]), float(ds["live_factor"].values[k])
+        af, status = float(ds["adequacy_factor"].values[k]), str(ds["adequacy_status"].values[k])
+        if status == "optimal":
+            verdict = f"adequacy factor {af:.4g}: {'adequate' if af >= 1.0 else 'NOT adequate'}"
+        elif status == "unbounded":
+            verdict = "adequacy factor unbounded (carried at any multiplier): adequate"
+        else:
+            verdict = f"no adequacy factor ({status})"
+        print(f"  {name}: {what}{where}: {collapse} (unfactored); partial factors dead {gd:g}, live {gl:g}: {verdict}")
+
+
+def _show_search(ds) -> None:
+    """The critical position each scenario's search found (``[loads] critical_position``)."""
+    print("critical position of the moving loads (searched; the load path runs there):")
+    for k, name in enumerate(ds["scenario"].values):
+        status = str(ds["critical_status"].values[k])
+        if status != "optimal":
+            print(f"  {name}: {status}: no critical position"
+                  + (" (carried at any multiplier at every position)" if status == "unbounded" else ""))
+            continue
+        ties = str(ds["critical_ties"].values[k])
+        print(f"  {name}: x = {float(ds['critical_x'].values[k]):.6g} m (to {float(ds['critical_xtol'].values[k]):.2g} m), "
+              f"direct lambda_max = {float(ds['critical_lambda'].values[k]):.6g}, "
+              f"{int(ds['critical_solves'].values[k])} limit solves"
+              + (f"; tied (same lambda_max) at x = {ties} m, the leftmost reported" if ties else ""))
+
+
+def _show_notes(ds) -> None:
+    """Loads dropped because they lie off the deck, per scenario."""
+    for name, notes in zip(ds["scenario"].values, ds["load_notes"].values):
+        for line in str(notes).splitlines():
+            print(f"{name}: note: {line}")
 
 
 def _show_critical(ds) -> None:
@@ -364,7 +418,9 @@ def _show_critical(ds) -> None:
     for c in critical_positions(ds):
         where = f"{c.group}: " if c.group else ""
         if c.scenario:
-            print(f"  {where}load_x = {c.load_x:.6g} m, lambda_max = {c.lambda_max:.6g} (scenario {c.scenario})")
+            print(f"  {where}load_x = {c.load_x:.6g} m, lambda_max = {c.lambda_max:.6g} (scenario {c.scenario})"
+                  + (f"; tied (same lambda_max within the tolerance) at load_x = {', '.join(f'{t:.6g}' for t in c.ties)} m"
+                     if c.ties else ""))
         else:
             print(f"  {where}no position has a finite lambda_max")
 

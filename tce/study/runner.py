@@ -55,7 +55,10 @@ from ..analysis.loadpath import LoadPathResult, load_path
 from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
+from ..analysis.assessment import adequacy_factor
+from ..analysis.critical import critical_position
 from .jobs import choose_jobs
+from .positions import with_adequacy, with_critical
 from .results import (
     FolderLocked,
     StorageError,
@@ -185,19 +188,29 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     (:func:`with_drawn_states`).
     """
     analysis = _cold(_analysis(sc, assembly))
+    pattern, crit = sc.loads_pattern, None
+    if sc.loads.get("critical_position"):
+        crit = critical_position(analysis, pattern, start=sc.loads["positions"])
+        log.debug("scenario %r: critical position %s", sc.name, crit.message)
+        if crit.ok:
+            pattern = crit.pattern
     lp = load_path(
         analysis,
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
         atol=sc.loads["tolerance"],
         lam_cap=sc.loads["lambda_cap"],
-        loads=sc.loads_pattern,
+        loads=pattern,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     bracket = None
     if analysis.material.flow == "non-associative":
-        bracket = nonassociative_limit(analysis, loads=sc.loads_pattern)
-    return scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+        bracket = nonassociative_limit(analysis, loads=pattern)
+    ds = scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+    if "dead_factor" in sc.loads:
+        factors = sc.loads["dead_factor"], sc.loads["live_factor"]
+        ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
+    return ds if crit is None else with_critical(ds, crit)
 
 
 def same_lambda(a: float, b: float) -> bool:
