@@ -81,10 +81,13 @@ from ..core.solve import check_settlements
 from ..structures.assembly import Assembly, Block
 from ..structures.geometry import Polyhedron
 
-__all__ = ["MAX_STEPS", "SettlementPathResult", "settlement_path"]
+__all__ = ["MAX_STEPS", "SettlementPathResult", "check_path_scene", "settlement_path"]
 
 #: Most increments (accepted or bisected) one path may take.
 MAX_STEPS = 20_000
+
+#: Most snaps (falls to a new standing configuration, :func:`_snap`) one path may take.
+MAX_SNAPS = 100
 
 _FEAS = 1e-9  # relative tolerance of the equilibrium residual and of "velocity is zero"
 
@@ -295,11 +298,12 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: float)
     return {2: "infeasible", 3: "unbounded"}.get(res.status, "numerical"), float("nan")
 
 
-def _move(sc: _Scene, cf: _Config, v: NDArray[np.float64], ds: float) -> _Config:
-    """Every free block moved rigidly by ``v ds``; the supports to their exact place at ``s + ds``."""
+def _move(sc: _Scene, cf: _Config, v: NDArray[np.float64], ds: float, advance: bool = True) -> _Config:
+    """Every free block moved rigidly by ``v ds``; the supports to their exact place at
+    ``s + ds`` (at ``s`` when not ``advance``: a motion with the supports held)."""
     c = cf.c + ds * v[:, :2]
     theta = cf.theta + ds * v[:, 2]
-    s = cf.s + ds
+    s = cf.s + ds if advance else cf.s
     c[sc.support] = sc.c0[sc.support] + s * sc.velocity[:, :2]
     theta[sc.support] = s * sc.velocity[:, 2]
     return _Config(s, c, theta)
@@ -324,6 +328,97 @@ def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     c[sc.free] += dq[:, :2]
     theta[sc.free] += dq[:, 2]
     return _Config(cf.s, c, theta)
+
+
+def _snap(
+    sc: _Scene, cf: _Config, closed: NDArray[np.bool_], gtol: float, limit: float
+) -> tuple[_Config, NDArray[np.bool_], _Step] | None:
+    """Follow the structure's fall with the supports held from a configuration where nothing
+    stands, until an open end closes and the structure stands again.
+
+    At each sub-step the direction is the kinematic program's steepest descent of the
+    weights with the supports held (block speeds bounded by 1, rotations times the size by
+    1); the blocks move along it until the first open end closes (the closing end is then
+    shut exactly by the projection) or by at most 1 % of the size. The fall is taken as
+    quasi-static with perfectly inelastic impacts: the energy released is dissipated when
+    the joint closes. Returns the standing configuration, its closed ends and its program,
+    or None when no end closes before some block has turned by ``limit`` rad or moved by
+    ``limit`` times the size (a collapse), or the program fails.
+    """
+    nf = len(sc.free)
+    w = sc.weights[sc.free] / sc.weights[sc.free].sum()
+    b = np.zeros(3 * nf)
+    b[1::3] = -w
+    bounds = [(-1.0, 1.0), (-1.0, 1.0), (-1.0 / sc.size, 1.0 / sc.size)] * nf
+    start = cf
+    everything = np.ones(closed.shape, dtype=bool)
+    for _ in range(2000):
+        Gn, Gt, *_ = _operators(sc, cf, closed)
+        res = linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
+        if res.status != 0 or -res.fun <= _FEAS:
+            return None
+        d = np.zeros((len(sc.weights), 3))
+        d[sc.free] = res.x.reshape(-1, 3)
+        GnA, *_ = _operators(sc, cf, everything)
+        rate = (GnA @ res.x).reshape(closed.shape)  # opening rate of every end along d
+        _, _, gap = _contacts(sc, cf)
+        closing = ~closed & (rate < -_FEAS)
+        t_close = float((gap[closing] / -rate[closing]).min()) if closing.any() else math.inf
+        t = min(t_close, 0.01 * sc.size)
+        new = _move(sc, cf, d, t, advance=False)
+        keep = closed & (np.abs(rate) <= _FEAS * 1e3)
+        if t == t_close:
+            keep |= closing & (gap / np.maximum(-rate, 1e-300) <= t_close * (1 + 1e-9))
+        new = _project(sc, new, keep)
+        moved = np.abs(new.c - start.c).max() / sc.size
+        turned = np.abs(new.theta - start.theta).max()
+        if max(moved, turned) > limit:
+            return None
+        _, _, gap = _contacts(sc, new)
+        now = gap <= gtol
+        if t == t_close:
+            step = _solve(sc, new, now)
+            if step.status == "optimal":
+                return new, now, step
+            if step.status != "unbounded":
+                return None
+        cf, closed = new, now
+    return None
+
+
+def _checked(
+    assembly: Assembly, material: Material | None, settlements: Mapping[str, ArrayLike], alpha: float | None
+) -> tuple[_Scene, float]:
+    """The planar scene of a path and the lateral direction along ``e`` (+-1; 0 without
+    ``alpha``), checked (:func:`check_path_scene`)."""
+    material = material or Material()
+    if material != Material(flow=material.flow):
+        raise ValueError(
+            "settlement_path follows rigid blocks of a Heyman material (no friction limit, cohesion, "
+            "strengths or stiffness): sliding and crushing are not followed"
+        )
+    sc = _scene(assembly.validate(), settlements)
+    if alpha is None:
+        return sc, 0.0
+    direction = float(lateral_direction(alpha) @ sc.plane.e)
+    if abs(abs(direction) - 1.0) > 1e-12:
+        raise ValueError(f"alpha = {alpha} leaves the assembly's plane: lambda_max is followed in plane only")
+    return sc, direction
+
+
+def check_path_scene(
+    assembly: Assembly, material: Material | None, settlements: Mapping[str, ArrayLike], alpha: float | None = None
+) -> None:
+    """Whether :func:`settlement_path` can follow this scene.
+
+    Raises
+    ------
+    ValueError
+        A material other than the rigid Heyman one, an assembly that is not planar, a
+        motion out of its plane or of an unknown support, or (``alpha`` given) a lateral
+        direction out of the plane.
+    """
+    _checked(assembly, material, settlements, alpha)
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -360,9 +455,14 @@ class SettlementPathResult(Result):
         Which ends of each interface are open, per magnitude.
     hinge_sequence : list of tuple
         ``(magnitude, interface, event)``: ``event`` is ``"hinge"`` when an interface starts
-        rotating, ``"closed"`` when an open joint closes again.
+        rotating, ``"closed"`` when an open joint closes again along the path, ``"snap"``
+        when it closes at the end of a fall (:attr:`snaps`).
     plane : Plane
         The assembly's plane (for drawing in 3D).
+    snaps : list of float
+        Magnitudes at which nothing stood and the structure fell, with the supports held,
+        to a new standing configuration (a joint closed: a hinge migrated); each appears
+        twice in ``magnitudes``, before and after the fall.
     n_solves : int
     """
 
@@ -379,6 +479,7 @@ class SettlementPathResult(Result):
     open_ends: NDArray[np.bool_] = field(repr=False)
     hinge_sequence: list = field(repr=False)
     plane: Plane = field(repr=False)
+    snaps: list = field(default_factory=list)
     n_solves: int = 0
 
     def deformed(self, assembly: Assembly, index: int = -1) -> Assembly:
@@ -410,6 +511,7 @@ def settlement_path(
     alpha: float = 0.0,
     gap_tol: float = 1e-7,
     snap_ratio: float = 1e3,
+    snap_limit: float = 0.05,
 ) -> SettlementPathResult:
     """Follow the support motion ``s * settlements`` from ``s = 0`` until nothing stands.
 
@@ -437,18 +539,17 @@ def settlement_path(
         An interface end is closed when its gap is below ``gap_tol`` times the assembly's size.
     snap_ratio : float
         Largest ratio of the mechanism's speed to the supports' before ``snap_through``.
+    snap_limit : float
+        Where nothing stands, the structure's fall with the supports held is followed until
+        an open joint closes (a snap, after which the path goes on); a fall in which some
+        block turns by more than ``snap_limit`` rad, or moves by more than ``snap_limit``
+        times the assembly's size, before any joint closes is a collapse.
 
     Returns
     -------
     SettlementPathResult
     """
     t0 = time.perf_counter()
-    material = material or Material()
-    if material != Material(flow=material.flow):
-        raise ValueError(
-            "settlement_path follows rigid blocks of a Heyman material (no friction limit, cohesion, "
-            "strengths or stiffness): sliding and crushing are not followed"
-        )
     if not (math.isfinite(increment) and increment > 0):
         raise ValueError(f"increment must be a finite number > 0, got {increment!r}")
     if not (math.isfinite(s_max) and s_max > 0 and s_max / increment <= MAX_STEPS):
@@ -456,13 +557,7 @@ def settlement_path(
     atol = increment / 64 if atol is None else float(atol)
     if not (math.isfinite(atol) and atol > 0):
         raise ValueError(f"atol must be a finite number > 0, got {atol!r}")
-    if lam:
-        d = lateral_direction(alpha)
-    sc = _scene(assembly.validate(), settlements)
-    if lam:
-        direction = float(d @ sc.plane.e)
-        if abs(abs(direction) - 1.0) > 1e-12:
-            raise ValueError(f"alpha = {alpha} leaves the assembly's plane: lambda_max is followed in plane only")
+    sc, direction = _checked(assembly, material, settlements, alpha if lam else None)
     gtol = gap_tol * sc.size
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in settlements.items()}
     n_solves = 0
@@ -502,6 +597,8 @@ def settlement_path(
     ds = increment
     n_steps = 0
     lost_at_upper, upper_msg = False, ""
+    upper_state: tuple[_Config, NDArray[np.bool_]] = (cf, closed)
+    snaps: list[float] = []
     while not status:
         cf, closed, step = records[-1]
         assert step.v is not None and step.dn is not None
@@ -545,24 +642,31 @@ def settlement_path(
                 upper = float("nan")  # reached in shorter steps: the larger one overshot the path
             if ds < increment and upper != upper:  # after an event: back to the full increment
                 ds = increment
-            elif upper == upper and upper - trial.s <= atol:
-                status = "contact_lost" if lost_at_upper else "collapse"
-                message = f"no admissible state at s = {upper:.6g}: {upper_msg}"
-                break
-            continue
-        if new.status == "unbounded":
-            upper = trial.s
+            if not (upper == upper and upper - trial.s <= atol):
+                continue
+        elif new.status == "unbounded":
+            upper, upper_state = trial.s, (trial, now)
             lost_at_upper = bool(lost)
             upper_msg = new.message + (f"; interfaces {lost} lost every contact" if lost else "")
-            if upper - cf.s <= atol:
-                status = "contact_lost" if lost else "collapse"
-                message = f"no admissible state at s = {upper:.6g}: {upper_msg}"
-                break
-            ds = h / 2
-            continue
-        status = "numerical" if new.status == "numerical" else "incompatible"
-        message = f"at s = {trial.s:.6g}: {new.message}"
-        break
+            if upper - cf.s > atol:
+                ds = h / 2
+                continue
+        else:
+            status = "numerical" if new.status == "numerical" else "incompatible"
+            message = f"at s = {trial.s:.6g}: {new.message}"
+            break
+        # bracketed: nothing stands at `upper`; does the structure come to rest after a snap?
+        fallen = _snap(sc, *upper_state, gtol, snap_limit) if len(snaps) < MAX_SNAPS else None
+        if fallen is None:
+            status = "contact_lost" if lost_at_upper else "collapse"
+            message = f"no admissible state at s = {upper:.6g}: {upper_msg}"
+            break
+        before = upper_state[1]
+        for k in np.flatnonzero((fallen[1] & ~before).any(axis=1)):
+            sequence.append((fallen[0].s, int(k), "snap"))
+        snaps.append(fallen[0].s)
+        record(*fallen)
+        upper, ds = float("nan"), increment
 
     ok = status in SettlementPathResult.OK
     k = len(records)
@@ -591,6 +695,7 @@ def settlement_path(
         open_ends=np.array([~cl for _, cl, _ in records]).reshape(k, *sc.ends.shape[:2]),
         hinge_sequence=sequence,
         plane=sc.plane,
+        snaps=snaps,
         n_solves=n_solves,
         wall_time=time.perf_counter() - t0,
     )

@@ -68,6 +68,7 @@ from .results import (
     write_scenario,
 )
 from .schema import Scenario, Study, build_material
+from .settlement import settlement_vars
 
 __all__ = [
     "LAMBDA_TOL",
@@ -188,7 +189,10 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     bracket = None
     if analysis.material.flow == "non-associative":
         bracket = nonassociative_limit(analysis, loads=sc.loads_pattern)
-    return scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+    settlement = settlement_vars(sc, assembly, analysis.material) if sc.settlement_path is not None else None
+    return scenario_dataset(
+        sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket, settlement=settlement
+    )
 
 
 def same_lambda(a: float, b: float) -> bool:

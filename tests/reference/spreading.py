@@ -24,6 +24,13 @@ line through C and I_j is computed and checked at every joint of the half: its l
 must cross the joint between its two ends, in compression. The largest ``u`` at which the
 check holds everywhere is the capacity of this fixed hinge set (bisection on ``u``).
 
+Hinge migration (:func:`path_capacity`): for a fixed hinge set every joint but the three
+hinges is closed, so the deformed geometry at ``u`` depends on the hinge set only, not on
+the history. When the thrust line of hinge j leaves the arch at the neighbouring joint
+j - 1 or j + 1 and the hinge set with the haunch hinge there stands at that ``u``, the hinge
+moves there (joint j closes again: a snap of the rigid blocks) and the path goes on with
+the new set; otherwise the arch collapses.
+
 This file imports nothing from tce.
 """
 
@@ -153,3 +160,41 @@ def capacity(R: float, t: float, n: int, tol: float = 1e-9) -> tuple[float, int,
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if stands(mid) else (lo, mid)
     return lo, j, H0
+
+
+def _last_standing(half: HalfArch, j: int, u0: float, tol: float) -> float:
+    """Largest u >= u0 such that hinge set j stands on [u0, u] (it stands at u0)."""
+
+    def stands(u: float) -> bool:
+        try:
+            return half.deformed(j, u).check(j)[0]
+        except ValueError:
+            return False
+
+    lo, step = u0, 1.0 / 256
+    while stands(lo + step):
+        lo += step
+    hi = lo + step
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if stands(mid) else (lo, mid)
+    return lo
+
+
+def path_capacity(R: float, t: float, n: int, tol: float = 1e-10) -> tuple[float, list[int], list[float]]:
+    """Capacity with hinge migration to a neighbouring joint: ``(u_max, hinges, snaps)``,
+    the haunch hinges in the order they formed (joints from the crown) and the motions u at
+    which the hinge moved."""
+    half = HalfArch.of(R, t, n)
+    j = half.hinge()
+    hinges, snaps, u = [j], [], 0.0
+    while True:
+        u = _last_standing(half, j, u, tol)
+        beyond = u + 4 * tol
+        margins = half.deformed(j, beyond).check(j)[2]
+        k = int(np.argmin(margins)) + 1
+        if abs(k - j) != 1 or not half.deformed(k, beyond).check(k, tol=1e-9)[0]:
+            return u, hinges, snaps
+        j = k
+        hinges.append(j)
+        snaps.append(u)
