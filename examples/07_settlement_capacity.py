@@ -29,13 +29,13 @@ def row(t_over_r: float, n: int, h: float) -> str:
     fine = settlement_path(arch, SPREAD, increment=h / 2, s_max=1.0)
     wall = time.perf_counter() - t0
     if not (coarse.ok and fine.ok):
-        return f"| {t_over_r:g} | {n} | {coarse.status} | {fine.status} | | | |"
-    hinge = fine.hinges[0][-1]  # the right haunch hinge: joint index from the left springing
-    angle = 180.0 * (n - hinge) / n
+        return f"| {t_over_r:g} | {n} | {coarse.status} | {fine.status} | | | | |"
+    # the right haunch hinge (joint index from the left springing) at the start and at collapse
+    first, last = (180.0 * (n - h[-1]) / n for h in (fine.hinges[0], fine.hinges[-1]))
     diff = abs(coarse.capacity - fine.capacity)
     return (
-        f"| {t_over_r:g} | {n} | {coarse.capacity:.4f} | {fine.capacity:.4f} | {diff:.1e} | "
-        f"{angle:.2f} | {fine.status} ({wall:.0f} s) |"
+        f"| {t_over_r:g} | {n} | {coarse.capacity:.5f} | {fine.capacity:.5f} | {diff:.1e} | "
+        f"{first:.2f} -> {last:.2f} | {len(fine.snaps)} | {fine.status} ({wall:.0f} s) |"
     )
 
 
@@ -43,8 +43,11 @@ def main(argv: list[str]) -> None:
     ratios = [float(x) for x in argv[0].split(",")] if argv else [0.15]
     counts = [int(x) for x in argv[1].split(",")] if len(argv) > 1 else [36]
     h = float(argv[2]) if len(argv) > 2 else 0.004
-    print(f"| t/R | voussoirs | capacity (h = {h:g}) | capacity (h = {h / 2:g}) | difference | haunch hinge (deg above springing) | outcome |")
-    print("|---|---|---|---|---|---|---|")
+    print(
+        f"| t/R | voussoirs | capacity (h = {h:g}) | capacity (h = {h / 2:g}) | difference "
+        "| haunch hinge, start -> collapse (deg above springing) | snaps | outcome |"
+    )
+    print("|---|---|---|---|---|---|---|---|")
     for t in ratios:
         for n in counts:
             print(row(t, n, h), flush=True)

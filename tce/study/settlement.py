@@ -50,42 +50,45 @@ def _sequence(r: SettlementPathResult, assembly: Assembly) -> str:
 def settlement_vars(sc: Scenario, assembly: Assembly, material: Material) -> xr.Dataset:
     """The ``settlement_*`` variables of scenario ``sc`` (its ``settlement_path`` settings)."""
     opts = sc.settlement_path or {}
-    moves = any(any(u != 0 for u in v) for v in sc.settlements.values())
-    if not moves:
-        scalars = {"settlement_capacity": np.nan, "settlement_upper": np.nan, "settlement_n_solves": 0}
-        text = {"settlement_outcome": NO_MOTION, "settlement_message": "the scenario moves no support",
-                "settlement_hinge_sequence": ""}
-        data = {k: (("scenario",), np.asarray([v])) for k, v in scalars.items()}
-        data |= {k: (("scenario",), np.asarray([v], dtype=object)) for k, v in text.items()}
-        return xr.Dataset(data)
-    r = settlement_path(
-        assembly,
-        sc.settlements,
-        material,
-        increment=opts["increment"],
-        s_max=opts["s_max"],
-        atol=opts.get("tolerance"),
-        lam=bool(opts.get("lam")),
-        alpha=sc.alpha,
-    )
-    itf = len(assembly.interfaces)
-    rotating = np.zeros((len(r.magnitudes), itf))  # float: padded with NaN when merged
-    for i, h in enumerate(r.hinges):
-        rotating[i, h] = 1
-    k = np.arange(len(r.magnitudes))
+    nb, ni, ns = len(assembly.blocks), len(assembly.interfaces), len(assembly.support_names)
+    if not any(any(u != 0 for u in v) for v in sc.settlements.values()):
+        # nothing to follow: one step of NaN, so that the scenario merges with the others
+        scalars = dict(capacity=np.nan, upper=np.nan, n_solves=0, outcome=NO_MOTION,
+                       message="the scenario moves no support", hinge_sequence="")
+        per_step = dict(magnitudes=np.full(1, np.nan), reaction=np.full((1, ns, 6), np.nan),
+                        lambda_max=np.full(1, np.nan), hinge=np.full((1, ni), np.nan),
+                        open=np.full((1, ni), np.nan), displacement=np.full((1, nb, 6), np.nan))
+    else:
+        r = settlement_path(
+            assembly,
+            sc.settlements,
+            material,
+            increment=opts["increment"],
+            s_max=opts["s_max"],
+            atol=opts.get("tolerance"),
+            lam=bool(opts.get("lam")),
+            alpha=sc.alpha,
+        )
+        rotating = np.zeros((len(r.magnitudes), ni))  # float: padded with NaN when merged
+        for i, h in enumerate(r.hinges):
+            rotating[i, h] = 1
+        scalars = dict(capacity=r.capacity, upper=r.upper, n_solves=r.n_solves, outcome=r.status,
+                       message=r.message, hinge_sequence=_sequence(r, assembly))
+        per_step = dict(magnitudes=r.magnitudes, reaction=_wrenches(r), lambda_max=r.lambda_max,
+                        hinge=rotating, open=r.open_ends.sum(axis=2).astype(float),
+                        displacement=_displacements(r))
     dims = ("scenario", "settlement_step")
     data = {
-        "settlement_capacity": (("scenario",), [r.capacity]),
-        "settlement_upper": (("scenario",), [r.upper]),
-        "settlement_outcome": (("scenario",), np.asarray([r.status], dtype=object)),
-        "settlement_message": (("scenario",), np.asarray([r.message], dtype=object)),
-        "settlement_hinge_sequence": (("scenario",), np.asarray([_sequence(r, assembly)], dtype=object)),
-        "settlement_n_solves": (("scenario",), [r.n_solves]),
-        "settlement_reaction": (dims + ("support", "component"), _wrenches(r)[None]),
-        "settlement_lambda_max": (dims, r.lambda_max[None]),
-        "settlement_hinge": (dims + ("interface",), rotating[None]),
-        "settlement_open": (dims + ("interface",), r.open_ends.sum(axis=2)[None].astype(float)),
-        "settlement_displacement": (dims + ("block", "dof"), _displacements(r)[None]),
+        f"settlement_{k}": (("scenario",), np.asarray([v], dtype=object if isinstance(v, str) else None))
+        for k, v in scalars.items()
     }
-    coords = {"settlement_step": k, "settlement_magnitude": (dims, r.magnitudes[None])}
+    data |= {
+        "settlement_reaction": (dims + ("support", "component"), per_step["reaction"][None]),
+        "settlement_lambda_max": (dims, per_step["lambda_max"][None]),
+        "settlement_hinge": (dims + ("interface",), per_step["hinge"][None]),
+        "settlement_open": (dims + ("interface",), per_step["open"][None]),
+        "settlement_displacement": (dims + ("block", "dof"), per_step["displacement"][None]),
+    }
+    mags = per_step["magnitudes"]
+    coords = {"settlement_step": np.arange(len(mags)), "settlement_magnitude": (dims, mags[None])}
     return xr.Dataset(data, coords=coords)
