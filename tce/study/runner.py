@@ -73,6 +73,7 @@ from .results import (
 )
 from .schema import Scenario, Study, build_material
 from ..signals import quiet_children
+from .settlement import settlement_vars
 
 __all__ = [
     "LAMBDA_TOL",
@@ -206,7 +207,10 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     bracket = None
     if analysis.material.flow == "non-associative":
         bracket = nonassociative_limit(analysis, loads=pattern)
-    ds = scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+    settlement = settlement_vars(sc, assembly, analysis.material) if sc.settlement_path is not None else None
+    ds = scenario_dataset(
+        sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket, settlement=settlement
+    )
     if "dead_factor" in sc.loads:
         factors = sc.loads["dead_factor"], sc.loads["live_factor"]
         ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
