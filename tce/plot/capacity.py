@@ -21,15 +21,7 @@ from matplotlib.lines import Line2D
 from ..study.positions import critical_positions
 from .figures import COLOURS, LINESTYLES, MARKERS
 
-__all__ = ["critical_scenarios", "influence_line"]
-
-
-def critical_scenarios(ds: xr.Dataset) -> list[str]:
-    """The critical scenario of every group of a load-position sweep, in dataset order (the
-    scenarios the per-scenario figures of :func:`tce.plot.figures.write_figures` show; a
-    group without a finite lambda_max shows its first position)."""
-    chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}
-    return [str(s) for s in ds["scenario"].values if str(s) in chosen]
+__all__ = ["influence_line"]
 
 
 def influence_line(ds: xr.Dataset) -> Figure:

@@ -1,4 +1,4 @@
-"""Run a study: solve its missing scenarios in parallel, keep each as it finishes, merge, plot.
+"""Run a study: solve its missing scenarios in parallel, keep each as it finishes, merge.
 
 :func:`run_study` expands a :class:`tce.study.Study` into scenarios, skips those already
 written under ``<out>/<study name>/scenarios/`` that can be trusted
@@ -79,7 +79,6 @@ __all__ = [
     "same_lambda",
     "solve_scenario",
     "with_drawn_states",
-    "write_plots",
 ]
 
 log = logging.getLogger(__name__)
@@ -89,6 +88,8 @@ Backend = Literal["loky", "dask"]
 LAMBDA_TOL = 1e-9
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
+#: draws a written results dataset: (dataset, study folder, processes) -> files written
+Draw = Callable[[xr.Dataset, Path, int], Sequence[Path]]
 #: outcomes of a load path, in the order the run summary lists them
 OUTCOMES = ("limit", "no_limit", "unbounded", "infeasible", "numerical")
 
@@ -331,14 +332,6 @@ def _grouped(scenarios: list[Scenario]) -> list[Scenario]:
     return sorted(scenarios, key=lambda sc: first[sc.group])
 
 
-def write_plots(ds: xr.Dataset, outdir: Path, jobs: int = 1) -> list[Path]:
-    """Figures and interactive view of a results dataset (:func:`tce.plot.write_figures`,
-    ``[plots]`` of the study), drawn by up to ``jobs`` processes; imported only when drawn."""
-    from .. import plot
-
-    return list(plot.write_figures(ds, Path(outdir), jobs=jobs))
-
-
 class _Tally:
     """Outcomes, faults and progress of one dispatch."""
 
@@ -526,10 +519,11 @@ def run_study(
     backend: Backend = "loky",
     scheduler: str | None = None,
     progress: Progress | None = None,
-    plots: bool = True,
+    plots: Draw | None = None,
     fresh: bool = False,
 ) -> RunReport:
-    """Solve every scenario of ``study`` not solved yet and write ``results.nc`` (and figures).
+    """Solve every scenario of ``study`` not solved yet and write ``results.nc`` (and, given
+    ``plots``, its figures).
 
     Parameters
     ----------
@@ -550,8 +544,12 @@ def run_study(
     progress : callable, optional
         ``progress(done, total, steps)`` before the first scenario (``done = 0``) and after
         each scenario solved.
-    plots : bool
-        Write the figures after the results.
+    plots : callable, optional
+        ``plots(ds, folder, jobs) -> list of Path``: draws the written results dataset into the
+        study's folder (still under its lock) with up to ``jobs`` processes; the files it
+        returns are :attr:`RunReport.figures`. The command line passes
+        :func:`tce.plot.write_figures` (the runner does not import :mod:`tce.plot`); default:
+        no figures.
     fresh : bool
         Delete the scenario files of earlier runs first (under the folder's lock).
 
@@ -624,5 +622,5 @@ def run_study(
             raise RunFault(report) from None
         log.info("wrote %s", report.results)
         if plots:
-            report.figures = write_plots(ds, directory, jobs=jobs)
+            report.figures = list(plots(ds, directory, jobs))
     return report

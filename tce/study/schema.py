@@ -102,7 +102,7 @@ class StudySection(_Strict):
 
 
 class ArchStructure(_Strict):
-    """``[structure] type = "semicircular_arch"``: :func:`tce.arch.semicircular_arch`."""
+    """``[structure] type = "semicircular_arch"``: :func:`tce.structures.arch.semicircular_arch`."""
 
     type: Literal["semicircular_arch"]
     inner_radius: Positive = 1.0
@@ -217,7 +217,7 @@ class GroinVaultStructure(_Strict):
 
 
 class DomeStructure(_Strict):
-    """``[structure] type = "dome"``: :func:`tce.dome.hemispherical_dome`."""
+    """``[structure] type = "dome"``: :func:`tce.structures.dome.hemispherical_dome`."""
 
     type: Literal["dome"]
     radius: Positive = 5.0
@@ -245,7 +245,7 @@ class DomeStructure(_Strict):
 
 
 class FileStructure(_Strict):
-    """``[structure] type = "file"``: blocks read by :func:`tce.io.load_assembly`.
+    """``[structure] type = "file"``: blocks read by :func:`tce.structures.io.load_assembly`.
 
     ``path`` is relative to the study file (made absolute when the study is read);
     ``supports`` names the support blocks (default: the flags in the file).
@@ -301,7 +301,7 @@ class MaterialSection(_Strict):
     flow: Literal["associative", "non-associative"] = "associative"
 
     def build(self) -> Material:
-        """The :class:`tce.material.Material` of this section."""
+        """The :class:`tce.core.material.Material` of this section."""
         return Material(**self.model_dump())
 
 

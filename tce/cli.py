@@ -25,8 +25,8 @@ from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
 
-from .. import __version__
-from .schema import PLOT_KINDS
+from . import __version__
+from .study.schema import PLOT_KINDS
 
 __all__ = ["main"]
 
@@ -191,7 +191,7 @@ class _Bar:
         self.bar = None
 
     def __call__(self, done: int, total: int, steps: int) -> None:
-        from .progress import Progress
+        from .study.progress import Progress
 
         if self.bar is None:
             self.bar = Progress(total, self.desc, unit="scenario")
@@ -210,9 +210,16 @@ class _Bar:
 EXIT_FAULT, EXIT_STRICT, EXIT_INTERRUPTED = 3, 4, 130
 
 
+def _draw(ds, folder: Path, jobs: int) -> list[Path]:
+    """The figures and view of a finished run (the study's ``[plots]``), drawn into its folder."""
+    from . import plot
+
+    return plot.write_figures(ds, folder, jobs=jobs)
+
+
 def _run(args: argparse.Namespace) -> int:
-    from .runner import OUTCOMES, RunError, RunFault, run_study
-    from .schema import StudyError, load_study
+    from .study.runner import OUTCOMES, RunError, RunFault, run_study
+    from .study.schema import StudyError, load_study
 
     if args.scheduler and args.backend != "dask":
         raise UsageError("--scheduler needs --backend dask")
@@ -225,7 +232,7 @@ def _run(args: argparse.Namespace) -> int:
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,
-            progress=bar, plots=not args.no_plots, fresh=args.fresh,
+            progress=bar, plots=None if args.no_plots else _draw, fresh=args.fresh,
         )
     except RunError as exc:
         raise UsageError(str(exc)) from None
@@ -276,7 +283,7 @@ def _show(args: argparse.Namespace) -> int:
 
 def _show_critical(ds) -> None:
     """The critical position of a load-position sweep, per group of the other coordinates."""
-    from .positions import critical_positions
+    from .study.positions import critical_positions
 
     print("critical load position (smallest lambda_max over load_x):")
     for c in critical_positions(ds):
@@ -293,7 +300,7 @@ _OPTIONS = {"scenarios": "--scenario", "steps": "--step", "kinds": "--kind"}
 def _spec(ds, **given):
     """The plotting spec of ``ds`` with the command line's replacements; a bad one is a usage
     error naming the option (or the ``[plots]`` key of the study stored in the file)."""
-    from ..plot.data import PlotSpecError, plot_spec
+    from .plot.data import PlotSpecError, plot_spec
 
     try:
         return plot_spec(ds, **given)
@@ -304,8 +311,8 @@ def _spec(ds, **given):
 
 
 def _plot(args: argparse.Namespace) -> int:
-    from ..plot.data import slug
-    from ..plot.output import write_figures
+    from .plot.data import slug
+    from .plot.output import write_figures
 
     ds = _open_results(args.results)
     on_demand = args.scenario is not None or args.step is not None
@@ -323,7 +330,7 @@ def _plot(args: argparse.Namespace) -> int:
 
 
 def _view(args: argparse.Namespace) -> int:
-    from ..plot.view import view_html
+    from .plot.view import view_html
 
     ds = _open_results(args.results)
     spec = _spec(ds, scenarios_=args.scenario)
@@ -344,7 +351,7 @@ def _view(args: argparse.Namespace) -> int:
 
 
 def _export(args: argparse.Namespace) -> int:
-    from ..plot.export import export_vtk
+    from .plot.export import export_vtk
 
     ds = _open_results(args.results)
     names = None
@@ -359,13 +366,13 @@ def _export(args: argparse.Namespace) -> int:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from ..quality.check import check_command
+    from .quality.check import check_command
 
     return check_command(args)
 
 
 def _bench(args: argparse.Namespace) -> int:
-    from ..quality.bench import bench_command
+    from .quality.bench import bench_command
 
     return bench_command(args)
 
@@ -374,7 +381,7 @@ def _without_dask() -> None:
     """Keep xarray from importing dask in this program and its workers (:mod:`tce.study.jobs`)."""
     import os
 
-    from .jobs import NO_DASK, block_dask_import
+    from .study.jobs import NO_DASK, block_dask_import
 
     os.environ[NO_DASK] = "1"
     block_dask_import()
