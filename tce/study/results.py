@@ -43,6 +43,7 @@ from ..analysis.loadpath import LoadPathResult
 from ..analysis.nonassoc import NonAssocResult
 from ..core.model import InterfaceMap
 from ..core.resultants import global_vertex_forces
+from ..core.result import DOFS, WRENCH_COMPONENTS, XYZ
 from ..core.solve import SOLVER_NAME, TCEResult
 from .schema import Scenario, Study
 
@@ -64,9 +65,6 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-COMPONENTS = ("Fx", "Fy", "Fz", "Mx", "My", "Mz")
-XYZ = ("x", "y", "z")
-DOF = ("vx", "vy", "vz", "wx", "wy", "wz")
 #: variables that measure cost, not the answer (they differ from run to run)
 TIMING = ("solve_time", "wall_time")
 #: data variables every scenario file holds (a file without one of them is solved again)
@@ -315,11 +313,11 @@ def _coords(sc: Scenario, analysis: Analysis, n_steps: int) -> dict[str, tuple]:
         "scenario": (("scenario",), _text([sc.name])),
         "step": (("step",), np.arange(n_steps)),
         "support": (("support",), _text(a.support_names)),
-        "component": (("component",), _text(COMPONENTS)),
+        "component": (("component",), _text(WRENCH_COMPONENTS)),
         "interface": (("interface",), _text([f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces])),
         "xyz": (("xyz",), _text(XYZ)),
         "block": (("block",), _text(a.names)),
-        "dof": (("dof",), _text(DOF)),
+        "dof": (("dof",), _text(DOFS)),
         "settlement": (("scenario",), _text([sc.settlement])),
     }
     for k, v in sc.params.items():
