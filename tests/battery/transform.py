@@ -157,7 +157,7 @@ class Similarity:
         out = {}
         for name, v in (sett or {}).items():
             v = np.asarray(v, dtype=float)
-            out[name] = [*(self.length * self.directions(v[:3])), *(self.det * self.directions(v[3:]))]
+            out[name] = [float(x) for x in (*(self.length * self.directions(v[:3])), *(self.det * self.directions(v[3:])))]
         return out
 
     def material(self, mat: Material) -> Material:
