@@ -92,9 +92,10 @@ def study_text(
 
 
 def file_section(asm: Assembly, folder: Path, name: str) -> dict[str, Any]:
-    """``[structure]`` of a block file holding ``asm`` (written into ``folder``)."""
-    save_assembly_json(asm, folder / f"{name}.json")
-    return {"type": "file", "path": f"{name}.json", "supports": list(asm.support_names)}
+    """``[structure]`` of a block file holding ``asm`` (written into ``folder``; its
+    absolute path, so that studies in other folders can use it)."""
+    path = save_assembly_json(asm, folder / f"{name}.json").resolve()
+    return {"type": "file", "path": str(path), "supports": list(asm.support_names)}
 
 
 def run(text: str, folder: Path, **options: Any) -> xr.Dataset:
