@@ -13,9 +13,13 @@ import numpy as np
 import pytest
 
 from tce.core.analysis import Analysis
+from tce.core.loads import LoadPattern, PointLoad
+from tce.core.material import Material
+from tce.study.schema import StudyError, parse_study
 
 from .cases import answer, path_settings, scene
 from .relations import same_answer
+from .studies import run, study_text
 from .transform import Similarity
 
 
@@ -87,3 +91,56 @@ def test_load_path_near_the_limit_is_decided():
     sc = scene("semicircular_arch", "strengths", "on_top", "across", 30.0)
     a = answer(sc)
     assert a.outcome == "limit" and abs(a.lambda_max - a.lambda_direct) <= 2e-6
+
+
+# ---------------------------------------------------------------------- issue 21's cases as studies
+ARCH = {"type": "semicircular_arch", "voussoirs": 8}
+
+
+@pytest.mark.xfail(strict=True, reason="issue 21 item 2: limits not anchored on the direct limit (no_limit at the "
+                   "default cap), fixed on branch i21fix")
+def test_live_load_beyond_the_default_cap(tmp_path):
+    """Issue 21, problem 2: a 4 N live load on the arch's extrados collapses at lambda =
+    370.29 (direct limit); with the default step and cap the outcome is ``no_limit`` after
+    5001 solves. Expected: the limit, equal to the direct one within the tolerance."""
+    p = LoadPattern(lateral=False, point=[PointLoad(force=(0.0, 0.0, -0.004), on_top=(-0.3, 0.0))])
+    ds = run(study_text("cap", ARCH, Material(), p, {"none": {}}), tmp_path)
+    assert ds["outcome"].values.tolist() == ["limit"]
+    assert abs(float(ds["lambda_max"][0]) - float(ds["lambda_direct"][0])) <= 1e-6 * float(ds["lambda_direct"][0])
+
+
+@pytest.mark.xfail(strict=True, reason="issue 21 item 2: lambda_step > lambda_cap accepted, fixed on branch i21fix")
+def test_step_above_the_cap_is_refused(tmp_path):
+    """Issue 21, problem 2: ``lambda_step = 2`` with ``lambda_cap = 1`` is accepted and gives
+    ``no_limit`` for an arch whose limit is 0.25: a study error naming the key is expected."""
+    text = study_text("step", ARCH, Material(), LoadPattern(), {"none": {}}, loads={"lambda_step": 2.0, "lambda_cap": 1.0})
+    with pytest.raises(StudyError, match="lambda_step|lambda_cap"):
+        parse_study(text, tmp_path / "study.toml")
+
+
+@pytest.mark.xfail(strict=True, reason="issue 21 item 3 / issue 22: a load_x sweep merges every moving load into one "
+                   "point, fixed on branch i22")
+def test_moving_axles_keep_their_spacing(tmp_path):
+    """Issue 21, problem 3: two live wheel loads 0.6 m apart swept along the arch with
+    ``load_x`` become one point load of twice the force. Expected: the study is refused, or
+    each scenario keeps two loads 0.6 m apart."""
+    p = LoadPattern(lateral=False, point=[PointLoad(force=(0.0, 0.0, -1.0), on_top=(x, 0.0)) for x in (-0.3, 0.3)])
+    text = study_text("axles", ARCH, Material(), p, {"none": {}}, loads={"lambda_step": 0.1}, sweep={"load_x": [-0.2, 0.2]})
+    try:
+        ds = run(text, tmp_path)
+    except StudyError:
+        return
+    x = ds["load_point"].sel(xyz="x").values  # scenario, load
+    np.testing.assert_allclose(np.abs(x[:, 1] - x[:, 0]), 0.6, atol=1e-9)
+
+
+@pytest.mark.xfail(strict=True, reason="issue 21 item 3: uniqueness left unknown (NaN) with a settlement, fixed on "
+                   "branch i21fix")
+def test_uniqueness_is_decided(tmp_path):
+    """Issue 21, problem 4: with a settlement on a rigid structure the dataset records the
+    uniqueness of each state as unknown (NaN). Expected: 0 or 1 at every optimal step."""
+    ds = run(study_text("unique", ARCH, Material(), LoadPattern(), {"outward": {"right": [1e-3, 0.0, 0.0, 0.0, 0.0, 0.0]}},
+                        loads={"lambda_step": 0.05}), tmp_path)
+    optimal = ds["status"].values == "optimal"
+    assert optimal.any()
+    assert set(ds["unique"].values[optimal].tolist()) <= {0.0, 1.0}
