@@ -24,6 +24,13 @@ from __future__ import annotations
 from importlib import import_module as _import_module
 from importlib.metadata import PackageNotFoundError as _PackageNotFoundError
 from importlib.metadata import version as _version
+import os as _os
+import sys as _sys
+
+if _sys.argv and _os.path.basename(_sys.argv[0]) == "tce":  # the tce program: Ctrl-C from now on in one line
+    from .signals import handle_signals as _handle_signals
+
+    _handle_signals(raising=False)
 
 try:
     __version__ = _version("tce")
@@ -38,6 +45,11 @@ _PUBLIC = {
     "LoadPattern": "tce.core.loads",
     "PointLoad": "tce.core.loads",
     "DistributedLoad": "tce.core.loads",
+    "Vehicle": "tce.core.vehicles",
+    "Fill": "tce.core.fill",
+    "critical_position": "tce.analysis.critical",
+    "adequacy_factor": "tce.analysis.assessment",
+    "arch_bridge": "tce.structures.bridge",
     "build_model": "tce.core.model",
     "load_path": "tce.analysis.loadpath",
     "minimum_thickness": "tce.analysis.thickness",

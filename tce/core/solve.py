@@ -237,16 +237,25 @@ class TCESolver:
     model : Model
     material : Material
     options : SolverOptions, optional
+    formulation : Formulation, optional
+        The scaled operators of ``model`` and ``material`` (with the material's own contact
+        law) when the caller already has them: :class:`tce.core.analysis.Analysis` shares
+        one between its TCE and limit solvers.
     """
 
     #: Phase-1 residuals in ``(feas_tol, PHASE1_BAND * feas_tol]`` are decided with tight tolerances.
     PHASE1_BAND: float = 100.0
 
-    def __init__(self, model: Model, material: Material, options: SolverOptions | None = None) -> None:
+    def __init__(
+        self, model: Model, material: Material, options: SolverOptions | None = None, formulation: Formulation | None = None
+    ) -> None:
+        if formulation is not None and (formulation.model is not model or formulation.material is not material
+                                        or not formulation.own_law):
+            raise ValueError("TCESolver: a formulation must be of the same model and material, with its own law")
         self.model = model
         self.material = material
         self.options = options or SolverOptions()
-        self.formulation = Formulation(model, material)
+        self.formulation = formulation or Formulation(model, material)
         self.scaling = self.formulation.scaling
         self._warm: ClarabelSolver | None = None
         self._warm_q: NDArray[np.float64] | None = None
