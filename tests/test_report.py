@@ -120,13 +120,23 @@ def test_run_writes_the_report(run) -> None:
         assert (folder / "report.pdf").is_file()
 
 
+NUMBER = r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.])"
+
+
+def _missing(show: str, page: _Text) -> tuple[list[str], list[str]]:
+    """The numbers ``tce show`` prints (title line left out) and those no table cell of the page holds."""
+    found = {t for c in page.cells for t in re.findall(NUMBER, c)}
+    numbers = re.findall(NUMBER, show.split("\n", 1)[1])
+    return numbers, [n for n in numbers if n not in found]
+
+
 def test_every_number_of_tce_show_is_in_the_report(run) -> None:
     _, page = _page(run["folder"])
     cells = set(page.cells)
-    numbers = re.findall(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.])", run["show"].split("\n", 1)[1])
+    numbers, missing = _missing(run["show"], page)
     assert len(numbers) >= 2 * 8  # two rows of eight columns at least
-    missing = [n for n in numbers if n not in cells]
     assert not missing, missing
+    assert not [n for n in numbers if n not in cells]  # each in a cell of its own, as show prints it
     for word in ("limit", "planar", "none", "outward"):
         assert any(word in c for c in cells)
 
@@ -206,3 +216,32 @@ def test_report_of_a_bad_file_is_a_usage_error(tmp_path: Path, capsys, content) 
     assert main(["report", str(path)]) == 2
     assert "results.nc" in capsys.readouterr().err
     assert not (tmp_path / "report.html").exists()
+
+
+def test_the_assessment_and_the_searched_position_are_in_the_report(run, tmp_path: Path, capsys) -> None:
+    """The numbers of ``tce show``'s assessment, critical-position search and load notes (values set
+    by hand on the run's file: the printing is what is checked)."""
+    import numpy as np
+    import xarray as xr
+
+    ds = xr.load_dataset(run["folder"] / "results.nc")
+    n = ds.sizes["scenario"]
+    text = lambda v: ("scenario", np.array([v] * n, dtype=object))  # noqa: E731
+    ds = ds.assign(
+        adequacy_factor=("scenario", np.linspace(0.78431, 1.2, n)), adequacy_status=text("optimal"),
+        dead_factor=("scenario", np.full(n, 1.35)), live_factor=("scenario", np.full(n, 1.5)),
+        assessed_vehicles=text("LM1 lane 1 (600 kN)"), critical_x=("scenario", np.full(n, -2.46243)),
+        critical_status=text("optimal"), critical_xtol=("scenario", np.full(n, 0.00066)),
+        critical_lambda=("scenario", np.full(n, 1.176483)), critical_solves=("scenario", np.full(n, 247)),
+        critical_ties=text("1.2624"), load_notes=text("vehicle[0] axle 1 wheel 1 at x = -2.462 m: 17% dropped"),
+    )
+    path = tmp_path / "results.nc"
+    ds.to_netcdf(path)
+    assert main(["show", str(path)]) == 0
+    show = capsys.readouterr().out
+    assert "adequacy factor 0.7843" in show and "247 limit solves" in show
+    assert main(["report", str(path), "--no-pdf"]) == 0
+    text_, page = _page(tmp_path)
+    numbers, missing = _missing(show, page)
+    assert not missing, missing
+    assert "NOT adequate" in text_ and "0.7843" in text_

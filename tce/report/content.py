@@ -114,6 +114,7 @@ def _loads(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
     loads = dict(toml.get("loads", {}))
     points = loads.pop("point", [])
     distributed = loads.pop("distributed", [])
+    vehicles = loads.pop("vehicle", [])
     scenarios = []
     for name, table in toml.get("scenarios", {}).items():
         moves = [(k, v) for k, v in table.items() if isinstance(v, list)]
@@ -124,15 +125,16 @@ def _loads(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
             "other": ", ".join(f"{k} = {json.dumps(v)}" for k, v in rest),
         })
     lateral = loads.get("lateral", True)
-    if points or distributed:
-        live = "the live loads below (λ multiplies the loads marked scaled)"
+    if points or distributed or vehicles:
+        live = "the live loads below (λ multiplies the loads marked scaled and the vehicles)"
     else:
         live = "a lateral body force λ × self-weight in the direction alpha (the paper's pattern)"
     return {
         "settings": _table(loads),
         "points": [_table(p) for p in points],
         "distributed": [_table(d) for d in distributed],
-        "live": live + ("" if lateral or not (points or distributed) else "; no lateral load"),
+        "vehicles": [_table(v) for v in vehicles],
+        "live": live + ("" if lateral or not (points or distributed or vehicles) else "; no lateral load"),
         "scenarios": scenarios,
         "sweep": _table(toml.get("sweep", {})),
         "n_scenarios": int(ds.sizes["scenario"]),
@@ -205,8 +207,13 @@ def _results(ds: xr.Dataset) -> dict[str, Any]:
         for c in critical_positions(ds):
             critical.append({"group": c.group or "all", "scenario": c.scenario or "none",
                              "load_x": fmt(c.load_x) if c.scenario else "–",
-                             "lambda_max": fmt(c.lambda_max) if c.scenario else "no finite λmax"})
+                             "lambda_max": fmt(c.lambda_max) if c.scenario else "no finite λmax",
+                             "ties": ", ".join(fmt(t) for t in getattr(c, "ties", ()))})
     return {
+        "assessment": _assessment(ds),
+        "search": _search(ds),
+        "notes": [f"{name}: {line}" for name, notes in zip(ds["scenario"].values, ds["load_notes"].values)
+                  for line in str(notes).splitlines()] if "load_notes" in ds else [],
         "coords": coords,
         "columns": SHOW_COLUMNS,
         "checks": {"lambda_max": "λmax", **{k: CHECK_COLUMNS.get(k, k) for k in extra + nonassoc}},
@@ -215,6 +222,46 @@ def _results(ds: xr.Dataset) -> dict[str, Any]:
         "outcomes": {o: int((ds["outcome"].values == o).sum()) for o in np.unique(ds["outcome"].values.astype(str))},
         "critical": critical,
     }
+
+
+def _assessment(ds: xr.Dataset) -> list[dict[str, str]]:
+    """The adequacy factor of each scenario (``[assessment]``), in the formats of ``tce show``."""
+    if "adequacy_factor" not in ds:
+        return []
+    rows = []
+    for k, name in enumerate(ds["scenario"].values):
+        x = float(ds["critical_x"].values[k]) if "critical_x" in ds else math.nan
+        lam, af = float(ds["lambda_max"].values[k]), float(ds["adequacy_factor"].values[k])
+        status = str(ds["adequacy_status"].values[k])
+        verdict = {"optimal": "adequate" if af >= 1.0 else "NOT adequate",
+                   "unbounded": "adequate (carried at any multiplier)"}.get(status, f"no adequacy factor ({status})")
+        rows.append({
+            "scenario": str(name), "what": str(ds["assessed_vehicles"].values[k]) or "the live loads",
+            "x": f"{x:.4g}" if math.isfinite(x) else "–",
+            "collapse": f"{lam:.4g}" if math.isfinite(lam) else str(ds["outcome"].values[k]),
+            "dead": f"{float(ds['dead_factor'].values[k]):g}", "live": f"{float(ds['live_factor'].values[k]):g}",
+            "factor": f"{af:.4g}" if status == "optimal" else "–", "verdict": verdict,
+        })
+    return rows
+
+
+def _search(ds: xr.Dataset) -> list[dict[str, str]]:
+    """The critical position each scenario's search found (``[loads] critical_position``)."""
+    if "critical_x" not in ds or "critical_status" not in ds:
+        return []
+    rows = []
+    for k, name in enumerate(ds["scenario"].values):
+        status = str(ds["critical_status"].values[k])
+        ok = status == "optimal"
+        rows.append({
+            "scenario": str(name), "status": status,
+            "x": fmt(float(ds["critical_x"].values[k])) if ok else "–",
+            "xtol": f"{float(ds['critical_xtol'].values[k]):.2g}" if ok else "–",
+            "lambda": fmt(float(ds["critical_lambda"].values[k])) if ok else "–",
+            "solves": str(int(ds["critical_solves"].values[k])) if ok else "–",
+            "ties": str(ds["critical_ties"].values[k]) if "critical_ties" in ds else "",
+        })
+    return rows
 
 
 def _warnings(ds: xr.Dataset) -> list[str]:
