@@ -8,6 +8,8 @@ the API.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -144,3 +146,21 @@ def test_public_names() -> None:
     for name in tce.__all__:
         assert getattr(tce, name) is not None
     assert {"LoadPattern", "PointLoad", "DistributedLoad", "load_assembly", "save_assembly_json"} <= set(tce.__all__)
+
+
+def test_the_other_objects_a_user_meets_have_short_reprs(results) -> None:
+    from tce.core.model import build_model
+    from tce.study.schema import load_study
+
+    study = load_study(Path(__file__).resolve().parents[1] / "studies" / "fig5_6_transversal.toml")
+    mech = results["limit"].mechanism
+    objects = {
+        "Study": study, "Scenario": study.scenarios()[0], "Mechanism": mech,
+        "InterfaceMap": results["tce"].interface_map, "Model": build_model(hemispherical_dome(), "spatial"),
+        "Material": Material(friction=0.8), "LoadPattern": tce.LoadPattern(alpha=30.0),
+    }
+    for name, obj in objects.items():
+        text = repr(obj)
+        assert len(text) < MAX_REPR and text.startswith(name), text
+    assert f"hinge {len(mech.hinges)}" in repr(mech)
+    assert "4 scenarios" in repr(study)

@@ -42,6 +42,7 @@ from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import EZ, Model
 from .problem import Formulation, LimitProblems, lateral_ray_problem
+from .. import display
 from .result import DOFS, Result
 
 __all__ = ["LimitResult", "LimitSolver", "Mechanism", "mechanism_from_velocities"]
@@ -69,6 +70,11 @@ class Mechanism:
     velocities: NDArray[np.float64]
     modes: tuple[str, ...]
     hinge_points: NDArray[np.float64]
+
+    def __repr__(self) -> str:
+        counts = {m: self.modes.count(m) for m in ("hinge", "sliding", "opening") if m in self.modes}
+        return display.call("Mechanism", {}, head=f"{len(self.velocities)} blocks; interfaces: "
+                            + (", ".join(f"{m} {n}" for m, n in counts.items()) or "no relative motion"))
 
     @property
     def hinges(self) -> list[int]:

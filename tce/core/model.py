@@ -32,6 +32,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from .. import display
 from ..structures.assembly import Assembly
 from ..structures.geometry import cross
 
@@ -160,6 +161,10 @@ class InterfaceMap:
     supports: tuple[str, ...] = ()
     labels: tuple[str, ...] = ()
 
+    def __repr__(self) -> str:
+        return display.call("InterfaceMap", {}, head=f"{len(self.interfaces)} interfaces, "
+                            f"{len(self.vertex_points)} vertices, supports {display.names(self.supports)}")
+
 
 @dataclass(frozen=True, eq=False)
 class Model:
@@ -210,6 +215,10 @@ class Model:
     lift: sp.csr_matrix
     vertex_interface: NDArray[np.int64]
     vertex_points: NDArray[np.float64]
+
+    def __repr__(self) -> str:
+        return display.call("Model", {}, head=f"{self.kind}, {self.n_contacts} contacts x {self.dim} force "
+                            f"components, {self.A_eq.shape[0]} equilibrium rows, {len(self.interfaces)} interfaces")
 
     @property
     def n_contacts(self) -> int:

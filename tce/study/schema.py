@@ -43,7 +43,7 @@ from pydantic import (
     model_validator,
 )
 
-from .. import __version__
+from .. import __version__, display
 from ..analysis.loadpath import MAX_INCREMENTS
 from ..core.loads import LoadError, LoadPattern, resolve
 from ..core.material import Material
@@ -690,6 +690,10 @@ class Scenario:
         """Key of the analysis this scenario needs: scenarios with equal keys share one."""
         return json.dumps([self.assembly_digest, self.material], sort_keys=True)
 
+    def __repr__(self) -> str:
+        moved = ", ".join(self.settlements) or "no support motion"
+        return display.call("Scenario", {"alpha": self.alpha}, head=f"{self.name!r}, {moved}")
+
     @property
     def key(self) -> str:
         """SHA-256 of everything that determines the answer (for resuming): the built
@@ -751,6 +755,11 @@ class Study:
     def name(self) -> str:
         """The study's name (``[study] name``)."""
         return self.spec.study.name
+
+    def __repr__(self) -> str:
+        scenarios = self.scenarios()
+        return display.call("Study", {}, head=f"{self.name!r}, {self.path}, {len(scenarios)} scenarios "
+                            f"{display.names([sc.name for sc in scenarios], 3)}")
 
     def assembly(self, structure: dict[str, Any]) -> Assembly:
         """The built assembly of a scenario's ``structure`` section: built once (when the
