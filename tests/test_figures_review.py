@@ -5,7 +5,7 @@ categories.
 The transversal shift is checked against a computation of ``y/(d/2)`` from the stored pressure
 points and the block geometry written here (not the figure's code), and against the values of the
 paper's Figs. 5-6 as read in issue 26 (±0.66 at mu 0.8, ±0.41 at mu 2, ±1.00 for the rotation;
-tce measured 0.6577, 0.4120 and 0.9993 on this arch at lambda = 0, 24 Nov 2026).
+tce measured 0.6576, 0.4093 and 1.0000 on this arch at lambda = 0 with studies/fig5_6_transversal.toml, 24 Nov 2026).
 """
 
 from __future__ import annotations
