@@ -4,7 +4,8 @@
 written under ``<out>/<study name>/scenarios/`` that can be trusted
 (:func:`tce.study.results.load_finished`), and solves the rest: in this process with
 ``jobs=1``, in a pool of worker processes with ``jobs > 1`` (``backend="loky"``, the
-default), or on a Dask distributed cluster through joblib's ``dask`` backend. Each worker
+default; workers are forked from a fork server that imported tce once, see
+:func:`_context`), or on a Dask distributed cluster through joblib's ``dask`` backend. Each worker
 keeps the :class:`tce.analysis.Analysis` of the structures and materials it has met, so
 operators are built once per worker and reused; the structure itself is built once per
 run (when the study is validated) and sent to the workers. The answer of a scenario does
@@ -22,7 +23,8 @@ Faults (``docs/studies.md``, "Faults and resuming"):
   kept, ``results.nc`` is not replaced, and a rerun solves only what is missing.
 - Ctrl-C (:class:`KeyboardInterrupt`) stops the workers at once (a worker that is writing
   a file finishes it first), removes the temporary files and re-raises.
-- Workers ignore Ctrl-C (the parent decides) and end within a second if the parent dies.
+- Workers ignore Ctrl-C from their start (the parent decides: :mod:`tce.signals`) and
+  end within a second, silently, if the parent dies.
 - One run at a time per study folder (:func:`tce.study.results.folder_lock`); the folder
   is created and locked before anything is solved, so an unwritable destination fails
   with :class:`RunError` before the run.
@@ -71,9 +73,12 @@ from .results import (
     write_scenario,
 )
 from .schema import Scenario, Study, build_material
+from ..signals import quiet_children
+from .settlement import settlement_vars
 
 __all__ = [
     "LAMBDA_TOL",
+    "FigureFault",
     "RunError",
     "RunFault",
     "RunReport",
@@ -115,6 +120,11 @@ class RunFault(RuntimeError):
     def __init__(self, report: RunReport) -> None:
         super().__init__("\n".join(report.faults))
         self.report = report
+
+
+class FigureFault(RunFault):
+    """``results.nc`` was written, but its figures could not be (a full or unwritable disk;
+    exit code 3 in the CLI): ``tce plot`` draws them again."""
 
 
 @dataclass
@@ -198,7 +208,10 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     bracket = None
     if analysis.material.flow == "non-associative":
         bracket = nonassociative_limit(analysis, loads=pattern)
-    ds = scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+    settlement = settlement_vars(sc, assembly, analysis.material) if sc.settlement_path is not None else None
+    ds = scenario_dataset(
+        sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket, settlement=settlement
+    )
     if "dead_factor" in sc.loads:
         factors = sc.loads["dead_factor"], sc.loads["live_factor"]
         ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
@@ -283,10 +296,26 @@ def _on_terminate(signum: int, frame: Any) -> None:
 
 
 def _watch_parent(parent: int) -> None:
-    """End this worker within a second of its parent's death (``kill -9`` of ``tce run``)."""
-    while os.getppid() == parent:
+    """End this worker within a second of its parent's death (``kill -9`` of ``tce run``).
+
+    The worker's own parent is ``parent`` (spawned) or the fork server (forked from it,
+    which ends when ``parent`` does): either way the worker is re-parented when its parent
+    dies; ``parent`` is also watched directly."""
+    ppid = os.getppid()
+    while os.getppid() == ppid and _alive(parent):
         time.sleep(0.5)
     os.kill(os.getpid(), signal.SIGTERM)
+
+
+def _alive(pid: int) -> bool:
+    """Whether a process ``pid`` exists."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: int) -> None:
@@ -298,7 +327,7 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
     while True:
         try:
             task = conn.recv()
-        except EOFError:
+        except (EOFError, OSError):  # the parent ended (a reset connection when it was killed)
             return
         if task is None:
             return
@@ -310,7 +339,10 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
             reply = ("storage", sc.name, str(exc))
         except Exception as exc:  # noqa: BLE001 - reported to the parent with its traceback
             reply = ("error", sc.name, f"{type(exc).__name__}: {exc}", traceback.format_exc())
-        conn.send(reply)
+        try:
+            conn.send(reply)
+        except OSError:  # the parent ended: the scenario's file is written, a rerun reuses it
+            return
 
 
 # ----------------------------------------------------------------------------- caller side
@@ -395,9 +427,24 @@ def _death(process: mp.process.BaseProcess, sc: Scenario | None) -> str:
     return f"worker process {process.pid} {how} {what}; the other scenarios went on"
 
 
+def _context() -> mp.context.BaseContext:
+    """How worker processes start: forked from a fork server that has imported tce once
+    (``forkserver`` with :mod:`tce.study.runner` preloaded), where the platform has one;
+    spawned (each importing numpy, scipy, xarray, Clarabel and tce again) elsewhere.
+
+    The fork server is started by the first pool of the process and kept for later runs;
+    it ignores Ctrl-C and ends with the process. A forked worker starts in milliseconds
+    instead of a fresh interpreter's 1.5-3 CPU seconds of imports."""
+    if "forkserver" not in mp.get_all_start_methods():
+        return mp.get_context("spawn")
+    ctx = mp.get_context("forkserver")
+    ctx.set_forkserver_preload([__name__])
+    return ctx
+
+
 def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tally: _Tally) -> None:
     """Solve ``todo`` in ``jobs`` worker processes (see the module docstring for faults)."""
-    ctx = mp.get_context("spawn")
+    ctx = _context()
     queue = deque(todo)
     workers: dict[Any, list] = {}  # parent end of the pipe -> [process, scenario being solved]
     stopping = False
@@ -406,7 +453,8 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
     def start() -> Any:
         conn, child = ctx.Pipe()
         process = ctx.Process(target=_worker, args=(child, str(directory), os.getpid(), level), daemon=True)
-        process.start()
+        with quiet_children():  # a Ctrl-C while it imports its modules is the parent's to handle
+            process.start()
         child.close()
         workers[conn] = [process, None]
         return conn
@@ -577,6 +625,8 @@ def run_study(
     RunFault
         The run ended with a fault; every finished scenario is on disk, ``results.nc``
         was not replaced.
+    FigureFault
+        ``results.nc`` was written but a figure could not be (a :class:`RunFault`).
     KeyboardInterrupt
         Ctrl-C; every finished scenario is on disk.
     """
@@ -635,5 +685,9 @@ def run_study(
             raise RunFault(report) from None
         log.info("wrote %s", report.results)
         if plots:
-            report.figures = list(plots(ds, directory, jobs))
+            try:
+                report.figures = list(plots(ds, directory, jobs))
+            except OSError as exc:  # a full or unwritable disk: results.nc is written
+                report.faults.append(str(storage_error(Path(exc.filename or directory), exc)))
+                raise FigureFault(report) from None
     return report

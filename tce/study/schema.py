@@ -52,6 +52,8 @@ from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.assembly import Assembly
 from ..structures.io import MAX_BLOCKS, InputLimitError
 from ..structures.params import did_you_mean
+from . import guards
+from .guards import StudyError
 
 __all__ = [
     "MAX_BLOCKS",
@@ -76,10 +78,6 @@ MATERIAL_SWEEPS = ("friction", "cohesion", "tensile_strength", "compressive_stre
 RESERVED_NAMES = frozenset(
     ["CON", "PRN", "AUX", "NUL"] + [f"{p}{k}" for p in ("COM", "LPT") for k in range(1, 10)]
 )
-
-
-class StudyError(ValueError):
-    """A study file that cannot be run; the message says where and how to fix it."""
 
 
 class _Strict(BaseModel):
@@ -122,6 +120,7 @@ class ArchStructure(_Strict):
     voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
     unit_weight: Positive = 20.0
     support_height: Positive | None = None
+    joints: Literal["radial", "vertical"] = "radial"
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
@@ -514,7 +513,8 @@ class SweepSection(_Strict):
 
 
 #: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
-PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "base", "mechanism", "summary", "bracket", "view")
+PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "transversal", "base", "mechanism", "summary", "bracket",
+              "view")
 #: studies with more scenarios draw per-scenario figures only for those ``[plots] scenarios`` names
 MAX_DRAWN_SCENARIOS = 12
 
@@ -589,6 +589,30 @@ class AssessmentSection(_Strict):
     live_factor: Positive = 1.0
 
 
+class SettlementPathSection(_Strict):
+    """``[settlement_path]``: follow each scenario's settlement vectors times a growing
+    magnitude, the geometry updated as the blocks move, to the settlement capacity
+    (:func:`tce.analysis.settlement_path.settlement_path`, ``docs/settlements.md``)."""
+
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True, strict=True, populate_by_name=True)
+
+    increment: Positive = 0.001
+    s_max: Positive = 1.0
+    tolerance: Positive | None = None
+    lam: bool = Field(default=False, alias="lambda")
+
+    @model_validator(mode="after")
+    def _not_too_many_increments(self) -> SettlementPathSection:
+        from ..analysis.settlement_path import MAX_STEPS
+
+        if self.s_max / self.increment > MAX_STEPS:
+            raise ValueError(
+                f"s_max / increment = {self.s_max / self.increment:.3g} increments, more than {MAX_STEPS}; "
+                "fix: a larger increment or a smaller s_max"
+            )
+        return self
+
+
 class StudyFile(_Strict):
     """The whole study file."""
 
@@ -602,6 +626,7 @@ class StudyFile(_Strict):
     ] = Field(default_factory=lambda: {"none": {}})
     plots: PlotsSection = PlotsSection()
     assessment: AssessmentSection | None = None
+    settlement_path: SettlementPathSection | None = None
 
     @field_validator("sweep")
     @classmethod
@@ -658,6 +683,7 @@ class Scenario:
     loads: dict[str, Any]
     assembly_digest: str
     draw: tuple[float, ...] = ()
+    settlement_path: dict[str, Any] | None = None
 
     @property
     def group(self) -> str:
@@ -683,6 +709,8 @@ class Scenario:
         }
         if not self.loads_pattern.default:
             what["pattern"] = self.pattern
+        if self.settlement_path is not None:
+            what["settlement_path"] = self.settlement_path
         return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()
 
     @property
@@ -770,6 +798,7 @@ class Study:
                     material=_with(spec.material.model_dump(), p, MATERIAL_SWEEPS),
                     loads=loads,
                     assembly_digest=self._digest(structure),
+                    settlement_path=spec.settlement_path.model_dump() if spec.settlement_path else None,
                 )
 
     def _digest(self, structure: dict[str, Any]) -> str:
@@ -908,14 +937,22 @@ def _short(value: Any) -> str:
 def parse_study(text: str, path: Path | str = "<study>") -> Study:
     """Validate study TOML ``text`` (see :func:`load_study`; ``path`` is for messages)."""
     path = Path(path)
+    guards.check_text(path, text)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise StudyError(f"{path}: not valid TOML: {exc}; fix: correct the syntax") from None
+    except RecursionError:
+        raise StudyError(
+            f"{path}: nested more than MAX_TOML_DEPTH = {guards.MAX_TOML_DEPTH} deep; fix: a study needs tables "
+            "of values and lists, no deeper"
+        ) from None
+    guards.check_tree(path, data)
     try:
         spec = StudyFile.model_validate(data)
     except ValidationError as exc:
         raise StudyError(_describe(path, exc)) from None
+    guards.check_work(path, spec)
     if isinstance(spec.structure, FileStructure):
         where = (path.parent / spec.structure.path).resolve()
         spec = spec.model_copy(update={"structure": spec.structure.model_copy(update={"path": str(where)})})
@@ -941,7 +978,9 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
             )
     study = Study(path, text, spec)
     _check_scenarios(study)
+    guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])))
     _check_plots(study)
+    _check_settlement_path(study)
     return study
 
 
@@ -955,11 +994,7 @@ def load_study(path: Path | str) -> Study:
         structure that cannot be built, or moves a support the structure does not have.
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise StudyError(f"{path}: cannot read the study file ({exc}); fix: give a readable TOML file") from None
-    return parse_study(text, path)
+    return parse_study(guards.read_study_text(path), path)
 
 
 def build_structure(section: dict[str, Any]) -> Assembly:
@@ -1082,3 +1117,26 @@ def _check_plots(study: Study) -> None:
             f"fix: use one of {names[:8]}{' ...' if len(names) > 8 else ''} (or a pattern such as 'outward/*')"
             f"{did_you_mean(entry, names)}"
         )
+
+
+def _check_settlement_path(study: Study) -> None:
+    """``[settlement_path]`` follows planar assemblies of the rigid Heyman material, with
+    in-plane motions and (with ``lambda = true``) an in-plane lateral direction."""
+    section = study.spec.settlement_path
+    if section is None:
+        return
+    from ..analysis.settlement_path import check_path_scene
+
+    for sc in study.scenarios():
+        if not sc.loads_pattern.default:
+            raise StudyError(
+                f"{study.path}: settlement_path: the path carries the self-weight (and, with lambda = true, the "
+                "lateral pattern) only; fix: remove the [loads] point or distributed loads, or [settlement_path]"
+            )
+        try:
+            check_path_scene(study.assembly(sc.structure), build_material(sc.material), sc.settlements, sc.alpha if section.lam else None)
+        except ValueError as exc:
+            raise StudyError(
+                f"{study.path}: settlement_path (scenario {sc.name!r}): {exc}; fix: remove [settlement_path] "
+                "or give a planar structure of a Heyman material (no [material] keys) with in-plane motions"
+            ) from None
