@@ -586,14 +586,62 @@ def merge_scenarios(study: Study, parts: dict[str, xr.Dataset]) -> xr.Dataset:
     if missing:
         raise ValueError(f"cannot merge: scenarios not solved: {missing}")
     n_steps = max(parts[n].sizes["step"] for n in order)
-    ds = xr.concat(
-        [_pad(parts[n], n_steps) for n in order],
-        dim="scenario",
-        data_vars="minimal",
-        coords="minimal",
-        compat="override",
-        join="outer",
-        combine_attrs="drop",
-    )
+    ds = _stacked([parts[n] for n in order], n_steps)
+    if ds is None:  # the parts' other dimensions differ (a geometry sweep): let xarray align them
+        ds = xr.concat(
+            [_pad(parts[n], n_steps) for n in order],
+            dim="scenario",
+            data_vars="minimal",
+            coords="minimal",
+            compat="override",
+            join="outer",
+            combine_attrs="drop",
+        )
     ds.attrs = study_attrs(study, ds["model"].values.tolist())
     return _label(ds)
+
+
+def _plain_text(values: np.ndarray) -> np.ndarray:
+    """Text as an object array of Python ``str`` (an answer kept in memory may hold
+    ``numpy.str_``, one read back from its file ``str``; netCDF cannot write a mix)."""
+    return np.asarray(values).astype(str).astype(object)
+
+
+def _stacked(parts: list[xr.Dataset], n_steps: int) -> xr.Dataset | None:
+    """The one-scenario datasets ``parts`` stacked along ``scenario`` with numpy: ``step``
+    padded to ``n_steps`` (NaN for numbers, "" for text), text as object arrays, variables
+    without ``scenario`` from the first part; None when the parts' other index coordinates
+    differ (then only an outer join can stack them).
+
+    The same dataset as :func:`xarray.concat` of the :func:`_pad`-ded parts (tested), at a
+    fraction of its cost: xarray aligned and copied every part, 25 ms a scenario on the paper's
+    arch, the largest serial share of a 300-scenario sweep.
+    """
+    first = parts[0]
+    for name, index in first.indexes.items():
+        if name not in ("scenario", "step") and any(not p.indexes[name].equals(index) for p in parts[1:]):
+            return None
+    coords: dict[str, xr.Variable] = {}
+    data: dict[str, xr.Variable] = {}
+    for name, var in first.variables.items():
+        text = var.dtype.kind in "USOT"
+        if name == "step":
+            new = xr.Variable(("step",), np.arange(n_steps, dtype=var.dtype), dict(var.attrs))
+        elif "scenario" not in var.dims:
+            new = xr.Variable(var.dims, _plain_text(var.values) if text else var.values, dict(var.attrs))
+        else:
+            dims = var.dims
+            at = dims.index("scenario")
+            shape = [len(parts) if d == "scenario" else n_steps if d == "step" else var.sizes[d] for d in dims]
+            dtype = object if text else np.float64 if "step" in dims and var.dtype.kind in "biu" else var.dtype
+            out = np.full(shape, _FILL_TEXT if text else np.nan, dtype=dtype) if "step" in dims else np.empty(shape, dtype)
+            for i, part in enumerate(parts):
+                v = part.variables[name]
+                where = [slice(None)] * len(dims)
+                where[at] = slice(i, i + 1)
+                if "step" in dims:
+                    where[dims.index("step")] = slice(0, v.sizes["step"])
+                out[tuple(where)] = _plain_text(v.values) if text else v.values
+            new = xr.Variable(dims, out)
+        (coords if name in first.coords else data)[name] = new
+    return xr.Dataset(data, coords=coords)
