@@ -11,30 +11,18 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from faults.common import TINY
 from tce.study import results as R
 from tce.study.runner import run_study, solve_scenario
 from tce.study.schema import parse_study
 
-TINY = """
-[study]
-name = "tiny"
-[structure]
-type = "semicircular_arch"
-voussoirs = 6
-[loads]
-lambda_step = 0.05
-tolerance = 1e-3
-[sweep]
-friction = [0.3, 2.0]
-[scenarios.none]
-[scenarios.outward]
-right = [0.001, 0.0, 0.0, 0.0, 0.0, 0.0]
-"""
+#: the fault suite's tiny study, with a friction low enough that its paths differ in length
+STUDY = TINY.replace("friction = [0.8, 2.0]", "friction = [0.3, 2.0]")
 
 
 @pytest.fixture(scope="module")
 def study():
-    return parse_study(TINY, "study.toml")
+    return parse_study(STUDY, "study.toml")
 
 
 @pytest.fixture(scope="module")

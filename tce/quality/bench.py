@@ -43,8 +43,9 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
 ``sweeps``
     The 300-scenario sweep of the paper's arch (no figures) with ``--jobs 1``, ``--jobs 2``
     and the default, interleaved, each a fresh ``tce run`` (:func:`measured_run`): wall time,
-    the CPU time of every process of the run (fork server and workers included) and the
-    solver time its results record; the share of CPU in solving of each paper study.
+    the CPU time of every process of the run (fork server and workers included) against the
+    CPU time of the same load paths alone in this process (:func:`solving_cpu`); the share of
+    CPU in solving of each paper study.
 ``reduction``
     What the planar model, dropping the cone (Heyman) and dropping the quadratic term
     (rigid) save, each with its effect on the answer.
@@ -662,6 +663,24 @@ def measured_run(study: Path, out: Path, args: Sequence[str]) -> dict[str, float
     return got
 
 
+def solving_cpu(study: Path) -> float:
+    """CPU seconds of the load paths of every scenario of ``study`` in this process, as the
+    runner solves them (a cold analysis per scenario) but without recording or writing: the
+    solving a run cannot do without (the results' ``solve_time`` is wall time, which a shared
+    machine stretches)."""
+    from ..analysis.loadpath import load_path
+    from ..study.runner import _analysis, _cold
+    from ..study.schema import load_study
+
+    st = load_study(study)
+    c0 = time.process_time()
+    for sc in st.scenarios():
+        an = _cold(_analysis(sc, st.assembly(sc.structure)))
+        load_path(an, settlements=sc.settlements, step=sc.loads["lambda_step"], atol=sc.loads["tolerance"],
+                  lam_cap=sc.loads["lambda_cap"], loads=sc.loads_pattern)
+    return time.process_time() - c0
+
+
 def _sweeps(quick: bool) -> list[dict[str, Any]]:
     """The 300-scenario sweep of the paper's arch (10 frictions x 5 magnitudes x 6 settlement
     cases, no figures) with ``--jobs 1``, ``--jobs 2`` and the default, interleaved, each in a
@@ -683,22 +702,26 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
             for label, args in variants.items():
                 got[label].append(measured_run(sweep, Path(tmp) / "out", args))
         base = statistics.median(g["wall"] for g in got["--jobs 1"])
+        solving = solving_cpu(sweep)
         for label, gs in got.items():
             wall, cpu = statistics.median(g["wall"] for g in gs), statistics.median(g["cpu"] for g in gs)
             solver = statistics.median(g["solver"] for g in gs)
             rows.append(_row("sweeps", f"sweep of {gs[0]['scenarios']} scenarios (arch, no figures)", label,
                              n_solves=len(gs), time_s=wall, time_min_s=min(g["wall"] for g in gs),
-                             solver_time_s=solver,
+                             solver_time_s=solving,
                              note=f"{base / wall:.2f}x faster than --jobs 1 (wall); CPU {cpu:.2f} s, "
-                                  f"{cpu / solver:.1f}x the solver time, solving {solver / cpu:.0%} of the CPU"))
+                                  f"{cpu / solving:.1f}x the load paths' CPU ({solving:.2f} s), solving "
+                                  f"{solving / cpu:.0%} of the CPU; recorded solve_time {solver:.2f} s (wall)"))
         root = Path(__file__).resolve().parents[2] / "studies"
         for name in () if quick else PAPER_STUDIES:
             if not (root / f"{name}.toml").exists():
                 continue
             g = measured_run(root / f"{name}.toml", Path(tmp) / "out", ["--no-plots"])
+            solving = solving_cpu(root / f"{name}.toml")
             rows.append(_row("sweeps", f"tce run {name}", "default (no figures)", n_solves=1, time_s=g["wall"],
-                             solver_time_s=g["solver"],
-                             note=f"CPU {g['cpu']:.2f} s, solving {g['solver'] / g['cpu']:.1%} of the CPU"))
+                             solver_time_s=solving,
+                             note=f"CPU {g['cpu']:.2f} s, the load paths {solving:.2f} s: solving {solving / g['cpu']:.1%} "
+                                  f"of the CPU; recorded solve_time {g['solver']:.3f} s (wall)"))
     return rows
 
 
@@ -932,7 +955,7 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
         out.append((f"{case}: the default no slower than --jobs 1 (wall)", f"{dflt / j1:.2f}x", bool(dflt <= 1.05 * j1)))
         cpu = float(g.note["--jobs 1"].split("CPU ")[1].split(" s")[0])
         solver = float(g.solver_time_s["--jobs 1"])
-        out.append((f"{case}: --jobs 1 at most 3x its own summed solver time (CPU of the run / solver time)",
+        out.append((f"{case}: --jobs 1 at most 3x its own solving (CPU of the run / CPU of its load paths)",
                     f"{cpu / solver:.1f}x ({cpu:.1f} / {solver:.2f} s)", bool(cpu <= 3 * solver)))
     runs = df[df.section == "runs"]
     for case in runs.case.unique():
