@@ -9,12 +9,13 @@ the subpackages follow it:
 ``tce.analysis``    load path, minimum thickness, diagnosis
 ``tce.study``       study files, the parallel runner, results datasets
 ``tce.plot``        figures, interactive view and VTK export of a results dataset
+``tce.report``      the calculation report (HTML and its PDF) of a results dataset
 ``tce.cli``         the ``tce`` command line: composes the layers above
 ``tce.quality``     developer tools beside the command line: benchmarks, the hard-case suite
 
 The names most scripts need are importable from ``tce`` itself (loaded on first use, listed in
 ``__all__`` and by ``dir(tce)``), e.g. ``from tce import semicircular_arch, Analysis, Material,
-load_path``. The command line (``tce run``, ``tce show``, ...) is :mod:`tce.cli`, on the top
+load_path``. The command line (``tce run``, ``tce report``, ...) is :mod:`tce.cli`, on the top
 floor: it composes the study runner, the figures and the report.
 """
 
@@ -23,6 +24,13 @@ from __future__ import annotations
 from importlib import import_module as _import_module
 from importlib.metadata import PackageNotFoundError as _PackageNotFoundError
 from importlib.metadata import version as _version
+import os as _os
+import sys as _sys
+
+if _sys.argv and _os.path.basename(_sys.argv[0]) == "tce":  # the tce program: Ctrl-C from now on in one line
+    from .signals import handle_signals as _handle_signals
+
+    _handle_signals(raising=False)
 
 try:
     __version__ = _version("tce")
@@ -37,6 +45,11 @@ _PUBLIC = {
     "LoadPattern": "tce.core.loads",
     "PointLoad": "tce.core.loads",
     "DistributedLoad": "tce.core.loads",
+    "Vehicle": "tce.core.vehicles",
+    "Fill": "tce.core.fill",
+    "critical_position": "tce.analysis.critical",
+    "adequacy_factor": "tce.analysis.assessment",
+    "arch_bridge": "tce.structures.bridge",
     "build_model": "tce.core.model",
     "load_path": "tce.analysis.loadpath",
     "minimum_thickness": "tce.analysis.thickness",
@@ -65,7 +78,7 @@ _PUBLIC = {
 __all__ = ["__version__", *_PUBLIC]
 
 #: the subpackages (``dir(tce)`` lists them beside the public names)
-_SUBPACKAGES = ("analysis", "cli", "core", "plot", "quality", "structures", "study")
+_SUBPACKAGES = ("analysis", "cli", "core", "plot", "quality", "report", "structures", "study")
 
 
 def __getattr__(name: str) -> object:

@@ -21,6 +21,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .. import display
 from ..structures.assembly import Assembly
 from .limit import LimitResult, LimitSolver
 from .loads import AppliedLoads, LoadPattern, as_pattern, resolve
@@ -68,6 +69,28 @@ class Analysis:
         self._limits: dict[tuple[str, LoadPattern], LimitResult] = {}
         self._limit_solvers: dict[str, LimitSolver] = {}
         self._formulations: dict[str, Formulation] = {}
+
+    def _facts(self) -> dict[str, str]:
+        """What the repr and the HTML table show."""
+        a = self.assembly
+        if self.choice == "spatial" or self.plane is None:
+            models = "spatial" + (" (forced)" if self.choice == "spatial" else " (not planar)")
+        else:
+            models = "planar" if self.choice == "planar" else "planar for in-plane scenes, spatial otherwise"
+        return {
+            "assembly": f"{len(a.blocks)} blocks, {len(a.support_indices)} supports, {len(a.interfaces)} interfaces"
+                        + (f" ({a.meta['generator']})" if "generator" in a.meta else ""),
+            "models": models,
+            "material": self.material.describe(),
+            "built": ", ".join(sorted(self._models)) or "nothing yet",
+        }
+
+    def __repr__(self) -> str:
+        f = self._facts()
+        return display.call("Analysis", {}, head=f"{f['assembly']}; models: {f['models']}; {f['material']}")
+
+    def _repr_html_(self) -> str:
+        return display.html_table("Analysis", self._facts().items())
 
     def reset_solvers(self) -> None:
         """Drop the warm solvers (keeping the operators), so that the next answer does not

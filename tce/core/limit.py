@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,7 +42,7 @@ from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import EZ, Model
 from .problem import Formulation, LimitProblems, lateral_ray_problem
-from .result import Result
+from .result import DOFS, Result
 
 __all__ = ["LimitResult", "LimitSolver", "Mechanism", "mechanism_from_velocities"]
 
@@ -142,7 +143,7 @@ def mechanism_from_velocities(model: Model, vel: NDArray[np.float64], tol: float
     return Mechanism(vel, tuple(modes), hp)
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class LimitResult(Result):
     """Answer of a direct limit analysis.
 
@@ -179,6 +180,8 @@ class LimitResult(Result):
         Wall time of the solver set-up (s).
     """
 
+    HEADLINE = ("lambda_max", "alpha", "model", "lambda_kinematic", "certificate_gap")
+
     alpha: float
     loads: LoadPattern | None = field(default=None, repr=False)
     lambda_max: float = float("nan")
@@ -191,6 +194,13 @@ class LimitResult(Result):
     model: str = "spatial"
     iterations: int = 0
     setup_time: float = 0.0
+
+    def _arrays(self) -> tuple[dict[str, tuple], dict[str, Any]]:
+        """The collapse mechanism (``mechanism``: dims ``(block, dof)``, blocks in assembly order)."""
+        if self.mechanism is None:
+            return {}, {}
+        data = {"mechanism": (("block", "dof"), self.mechanism.velocities, {"units": "m, rad (unit amplitude)"})}
+        return data, {"dof": list(DOFS)}
 
 
 class LimitSolver:

@@ -23,7 +23,8 @@ Faults (``docs/studies.md``, "Faults and resuming"):
   kept, ``results.nc`` is not replaced, and a rerun solves only what is missing.
 - Ctrl-C (:class:`KeyboardInterrupt`) stops the workers at once (a worker that is writing
   a file finishes it first), removes the temporary files and re-raises.
-- Workers ignore Ctrl-C (the parent decides) and end within a second if the parent dies.
+- Workers ignore Ctrl-C from their start (the parent decides: :mod:`tce.signals`) and
+  end within a second, silently, if the parent dies.
 - One run at a time per study folder (:func:`tce.study.results.folder_lock`); the folder
   is created and locked before anything is solved, so an unwritable destination fails
   with :class:`RunError` before the run.
@@ -55,7 +56,10 @@ from ..analysis.loadpath import LoadPathResult, load_path
 from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
+from ..analysis.assessment import adequacy_factor
+from ..analysis.critical import critical_position
 from .jobs import choose_jobs
+from .positions import with_adequacy, with_critical
 from .results import (
     FolderLocked,
     StorageError,
@@ -69,9 +73,12 @@ from .results import (
     write_scenario,
 )
 from .schema import Scenario, Study, build_material
+from ..signals import quiet_children
+from .settlement import settlement_vars
 
 __all__ = [
     "LAMBDA_TOL",
+    "FigureFault",
     "RunError",
     "RunFault",
     "RunReport",
@@ -113,6 +120,11 @@ class RunFault(RuntimeError):
     def __init__(self, report: RunReport) -> None:
         super().__init__("\n".join(report.faults))
         self.report = report
+
+
+class FigureFault(RunFault):
+    """``results.nc`` was written, but its figures could not be (a full or unwritable disk;
+    exit code 3 in the CLI): ``tce plot`` draws them again."""
 
 
 @dataclass
@@ -178,19 +190,32 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     (:func:`with_drawn_states`).
     """
     analysis = _cold(_analysis(sc, assembly))
+    pattern, crit = sc.loads_pattern, None
+    if sc.loads.get("critical_position"):
+        crit = critical_position(analysis, pattern, start=sc.loads["positions"])
+        log.debug("scenario %r: critical position %s", sc.name, crit.message)
+        if crit.ok:
+            pattern = crit.pattern
     lp = load_path(
         analysis,
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
         atol=sc.loads["tolerance"],
         lam_cap=sc.loads["lambda_cap"],
-        loads=sc.loads_pattern,
+        loads=pattern,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     bracket = None
     if analysis.material.flow == "non-associative":
-        bracket = nonassociative_limit(analysis, loads=sc.loads_pattern)
-    return scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+        bracket = nonassociative_limit(analysis, loads=pattern)
+    settlement = settlement_vars(sc, assembly, analysis.material) if sc.settlement_path is not None else None
+    ds = scenario_dataset(
+        sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket, settlement=settlement
+    )
+    if "dead_factor" in sc.loads:
+        factors = sc.loads["dead_factor"], sc.loads["live_factor"]
+        ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
+    return ds if crit is None else with_critical(ds, crit)
 
 
 def same_lambda(a: float, b: float) -> bool:
@@ -303,7 +328,7 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
     while True:
         try:
             task = conn.recv()
-        except EOFError:
+        except (EOFError, OSError):  # the parent ended (a reset connection when it was killed)
             return
         if task is None:
             return
@@ -314,7 +339,10 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
             reply = ("storage", sc.name, str(exc))
         except Exception as exc:  # noqa: BLE001 - reported to the parent with its traceback
             reply = ("error", sc.name, f"{type(exc).__name__}: {exc}", traceback.format_exc())
-        conn.send(reply)
+        try:
+            conn.send(reply)
+        except OSError:  # the parent ended: the scenario's file is written, a rerun reuses it
+            return
 
 
 # ----------------------------------------------------------------------------- caller side
@@ -429,7 +457,8 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
     def start() -> Any:
         conn, child = ctx.Pipe()
         process = ctx.Process(target=_worker, args=(child, str(directory), os.getpid(), level), daemon=True)
-        process.start()
+        with quiet_children():  # a Ctrl-C while it imports its modules is the parent's to handle
+            process.start()
         child.close()
         workers[conn] = [process, None]
         return conn
@@ -600,6 +629,8 @@ def run_study(
     RunFault
         The run ended with a fault; every finished scenario is on disk, ``results.nc``
         was not replaced.
+    FigureFault
+        ``results.nc`` was written but a figure could not be (a :class:`RunFault`).
     KeyboardInterrupt
         Ctrl-C; every finished scenario is on disk.
     """
@@ -658,5 +689,9 @@ def run_study(
             raise RunFault(report) from None
         log.info("wrote %s", report.results)
         if plots:
-            report.figures = list(plots(ds, directory, jobs))
+            try:
+                report.figures = list(plots(ds, directory, jobs))
+            except OSError as exc:  # a full or unwritable disk: results.nc is written
+                report.faults.append(str(storage_error(Path(exc.filename or directory), exc)))
+                raise FigureFault(report) from None
     return report

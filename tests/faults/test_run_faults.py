@@ -68,7 +68,8 @@ def test_killed_worker_is_named_and_the_others_are_kept(study, reference, tmp_pa
 def test_ctrl_c_keeps_a_finished_scenario_not_yet_returned(study, reference, tmp_path, jobs: str) -> None:
     out = tmp_path / "out"
     finished = "none/friction=2"
-    run = tce_run(write(tmp_path), out, "--jobs", jobs, fault=f"interrupt:{finished}")
+    # with two workers, none/friction=0.8 is the other worker's: the interrupt waits for its file
+    run = tce_run(write(tmp_path), out, "--jobs", jobs, fault=f"interrupt:{finished}:2")
     assert run.returncode == 130
     clean(run.stderr)
     said = [line for line in run.stderr.strip().splitlines() if not line.startswith("tce: tiny: ")]  # progress lines
