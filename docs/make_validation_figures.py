@@ -59,7 +59,7 @@ def thickness_convergence() -> None:
     ax.set_xlabel("voussoirs")
     ax.set_ylabel("least thickness t/R")
     ax.set_title("Semicircular arch under self-weight: least thickness against the discretisation")
-    ax.legend(fontsize=7.5, loc="lower right")
+    ax.legend(fontsize=7.5, loc="center right")
     ax.grid(alpha=0.3)
     _save(fig, "validation_thickness.png")
 
