@@ -50,8 +50,6 @@ def thickness_convergence() -> None:
     print("vertical ", [f"{v:.6f}" for v in vertical], "continuous", f"{cont_v:.7f}")
     fig, ax = plt.subplots(figsize=(7.5, 4.6))
     ax.semilogx(ns, radial, "o-", color="C0", label="tce, radial joints")
-    ax.set_xticks(ns, [str(n) for n in ns])
-    ax.minorticks_off()
     ax.semilogx(ns, vertical, "s-", color="C1", label="tce, vertical joints")
     ax.axhline(cont_r, color="C0", ls=":", label=f"continuous ring LP, radial ({cont_r:.6f})")
     ax.axhline(cont_v, color="C1", ls=":", label=f"continuous ring LP, vertical ({cont_v:.6f})")
@@ -59,6 +57,8 @@ def thickness_convergence() -> None:
     ax.axhline(PUBLISHED["ma_vertical"], color="C1", ls="--", lw=0.8, label="Makris & Alexakis 2013, vertical: 0.1095")
     ax.axhline(PUBLISHED["cr_eta_rotational"], color="k", ls="-.", lw=0.8,
                label="Cocchetti & Rizzi 2020: 0.107426 (= LP, weights on the centreline)")
+    ax.set_xticks(ns, [str(n) for n in ns])
+    ax.minorticks_off()
     ax.set_xlabel("voussoirs")
     ax.set_ylabel("least thickness t/R")
     ax.set_title("Semicircular arch under self-weight: least thickness against the discretisation")
