@@ -23,7 +23,7 @@ from tce.core.model import build_model
 from tce.structures.assembly import Assembly, Block
 from tce.structures.contacts import detect_interfaces
 from tce.structures.geometry import box
-from tce.study.cli import main
+from tce.cli import main
 from tce.study.schema import StudyError, parse_study
 
 # ----------------------------------------------------------------------------- material checks
@@ -253,7 +253,7 @@ def test_study_dataset_carries_the_bracket_and_the_figure(tmp_path: Path) -> Non
     from tce.plot.materials import write_material_figures
 
     study = parse_study(STUDY, tmp_path / "study.toml")
-    report = run_study(study, tmp_path, jobs=1, plots=False)  # all figures: slow; the bracket one below
+    report = run_study(study, tmp_path, jobs=1)  # no figures; the bracket one below
     ds = xr.load_dataset(report.results)
     assert list(ds["nonassoc_status"].values) == ["converged", "converged"]
     np.testing.assert_allclose(ds["lambda_assoc"].values, ds["lambda_direct"].values, rtol=0, atol=0)
@@ -269,7 +269,7 @@ def test_bracket_figure_only_for_material_sweeps(tmp_path: Path) -> None:
     from tce.study.runner import run_study
 
     study = parse_study(STUDY.replace("friction = [0.5, 0.8]", "magnitude = [1.0]"), tmp_path / "study.toml")
-    ds = xr.load_dataset(run_study(study, tmp_path, jobs=1, plots=False).results)
+    ds = xr.load_dataset(run_study(study, tmp_path, jobs=1).results)
     assert bracket_figure(ds) is None
 
 

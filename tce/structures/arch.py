@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 
 from .assembly import Assembly, Block, Interface
 from .geometry import FaceTable, prisms
-from .params import check_positive, check_whole
+from .params import check_blocks, check_positive, check_whole
 
 __all__ = [
     "arch_from_joints",
@@ -152,6 +152,7 @@ def semicircular_arch(
     """
     check_positive(inner_radius=inner_radius, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs")
+    check_blocks(n + 2, f"voussoirs + 2 supports = {n} + 2")
     if joints not in JOINTS:
         raise ValueError(f"joints must be one of {', '.join(JOINTS)}, got {joints!r}")
     height = thickness if support_height is None else support_height
@@ -304,6 +305,7 @@ def pointed_arch(
     """
     check_positive(span=span, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs", 2)
+    check_blocks(n + 2, f"voussoirs + 2 supports = {n} + 2")
     s = float(span)
     if rise is not None and centre_offset is not None:
         raise ValueError("give either rise or centre_offset, not both")
@@ -389,6 +391,7 @@ def segmental_arch(
     """
     check_positive(span=span, rise=rise, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs")
+    check_blocks(n + 2, f"voussoirs + 2 supports = {n} + 2")
     s, f, t = float(span), float(rise), float(thickness)
     if f > s / 2.0 * (1.0 + 1e-12):
         raise ValueError(f"rise must be <= span / 2 = {s / 2.0} for a segmental arch, got {rise!r}")
