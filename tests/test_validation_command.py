@@ -9,7 +9,7 @@ import pytest
 
 from tce import Analysis, Material, semicircular_arch
 from tce.quality import validation
-from tce.study.cli import main
+from tce.cli import main
 
 
 def test_check_validation_prints_the_selected_cases(capsys):
