@@ -55,11 +55,14 @@ def thickness_convergence() -> None:
     ax.axhline(cont_v, color="C1", ls=":", label=f"continuous ring LP, vertical ({cont_v:.6f})")
     ax.axhline(PUBLISHED["ma_radial"], color="C0", ls="--", lw=0.8, label="Makris & Alexakis 2013 / Milankovitch: 0.1075")
     ax.axhline(PUBLISHED["ma_vertical"], color="C1", ls="--", lw=0.8, label="Makris & Alexakis 2013, vertical: 0.1095")
-    ax.axhline(PUBLISHED["cr_eta_rotational"], color="k", ls="-.", lw=0.8, label="Cocchetti & Rizzi 2020: 0.107426")
+    ax.axhline(PUBLISHED["cr_eta_rotational"], color="k", ls="-.", lw=0.8,
+               label="Cocchetti & Rizzi 2020: 0.107426 (= LP, weights on the centreline)")
+    ax.set_xticks(ns, [str(n) for n in ns])
+    ax.minorticks_off()
     ax.set_xlabel("voussoirs")
     ax.set_ylabel("least thickness t/R")
     ax.set_title("Semicircular arch under self-weight: least thickness against the discretisation")
-    ax.legend(fontsize=7.5, loc="lower right")
+    ax.legend(fontsize=7.5, loc="center right")
     ax.grid(alpha=0.3)
     _save(fig, "validation_thickness.png")
 
@@ -69,10 +72,12 @@ def friction_curve() -> None:
     mus = [0.3095, 0.31, 0.315, 0.32, 0.33, 0.34, 0.35, 0.36, 0.37, 0.38, 0.39, 0.40, 0.45]
     curves = {n: [min_ratio(n, mu, "radial", 1e-6) for mu in mus] for n in (20, 160)}
     cont = [ref.minimum_thickness("radial", mu=mu, m=1000, tol=1e-7) for mu in mus]
+    cont_c = [ref.minimum_thickness("radial", mu=mu, m=1000, tol=1e-7, weight="centreline") for mu in mus]
     print("mu        ", mus)
     for n, vals in curves.items():
         print(f"tce n={n:<4}", [f"{v:.5f}" for v in vals])
     print("continuous", [f"{v:.5f}" for v in cont])
+    print("centreline", [f"{v:.5f}" for v in cont_c])
     ns = [20, 40, 80, 160, 320, 640]
     mu_rm = [friction_bound(min_ratio(n, None, "radial", 1e-7) * (1 + 1e-5), n, 0.3, 0.5) for n in ns]
     mu_ms = [friction_bound(0.25, n, 0.29, 0.33) for n in ns]
@@ -84,7 +89,8 @@ def friction_curve() -> None:
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.4))
     for n, vals in curves.items():
         a.plot(mus, vals, "o-", ms=3, label=f"tce, {n} voussoirs")
-    a.plot(mus, cont, "k:", label="continuous ring LP")
+    a.plot(mus, cont, "k:", label="continuous ring LP, ring centroids")
+    a.plot(mus, cont_c, "--", color="grey", lw=1, label="continuous ring LP, weights on the centreline")
     a.axhline(PUBLISHED["cr_eta_rotational"], color="grey", lw=0.8, ls="--", label="CR2020 eta_r = 0.107426")
     a.axvline(PUBLISHED["cr_mu_rotational"], color="C3", lw=0.8, ls="--", label="CR2020 mu_rm = 0.395832")
     a.axvline(PUBLISHED["cr_mu_sliding"], color="C4", lw=0.8, ls="--", label="CR2020 mu_ms = 0.309215")
@@ -94,13 +100,18 @@ def friction_curve() -> None:
     a.set_title("Least thickness against friction (CR2020 Fig. 7)")
     a.legend(fontsize=7)
     a.grid(alpha=0.3)
-    b.semilogx(ns, mu_rm, "o-", color="C3", label="tce mu_rm")
-    b.axhline(PUBLISHED["cr_mu_rotational"], color="C3", ls="--", lw=0.8, label="CR2020 mu_rm")
-    b.semilogx(ns, mu_ms, "s-", color="C4", label="tce mu_ms")
-    b.axhline(PUBLISHED["cr_mu_sliding"], color="C4", ls="--", lw=0.8, label="CR2020 mu_ms")
+    ring_rm, ring_ms = 0.395264, 0.3092153  # continuous LP, ring centroids (tests/validation/literature)
+    b.semilogx(ns, np.array(mu_rm) - PUBLISHED["cr_mu_rotational"], "o-", color="C3", label="tce mu_rm - 0.395832")
+    b.axhline(ring_rm - PUBLISHED["cr_mu_rotational"], color="C3", ls=":", lw=1,
+              label="continuous LP (ring centroids) - 0.395832")
+    b.semilogx(ns, np.array(mu_ms) - PUBLISHED["cr_mu_sliding"], "s-", color="C4", label="tce mu_ms - 0.309215")
+    b.axhline(ring_ms - PUBLISHED["cr_mu_sliding"], color="C4", ls=":", lw=1, label="continuous LP - 0.309215")
+    b.axhline(0.0, color="k", lw=0.6)
+    b.set_xticks(ns, [str(n) for n in ns])
+    b.minorticks_off()
     b.set_xlabel("voussoirs")
-    b.set_ylabel("friction coefficient")
-    b.set_title("Transition frictions against the discretisation")
+    b.set_ylabel("tce - published")
+    b.set_title("Transition frictions: difference to Table 3")
     b.legend(fontsize=7)
     b.grid(alpha=0.3)
     _save(fig, "validation_friction.png")

@@ -91,7 +91,7 @@ def validation_command(select: str | None = None) -> int:
     failed = table[~table["ok"]]
     for _, row in failed.iterrows():
         print(f"FAILED {row['case']}: tce {row['tce']:.6g} against {row['published']:.6g} ({row['source']}, "
-              f"{row['where']}), tolerance {row['tolerance']:.0e}")
+              f"{row['where']}), tolerance {row['tolerance']:.1e}")
     print(f"{len(table) - len(failed)}/{len(table)} cases within tolerance in {table['time_s'].sum():.1f} s "
           "(sources and convergence: docs/validation.md)")
     return 0 if failed.empty else 1

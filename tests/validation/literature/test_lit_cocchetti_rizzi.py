@@ -5,27 +5,28 @@ modes of least-thickness circular masonry arches at decreasing friction. *Frattu
 Integrità Strutturale* 51, 356-375, doi:10.3221/IGF-ESIS.51.26.
 
 Published (Table 3, Fig. 7; complete semicircular arch, radial joints, self-weight, Coulomb
-friction mu at the joints, Heyman otherwise):
+friction mu at the joints, Heyman otherwise). "continuous LP" is tests/reference/continuous_arch.py,
+the static problem of the continuous ring written without tce, with each portion's weight at
+the ring's own centroid ("ring", what tce's voussoirs carry) or lumped on the centreline arc
+("centreline"):
 
-| quantity | published | tce, 160 voussoirs | tce, 640 voussoirs | continuous LP |
-|---|---|---|---|---|
-| t/R, purely rotational (mu > mu_rm) | 0.107426 | 0.107458 | 0.107477 | 0.107478 |
-| crown thrust h = H/(gamma d R t) there | 0.621772 | 0.62086 | - | 0.62088 |
-| mu_rm (sliding joins the hinges below it) | 0.395832 | 0.39528 | docs/validation.md | - |
-| mu_ms (no equilibrium below it) | 0.309215 | 0.309183 | docs/validation.md | 0.3092153 |
-| t/R at mu_ms | 0.200637 | 0.19865 | docs/validation.md | - |
-| h at mu_ms | 0.485714 | 0.48563 | - | - |
+| quantity | published | continuous LP, centreline | continuous LP, ring | tce, 160 voussoirs | tce, 640 |
+|---|---|---|---|---|---|
+| t/R, purely rotational (mu > mu_rm) | 0.107426 | 0.1074259 | 0.1074777 | 0.107458 | 0.107477 |
+| crown thrust h = H/(gamma d R t) there | 0.621772 | 0.621772 | 0.620882 | 0.620863 | - |
+| mu_rm (sliding joins the hinges below it) | 0.395832 | 0.395831 | 0.395264 | 0.395278 | docs/validation.md |
+| mu_ms (no equilibrium below it) | 0.309215 | 0.3092153 | 0.3092153 | 0.309183 | docs/validation.md |
+| t/R at mu_ms | 0.200637 | 0.200637 | 0.198610 | 0.198651 | - |
+| h at mu_ms | 0.485714 | 0.485714 | 0.485714 | 0.485632 | - |
 
-tce's values come from the discrete arch (joints every 180/n degrees, supports as blocks);
-"continuous LP" is ``tests/reference/continuous_arch.py``, the static problem of the continuous
-ring written from the problem statement without tce. tce and the continuous LP agree to 2e-7
-in t/R at 640 voussoirs, so the residual 5.2e-5 between them and the printed 0.107426 is not a
-discretisation error; Milankovitch's value as Makris & Alexakis quote it (0.1075) agrees.
-Where the published solution loses those 5e-5 was not found (the same shift shows in h).
-Tolerances (tce.quality.validation.CASES): 1e-4 on t/R (the 5e-5 above plus the 160-voussoir
-discretisation, 2e-5), 2e-3 on mu_rm (the discrete joints sample the continuous T/N curve),
-2e-4 on mu_ms, 4e-3 on t/R at mu_ms (t/R has a vertical tangent there: a shift of 1e-5 in
-mu moves it by 1e-3), 2e-3 and 3e-3 on the thrusts.
+So the published table is reproduced digit by digit by the continuous ring with the
+self-weight lumped on the centreline, and tce converges to the same ring with its true
+centroids: the differences (+5.2e-5 in t/R, -8.9e-4 in h, -5.7e-4 in mu_rm, -2.0e-3 in t/R
+at mu_ms) are the self-weight distribution, not the method; mu_ms and h at mu_ms do not depend
+on it. Tolerances (tce.quality.validation.CASES) are that explained shift plus the
+160-voussoir discretisation error: 6e-5 on t/R, 1.2e-3 on h_r, 8e-4 on mu_rm, 2e-4 on mu_ms,
+2.5e-3 on t/R at mu_ms (taken at tce's own mu_ms, where t/R has a vertical tangent), 3e-4 on
+h at mu_ms.
 """
 
 import pytest
@@ -47,11 +48,25 @@ def test_published_value(name):
 
 
 def test_tce_agrees_with_the_continuous_ring_where_it_departs_from_the_table():
-    """The difference to Table 3 is not tce's: an LP of the continuous ring gives tce's value."""
-    continuous = ref.minimum_thickness("radial", m=500, tol=1e-7)
-    assert continuous == pytest.approx(0.107478, abs=2e-6)
-    assert min_ratio(mu=None) == pytest.approx(continuous, abs=3e-5)  # 160 voussoirs, from below
-    assert continuous - 0.107426 > 4e-5  # the published value is lower: stated in docs/validation.md
+    """The difference to Table 3 is not tce's: an LP of the continuous ring with the ring's own
+    centroids gives tce's value (two solves bracket it)."""
+    assert ref.stands(0.107479, m=500) and not ref.stands(0.107476, m=500)
+    assert min_ratio(mu=None) == pytest.approx(0.1074777, abs=3e-5)  # 160 voussoirs, from below
+
+
+def test_centreline_weights_give_table_3():
+    """The explanation: lumping each portion's weight on the centreline reproduces Table 3's
+    t/R = 0.107426, h = 0.621772 and, at mu_ms = 0.309215, t/R = 0.200637 (each bracketed)."""
+    kw = dict(m=500, weight="centreline")
+    assert ref.stands(0.1074270, **kw) and not ref.stands(0.1074250, **kw)
+    lo, hi = ref.thrust_range(0.1074262, **kw)
+    assert lo == pytest.approx(0.621772, abs=2e-5) and hi == pytest.approx(0.621772, abs=2e-5)
+    assert ref.stands(0.200645, mu=0.3092154, **kw) and not ref.stands(0.200625, mu=0.3092154, **kw)
+    at = 0.1074259 * (1 + 1e-5)  # just above the least thickness: mu_rm = 0.395831 brackets
+    assert ref.stands(at, mu=0.39585, **kw) and not ref.stands(at, mu=0.39581, **kw)
+    # with the ring's own centroids mu_rm moves to 0.395264, where tce's 0.395278 lies
+    at = 0.1074777 * (1 + 1e-5)
+    assert ref.stands(at, mu=0.39529, m=500) and not ref.stands(at, mu=0.39524, m=500)
 
 
 def test_mixed_mode_thickness_against_the_continuous_ring():
