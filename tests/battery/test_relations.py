@@ -31,7 +31,7 @@ from .transform import Similarity, permuted
 
 # no shrinking: an example costs up to a second, and the drawn scene is named by its parts
 SETTINGS = settings(
-    max_examples=20, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
+    max_examples=15, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
     suppress_health_check=[HealthCheck.too_slow],
 )
 
