@@ -164,6 +164,8 @@ class Answer:
         Total weight of the free blocks (kN), the scale of the reactions.
     size : float
         Size of the assembly (m), the scale of the moments.
+    model : str
+        The model of the TCE solve (``planar``, ``spatial``).
     interfaces : dict
         ``(block A, block B)`` -> pressure point (m) and resultant on B (kN) of each
         interface of the model at ``lam`` (NaN unless optimal).
@@ -183,6 +185,7 @@ class Answer:
     weight: float
     size: float
     interfaces: dict[tuple[str, str], tuple[np.ndarray, np.ndarray]]
+    model: str
 
 
 def path_settings(lambda_direct: float) -> tuple[float, float]:
@@ -223,7 +226,7 @@ def answer(sc: Scene, lam: float | None = None, step: tuple[float, float] | None
         lambda_direct=float(lim.lambda_max), lam=float(lam), status=r.status,
         reactions=dict(zip(names, wrenches, strict=True)), about=about, total=total,
         unique=r.unique, nonassoc=nonassoc, weight=sc.assembly.total_weight, size=sc.assembly.size,
-        interfaces=interfaces,
+        interfaces=interfaces, model=r.model,
     )
 
 

@@ -45,10 +45,14 @@ def _same_interfaces(a: Answer, b: Answer, t: Similarity, w: float, size: float)
             np.testing.assert_allclose(q, t.points(p), rtol=0, atol=1e-5 * size, err_msg=f"pressure point {A}|{B}")
 
 
-def same_answer(a: Answer, b: Answer, t: Similarity | None = None, rename: dict[str, str] | None = None) -> None:
+def same_answer(a: Answer, b: Answer, t: Similarity | None = None, rename: dict[str, str] | None = None,
+                same_model: bool = True) -> None:
     """Assert that ``b`` is ``a`` seen through ``t`` (default: the identity); ``rename`` maps
-    ``a``'s support names to ``b``'s."""
+    ``a``'s support names to ``b``'s; ``same_model``: on the same model (planar or spatial:
+    a planar scene moved stays planar, in whatever vertical plane)."""
     t = t or Similarity()
+    if same_model:
+        assert a.model == b.model, (a.model, b.model)
     what = f"{a.outcome}/{b.outcome} lambda {a.lambda_max!r}/{b.lambda_max!r} direct {a.lambda_direct!r}/{b.lambda_direct!r}"
     assert (a.outcome, a.direct_status, a.status) == (b.outcome, b.direct_status, b.status), what
     assert _close(a.lambda_direct, b.lambda_direct, 1e-7), what
