@@ -30,7 +30,7 @@ from .transform import Similarity, permuted
 
 # no shrinking: an example costs up to a second, and the drawn scene is named by its parts
 SETTINGS = settings(
-    max_examples=15, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
+    max_examples=12, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
     suppress_health_check=[HealthCheck.too_slow],
 )
 
@@ -76,7 +76,7 @@ def test_rotation_about_z(sc, angle):
 
 
 @SETTINGS
-@given(sc=scenes, shift=st.tuples(st.floats(-50.0, 50.0), st.floats(-50.0, 50.0), st.floats(-10.0, 10.0)))
+@given(sc=scenes, shift=st.tuples(st.floats(-20.0, 20.0), st.floats(-20.0, 20.0), st.floats(-5.0, 5.0)))
 def test_translation(sc, shift):
     _check(sc, Similarity.translation(shift))
 
