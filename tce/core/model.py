@@ -104,17 +104,34 @@ def _contact_groups(assembly: Assembly, plane: Plane, tol: float) -> tuple[NDArr
     return at_lo, at_hi
 
 
+def _plan_line_normal(rel: NDArray[np.float64]) -> NDArray[np.float64] | None:
+    """Horizontal unit normal of the vertical plane that best fits points ``rel`` (relative
+    to their mean) in plan: across their principal plan direction; None when they do not
+    spread in plan. Its sign makes the first non-zero of ``(m_y, m_x)`` positive, so a
+    structure and its copy turned by 180 degrees get the same plane."""
+    xy = rel[:, :2]
+    if len(xy) < 2 or not np.any(xy):
+        return None
+    d = np.linalg.svd(xy, full_matrices=False)[2][0]
+    if d[0] < 0 or (d[0] == 0 and d[1] > 0):
+        return np.array([d[1], -d[0], 0.0])
+    return np.array([-d[1], d[0], 0.0])
+
+
 def find_plane(assembly: Assembly, tol: float = 1e-9) -> Plane | None:
     """The vertical plane of symmetry that makes the assembly planar, if any.
 
     Candidates are the vertical planes normal to y and to x through the mean block
-    centroid. A plane qualifies when every block centroid lies in it, every interface
-    normal lies in it, and every interface reduces exactly to two contacts (see module
-    docstring). ``tol`` is relative to the assembly size.
+    centroid, then the vertical plane through the centroids' principal direction in plan
+    (a structure turned about z by any angle). A plane qualifies when every block centroid
+    lies in it, every interface normal lies in it, and every interface reduces exactly to
+    two contacts (see module docstring). ``tol`` is relative to the assembly size.
     """
     c = assembly.centroids
     origin = c.mean(axis=0)
-    for m in (np.array([0.0, 1.0, 0.0]), np.array([1.0, 0.0, 0.0])):
+    fitted = _plan_line_normal(c - origin)
+    candidates = [np.array([0.0, 1.0, 0.0]), np.array([1.0, 0.0, 0.0])] + ([fitted] if fitted is not None else [])
+    for m in candidates:
         if np.abs((c - origin) @ m).max() > tol * assembly.size:
             continue
         plane = Plane(m, origin)

@@ -164,6 +164,11 @@ class Answer:
         Total weight of the free blocks (kN), the scale of the reactions.
     size : float
         Size of the assembly (m), the scale of the moments.
+    model : str
+        The model of the TCE solve (``planar``, ``spatial``).
+    interfaces : dict
+        ``(block A, block B)`` -> pressure point (m) and resultant on B (kN) of each
+        interface of the model at ``lam`` (NaN unless optimal).
     """
 
     outcome: str
@@ -179,6 +184,8 @@ class Answer:
     nonassoc: tuple[str, float] | None
     weight: float
     size: float
+    interfaces: dict[tuple[str, str], tuple[np.ndarray, np.ndarray]]
+    model: str
 
 
 def path_settings(lambda_direct: float) -> tuple[float, float]:
@@ -207,6 +214,9 @@ def answer(sc: Scene, lam: float | None = None, step: tuple[float, float] | None
     about = np.zeros(3) if about is None else np.asarray(about, dtype=float)
     cent = sc.assembly.centroids[list(sc.assembly.support_indices)]
     total = np.concatenate([wrenches[:, :3].sum(0), (wrenches[:, 3:] + np.cross(cent - about, wrenches[:, :3])).sum(0)])
+    names_ = sc.assembly.names
+    itf = [sc.assembly.interfaces[k] for k in r.interface_map.interfaces]
+    interfaces = {(names_[i.a], names_[i.b]): (p, f) for i, p, f in zip(itf, r.pressure_points, r.resultants, strict=True)}
     nonassoc = None
     if sc.material.flow == "non-associative":
         na = nonassociative_limit(an, loads=sc.pattern)
@@ -216,6 +226,7 @@ def answer(sc: Scene, lam: float | None = None, step: tuple[float, float] | None
         lambda_direct=float(lim.lambda_max), lam=float(lam), status=r.status,
         reactions=dict(zip(names, wrenches, strict=True)), about=about, total=total,
         unique=r.unique, nonassoc=nonassoc, weight=sc.assembly.total_weight, size=sc.assembly.size,
+        interfaces=interfaces, model=r.model,
     )
 
 

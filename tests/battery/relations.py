@@ -9,8 +9,10 @@ Tolerances, each from how the number is computed:
   ``atol = 1e-6``: two runs may stop on either side of a bisection point, so 2e-6;
 - the total support reaction (forces, and moments about one point) is fixed by global
   equilibrium: 1e-8 of the weight (of the weight times the size for moments);
-- one support's reaction is an answer only where the state is unique (compliant contacts):
-  1e-6 of the weight (a QP solved by an interior-point method; measured: 1e-9);
+- one support's reaction, an interface's resultant and pressure point are answers only
+  where the state is unique (compliant contacts): 1e-6 of the weight, pressure points
+  1e-5 of the size under a resultant above 1e-3 of the weight (a QP solved by an
+  interior-point method; measured: 1e-9);
 - the non-associative estimate stops when lambda moves less than its ``tol = 1e-6``: 1e-5.
 """
 
@@ -32,10 +34,25 @@ def _close(a: float, b: float, tol: float) -> bool:
     return abs(a - b) <= tol * max(1.0, abs(a))
 
 
-def same_answer(a: Answer, b: Answer, t: Similarity | None = None, rename: dict[str, str] | None = None) -> None:
+def _same_interfaces(a: Answer, b: Answer, t: Similarity, w: float, size: float) -> None:
+    """Pressure points and resultants of a unique state, moved by ``t`` (an interface read
+    from its other side in ``b`` carries the opposite resultant)."""
+    assert len(a.interfaces) == len(b.interfaces)
+    for (A, B), (p, f) in a.interfaces.items():
+        q, g = b.interfaces[(A, B)] if (A, B) in b.interfaces else (b.interfaces[(B, A)][0], -b.interfaces[(B, A)][1])
+        np.testing.assert_allclose(g, t.forces(f), rtol=0, atol=1e-6 * w, err_msg=f"resultant {A}|{B}")
+        if np.linalg.norm(f) > 1e-3 * w:  # a pressure point is well defined under a force
+            np.testing.assert_allclose(q, t.points(p), rtol=0, atol=1e-5 * size, err_msg=f"pressure point {A}|{B}")
+
+
+def same_answer(a: Answer, b: Answer, t: Similarity | None = None, rename: dict[str, str] | None = None,
+                same_model: bool = True) -> None:
     """Assert that ``b`` is ``a`` seen through ``t`` (default: the identity); ``rename`` maps
-    ``a``'s support names to ``b``'s."""
+    ``a``'s support names to ``b``'s; ``same_model``: on the same model (planar or spatial:
+    a planar scene moved stays planar, in whatever vertical plane)."""
     t = t or Similarity()
+    if same_model:
+        assert a.model == b.model, (a.model, b.model)
     what = f"{a.outcome}/{b.outcome} lambda {a.lambda_max!r}/{b.lambda_max!r} direct {a.lambda_direct!r}/{b.lambda_direct!r}"
     assert (a.outcome, a.direct_status, a.status) == (b.outcome, b.direct_status, b.status), what
     assert _close(a.lambda_direct, b.lambda_direct, 1e-7), what
@@ -51,6 +68,7 @@ def same_answer(a: Answer, b: Answer, t: Similarity | None = None, rename: dict[
                 exp = t.wrenches(wrench)
                 np.testing.assert_allclose(other[:3], exp[:3], rtol=0, atol=1e-6 * w, err_msg=f"reaction force of {name}")
                 np.testing.assert_allclose(other[3:], exp[3:], rtol=0, atol=1e-6 * w * size, err_msg=f"reaction moment of {name}")
+            _same_interfaces(a, b, t, w, size)
     if a.nonassoc is not None:
         assert b.nonassoc is not None and a.nonassoc[0] == b.nonassoc[0], (a.nonassoc, b.nonassoc)
         assert _close(a.nonassoc[1], b.nonassoc[1], 1e-5), (a.nonassoc, b.nonassoc)

@@ -8,9 +8,8 @@ the structure's plane, across it); then each relation moves the whole scene and 
 tce's answers move with it (``relations.same_answer``: outcome, lambda_max, statuses,
 reactions). Derandomized like the rest of the suite (tests/conftest.py).
 
-Relations: rotation about z by any angle (planar models in any vertical plane, structures
-spanning y; at angles that are not multiples of 90 degrees the model is spatial: planar
-against spatial too), translation, mirror in a vertical plane, m/kN -> mm/N, blocks and
+Relations: rotation about z by any angle (structures spanning y, planar models in any
+vertical plane: a planar scene stays planar), translation, mirror in a vertical plane, m/kN -> mm/N, blocks and
 interfaces permuted (and read from the other side), a load split into two halves, and the
 spatial model forced on a planar scene.
 """
@@ -31,7 +30,7 @@ from .transform import Similarity, permuted
 
 # no shrinking: an example costs up to a second, and the drawn scene is named by its parts
 SETTINGS = settings(
-    max_examples=20, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
+    max_examples=12, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
     suppress_health_check=[HealthCheck.too_slow],
 )
 
@@ -61,7 +60,7 @@ angles = st.one_of(st.sampled_from((90.0, 180.0, -90.0)), st.floats(-180.0, 180.
 def _check(sc: Scene, t: Similarity, model: str = "auto") -> None:
     a = answer(sc)
     b = answer(sc.mapped(t), lam=a.lam, step=path_settings(a.lambda_direct), about=t.points(a.about), model=model)
-    same_answer(a, b, t)
+    same_answer(a, b, t, same_model=model == "auto")
 
 
 def _axes_kept(sc: Scene, angle: float) -> float:
@@ -77,7 +76,7 @@ def test_rotation_about_z(sc, angle):
 
 
 @SETTINGS
-@given(sc=scenes, shift=st.tuples(st.floats(-50.0, 50.0), st.floats(-50.0, 50.0), st.floats(-10.0, 10.0)))
+@given(sc=scenes, shift=st.tuples(st.floats(-20.0, 20.0), st.floats(-20.0, 20.0), st.floats(-5.0, 5.0)))
 def test_translation(sc, shift):
     _check(sc, Similarity.translation(shift))
 
@@ -130,8 +129,8 @@ def test_load_split_in_two_halves(sc):
 
 
 @SETTINGS
-@given(sc=scenes, angle=st.sampled_from((0.0, 90.0, 180.0, 270.0)))
+@given(sc=scenes, angle=st.sampled_from((0.0, 90.0, 180.0, 270.0, 30.0, 137.5)))
 def test_planar_against_spatial(sc, angle):
-    """The spatial model forced on a scene turned by a multiple of 90 degrees (planar models
-    in the planes normal to y and to x) gives the answer of the model tce chooses."""
-    _check(sc.mapped(Similarity.rotation(angle)), Similarity(), model="spatial")
+    """The spatial model forced on a scene turned about z (planar models in the planes
+    normal to y, to x and at any angle) gives the answer of the model tce chooses."""
+    _check(sc.mapped(Similarity.rotation(_axes_kept(sc, angle))), Similarity(), model="spatial")

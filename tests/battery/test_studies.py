@@ -24,7 +24,7 @@ from .studies import SECTIONS, file_section, run, study_text, total_reaction
 from .transform import Similarity
 
 SETTINGS = settings(
-    max_examples=8, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
+    max_examples=6, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture],
 )
 #: materials of the study relations (the non-associative scheme: tests/battery/test_sweeps.py)

@@ -130,7 +130,9 @@ class Similarity:
         a = math.radians(degrees)
         v = self.Q @ np.array([math.cos(a), math.sin(a), 0.0])
         out = math.degrees(math.atan2(v[1], v[0]))
-        return float(round(out, 9)) + 0.0  # exact for the multiples of 90 the battery uses; -0 -> 0
+        if abs(out - round(out)) < 1e-9:  # whole degrees exactly (multiples of 90 above all)
+            out = float(round(out))
+        return out + 0.0  # -0 -> 0
 
     # ------------------------------------------------------------------ scene
     def assembly(self, asm: Assembly) -> Assembly:
