@@ -12,7 +12,7 @@ import xarray as xr
 from tce.analysis.settlement_path import settlement_path
 from tce.structures.arch import semicircular_arch
 from tce.study import load_study
-from tce.study.cli import main
+from tce.cli import main
 from tce.study.runner import run_study
 
 STUDY = """
