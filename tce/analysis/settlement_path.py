@@ -515,7 +515,7 @@ def settlement_path(
     alpha: float = 0.0,
     gap_tol: float = 1e-7,
     snap_ratio: float = 1e3,
-    snap_limit: float = 0.05,
+    snap_limit: float = 0.3,
 ) -> SettlementPathResult:
     """Follow the support motion ``s * settlements`` from ``s = 0`` until nothing stands.
 
