@@ -451,6 +451,9 @@ class SettlementPathResult(Result):
         ``(dx, dz, theta)`` of every block from its reference placement (m, rad).
     hinges : list of list of int
         Per magnitude, the interfaces that rotate in the mechanism (hinges).
+    hinge_points : (k, n_interfaces, 3) ndarray
+        Per magnitude, the current position of each hinge (the closed end of a rotating
+        interface that opens least; m, global frame), NaN for the other interfaces.
     open_ends : (k, n_interfaces, 2) bool ndarray
         Which ends of each interface are open, per magnitude.
     hinge_sequence : list of tuple
@@ -476,6 +479,7 @@ class SettlementPathResult(Result):
     lambda_max: NDArray[np.float64] = field(repr=False)
     placements: NDArray[np.float64] = field(repr=False)
     hinges: list = field(repr=False)
+    hinge_points: NDArray[np.float64] = field(repr=False)
     open_ends: NDArray[np.bool_] = field(repr=False)
     hinge_sequence: list = field(repr=False)
     plane: Plane = field(repr=False)
@@ -511,7 +515,7 @@ def settlement_path(
     alpha: float = 0.0,
     gap_tol: float = 1e-7,
     snap_ratio: float = 1e3,
-    snap_limit: float = 0.05,
+    snap_limit: float = 0.3,
 ) -> SettlementPathResult:
     """Follow the support motion ``s * settlements`` from ``s = 0`` until nothing stands.
 
@@ -677,9 +681,18 @@ def settlement_path(
             n_solves += 1
             lam_max[i] = val if st == "optimal" else np.nan
     placements = np.zeros((k, nb, 3))
-    for i, (c, _, _) in enumerate(records):
+    hinge_points = np.full((k, len(sc.ia), 3), np.nan)
+    plane = sc.plane
+    for i, (c, cl, st) in enumerate(records):
         placements[i, :, :2] = c.c - sc.c0
         placements[i, :, 2] = c.theta
+        # the hinge of a rotating interface: its closed end that opens least
+        p, _, _ = _contacts(sc, c)
+        rot = sorted(rotating(st))
+        assert st.dn is not None
+        end = np.argmin(np.where(cl[rot], st.dn[rot], np.inf), axis=1)
+        xz = p[rot, end]
+        hinge_points[i, rot] = plane.origin + np.outer(xz[:, 0], plane.e) + np.outer(xz[:, 1] - plane.origin[2], EZ)
     return SettlementPathResult(
         status=status,
         message=message,
@@ -692,6 +705,7 @@ def settlement_path(
         lambda_max=lam_max,
         placements=placements,
         hinges=[sorted(rotating(st)) for _, _, st in records],
+        hinge_points=hinge_points,
         open_ends=np.array([~cl for _, cl, _ in records]).reshape(k, *sc.ends.shape[:2]),
         hinge_sequence=sequence,
         plane=sc.plane,

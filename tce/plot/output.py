@@ -19,6 +19,9 @@ given):
 ``bracket.png``         lambda_max against a swept material parameter with the non-associative
                         bracket (``bracket``; non-associative materials; :mod:`tce.plot.materials`)
 ``view.html``           the interactive 3D view (``view``; :mod:`tce.plot.view`)
+``settlement.png``      thrust and lambda_max against the settlement magnitude (``settlement``;
+                        ``[settlement_path]`` only; :mod:`tce.plot.settlement`)
+``settlement_shapes.png`` deformed shapes with hinges along the settlement path (``settlement_shapes``)
 
 The number of figures does not grow with the number of scenarios beyond those the
 ``[plots]`` table draws: a large sweep gets ``summary.png`` and what its table names.
@@ -101,6 +104,15 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
             else:
                 skipped.append("bracket (no non-associative material swept: the summary has lambda_max)")
             continue
+        if kind in ("settlement", "settlement_shapes"):
+            from .settlement import settled_scenarios
+
+            settled = settled_scenarios(ds)
+            if settled:
+                tasks.append(Task(name(kind), kind, (tuple(settled),)))
+            else:
+                skipped.append(f"{kind} (no settlement path: add [settlement_path] and a moving support)")
+            continue
         if not names:
             skipped.append(f"{kind} (no scenario drawn: name them in [plots] scenarios)")
             continue
@@ -138,7 +150,7 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
 
 
 def _builders() -> dict[str, Callable]:
-    from . import capacity, figures, materials, view
+    from . import capacity, figures, materials, settlement, view
 
     return {
         "capacity": capacity.influence_line,
@@ -151,6 +163,8 @@ def _builders() -> dict[str, Callable]:
         "mechanism": figures.mechanism_view,
         "summary": figures.summary_figure,
         "view": view.view_html,
+        "settlement": settlement.settlement_curves,
+        "settlement_shapes": settlement.settlement_shapes,
     }
 
 

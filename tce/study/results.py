@@ -135,6 +135,7 @@ META: dict[str, tuple[str, str]] = {
     "settlement_open": ("-", "number of open ends (0, 1 or 2) of each interface at each magnitude"),
     "settlement_displacement": ("m, rad", "displacement (ux, uy, uz) of each block's centroid and its rotation "
                                 "vector (rx, ry, rz) from the reference placement, along dof"),
+    "settlement_hinge_point": ("m", "current position of each hinge (NaN for interfaces that do not rotate)"),
     "settlement_step": ("-", "standing configuration of the settlement path, in order of magnitude"),
     "settlement_magnitude": ("1", "settlement magnitude, in multiples of the scenario's settlement vectors"),
     # coordinates

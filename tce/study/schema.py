@@ -514,7 +514,7 @@ class SweepSection(_Strict):
 
 #: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
 PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "transversal", "base", "mechanism", "summary", "bracket",
-              "view")
+              "view", "settlement", "settlement_shapes")
 #: studies with more scenarios draw per-scenario figures only for those ``[plots] scenarios`` names
 MAX_DRAWN_SCENARIOS = 12
 

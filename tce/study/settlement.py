@@ -57,7 +57,8 @@ def settlement_vars(sc: Scenario, assembly: Assembly, material: Material) -> xr.
                        message="the scenario moves no support", hinge_sequence="")
         per_step = dict(magnitudes=np.full(1, np.nan), reaction=np.full((1, ns, 6), np.nan),
                         lambda_max=np.full(1, np.nan), hinge=np.full((1, ni), np.nan),
-                        open=np.full((1, ni), np.nan), displacement=np.full((1, nb, 6), np.nan))
+                        open=np.full((1, ni), np.nan), displacement=np.full((1, nb, 6), np.nan),
+                        hinge_point=np.full((1, ni, 3), np.nan))
     else:
         r = settlement_path(
             assembly,
@@ -76,7 +77,7 @@ def settlement_vars(sc: Scenario, assembly: Assembly, material: Material) -> xr.
                        message=r.message, hinge_sequence=_sequence(r, assembly))
         per_step = dict(magnitudes=r.magnitudes, reaction=_wrenches(r), lambda_max=r.lambda_max,
                         hinge=rotating, open=r.open_ends.sum(axis=2).astype(float),
-                        displacement=_displacements(r))
+                        displacement=_displacements(r), hinge_point=r.hinge_points)
     dims = ("scenario", "settlement_step")
     data = {
         f"settlement_{k}": (("scenario",), np.asarray([v], dtype=object if isinstance(v, str) else None))
@@ -88,6 +89,7 @@ def settlement_vars(sc: Scenario, assembly: Assembly, material: Material) -> xr.
         "settlement_hinge": (dims + ("interface",), per_step["hinge"][None]),
         "settlement_open": (dims + ("interface",), per_step["open"][None]),
         "settlement_displacement": (dims + ("block", "dof"), per_step["displacement"][None]),
+        "settlement_hinge_point": (dims + ("interface", "xyz"), per_step["hinge_point"][None]),
     }
     mags = per_step["magnitudes"]
     coords = {"settlement_step": np.arange(len(mags)), "settlement_magnitude": (dims, mags[None])}

@@ -1,0 +1,190 @@
+"""Figures of the finite-settlement path (``[settlement_path]``, ``docs/settlements.md``).
+
+:func:`settlement_curves`
+    The thrust (horizontal reaction of each support, along the structure's plane) and
+    lambda_max of the deformed structure against the settlement magnitude, one colour per
+    scenario; the capacity of each scenario a dotted vertical line, each snap (a hinge
+    moving to a neighbouring joint) a cross. The settlement analogue of the paper's Fig. 8.
+:func:`settlement_shapes`
+    The deformed structure at the start, at half the capacity and at the capacity, one
+    panel per scenario, in elevation, drawn at true scale (no exaggeration), hinges as dots.
+
+Both are drawn by default for studies with ``[settlement_path]`` (:mod:`tce.plot.output`,
+kinds ``settlement`` and ``settlement_shapes``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import xarray as xr
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Polygon
+
+from ..core.model import EZ, find_plane
+from .data import assembly
+from .figures import COLOURS
+
+__all__ = ["MAX_SCENARIOS", "settled_scenarios", "settlement_curves", "settlement_shapes"]
+
+#: most scenarios one settlement figure draws (the first ones of the study)
+MAX_SCENARIOS = 6
+
+
+def settled_scenarios(ds: xr.Dataset) -> list[str]:
+    """The scenarios with a settlement path (not ``no_motion``), at most :data:`MAX_SCENARIOS`."""
+    if "settlement_outcome" not in ds:
+        return []
+    names = [str(s) for s, o in zip(ds["scenario"].values, ds["settlement_outcome"].values) if str(o) != "no_motion"]
+    return names[:MAX_SCENARIOS]
+
+
+def _path(ds: xr.Dataset, name: str) -> tuple[np.ndarray, int]:
+    """The magnitudes of a scenario's standing configurations and their count."""
+    mags = np.asarray(ds["settlement_magnitude"].sel(scenario=name).values, dtype=float)
+    n = int(np.isfinite(mags).sum())
+    return mags[:n], n
+
+
+def _snaps(mags: np.ndarray) -> np.ndarray:
+    """Magnitudes recorded twice (before and after a snap)."""
+    return mags[1:][np.diff(mags) == 0]
+
+
+def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
+    """Thrust and lambda_max of the deformed structure against the settlement magnitude.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Results with the ``settlement_*`` variables.
+    names : list of str, optional
+        Scenarios drawn (default :func:`settled_scenarios`).
+
+    Returns
+    -------
+    Figure
+        Left: ``H`` of each support (kN; gid ``"thrust:<scenario>:<support>"``); right,
+        when computed: lambda_max (gid ``"lambda:<scenario>"``).
+    """
+    names = list(names or settled_scenarios(ds))
+    asm = assembly(ds)
+    plane = find_plane(asm)
+    e = plane.e if plane is not None else np.array([1.0, 0.0, 0.0])
+    lam = "settlement_lambda_max" in ds and bool(np.isfinite(ds["settlement_lambda_max"].values).any())
+    fig = Figure(figsize=(11.0 if lam else 7.0, 5.0))
+    width = 0.36 if lam else 0.8
+    axes = [fig.add_axes((0.08, 0.26, width, 0.64))]
+    if lam:
+        axes.append(fig.add_axes((0.58, 0.26, width, 0.64)))
+    handles = []
+    supports = [str(s) for s in ds["support"].values]
+    for i, name in enumerate(names):
+        colour = COLOURS[i % len(COLOURS)]
+        mags, n = _path(ds, name)
+        reac = np.asarray(ds["settlement_reaction"].sel(scenario=name).values, dtype=float)[:n]
+        for k, sup in enumerate(supports):
+            h = reac[:, k, :3] @ e
+            (line,) = axes[0].plot(mags, np.abs(h), color=colour, ls=("-", "--", ":", "-.")[k % 4], lw=1.6)
+            line.set_gid(f"thrust:{name}:{sup}")
+        cap = float(ds["settlement_capacity"].sel(scenario=name))
+        for ax in axes:
+            if np.isfinite(cap):
+                ax.axvline(cap, color=colour, ls=":", lw=1.0)
+            for s in _snaps(mags):
+                ax.axvline(s, color=colour, ls="-", lw=0.6, alpha=0.5)
+        if lam:
+            vals = np.asarray(ds["settlement_lambda_max"].sel(scenario=name).values, dtype=float)[:n]
+            (line,) = axes[1].plot(mags, vals, color=colour, lw=1.6)
+            line.set_gid(f"lambda:{name}")
+        outcome = str(ds["settlement_outcome"].sel(scenario=name).values)
+        label = f"{name}: capacity {cap:.4g} ({outcome})" if np.isfinite(cap) else f"{name}: {outcome}"
+        handles.append(Line2D([], [], color=colour, lw=1.6, label=label))
+    handles += [Line2D([], [], color="0.3", ls=("-", "--", ":", "-.")[k % 4], label=f"support {s}") for k, s in enumerate(supports)]
+    handles.append(Line2D([], [], color="0.3", ls=":", lw=1.0, label="capacity"))
+    handles.append(Line2D([], [], color="0.3", lw=0.6, alpha=0.5, label="snap (a hinge moves)"))
+    axes[0].set_xlabel("settlement magnitude (multiples of the settlement vector)")
+    axes[0].set_ylabel("|H|: horizontal reaction in the plane (kN)")
+    axes[0].set_title("Thrust against support motion")
+    if lam:
+        axes[1].set_xlabel("settlement magnitude (multiples of the settlement vector)")
+        axes[1].set_ylabel("λmax of the deformed structure")
+        axes[1].set_title("Lateral capacity left")
+    for ax in axes:
+        ax.grid(True, lw=0.4, alpha=0.5)
+        ax.set_xlim(left=0.0)
+    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
+    return fig
+
+
+def _outline(points: np.ndarray) -> np.ndarray:
+    """Convex outline of 2D points (monotone chain), counter-clockwise."""
+    pts = sorted(map(tuple, np.round(points, 12)))
+    if len(pts) < 3:
+        return np.asarray(pts)
+
+    def half(seq: list) -> list:
+        out: list = []
+        for p in seq:
+            while len(out) >= 2 and np.cross(np.subtract(out[-1], out[-2]), np.subtract(p, out[-2])) <= 0:
+                out.pop()
+            out.append(p)
+        return out
+
+    lower, upper = half(pts), half(pts[::-1])
+    return np.asarray(lower[:-1] + upper[:-1])
+
+
+def settlement_shapes(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
+    """The deformed structure at magnitudes 0, capacity / 2 and capacity (true scale).
+
+    Blocks are drawn as the outline of their vertices in the plane of the structure (the
+    planar assemblies the path follows are prisms of convex sections); the hinges of the
+    drawn configuration are dots (gid ``"hinge:<scenario>:<k>"``).
+    """
+    names = list(names or settled_scenarios(ds))
+    asm = assembly(ds)
+    plane = find_plane(asm)
+    e = plane.e if plane is not None else np.array([1.0, 0.0, 0.0])
+    fig = Figure(figsize=(5.0 * len(names), 4.6))
+    shades = ("0.85", "#9ecae1", "#fc9272")
+    for i, name in enumerate(names):
+        ax = fig.add_axes((0.02 + i / len(names), 0.18, 0.96 / len(names), 0.62))
+        mags, n = _path(ds, name)
+        cap = float(ds["settlement_capacity"].sel(scenario=name))
+        last = cap if np.isfinite(cap) else mags[-1]
+        chosen = sorted({0, int(np.argmin(np.abs(mags - last / 2))), n - 1})
+        disp = np.asarray(ds["settlement_displacement"].sel(scenario=name).values, dtype=float)
+        hp = np.asarray(ds["settlement_hinge_point"].sel(scenario=name).values, dtype=float)
+        for j, k in enumerate(chosen):
+            shade = shades[min(j, 2)] if len(chosen) == 3 else shades[2 * (j > 0)]
+            for b, blk in enumerate(asm.blocks):
+                u, r = disp[k, b, :3], disp[k, b, 3:]
+                c = blk.shape.centroid
+                v = blk.shape.vertices - c
+                angle = float(np.linalg.norm(r))
+                if angle > 0:
+                    axis = r / angle
+                    v = v * np.cos(angle) + np.cross(axis, v) * np.sin(angle) + np.outer(v @ axis, axis) * (1 - np.cos(angle))
+                p = c + u + v
+                xy = _outline(np.column_stack([p @ e, p[:, 2]]))
+                ax.add_patch(Polygon(xy, closed=True, fc=shade, ec="0.25", lw=0.4, alpha=0.9 if j == len(chosen) - 1 else 0.6))
+            pts = hp[k][np.isfinite(hp[k, :, 0])]
+            dots = ax.plot(pts @ e, pts[:, 2], "o", ms=5, color="#cb181d" if j == len(chosen) - 1 else "0.4")
+            dots[0].set_gid(f"hinge:{name}:{k}")
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        ax.set_axis_off()
+        ax.set_title(f"{name}\n" + ", ".join(f"s = {mags[k]:.4g}" for k in chosen), fontsize=9)
+    handles = [
+        Polygon([[0, 0]], fc=shades[0], ec="0.25", label="s = 0"),
+        Polygon([[0, 0]], fc=shades[1], ec="0.25", label="about half the capacity"),
+        Polygon([[0, 0]], fc=shades[2], ec="0.25", label="at the capacity (last standing)"),
+        Line2D([], [], marker="o", ls="", color="#cb181d", label="hinges at the capacity"),
+        Line2D([], [], marker="o", ls="", color="0.4", label="hinges before"),
+    ]
+    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
+    fig.suptitle("Deformed shapes along the settlement path (true scale)", fontsize=10)
+    return fig
