@@ -45,7 +45,8 @@ def influence_line(ds: xr.Dataset) -> Figure:
     Figure
         One axes: one line per group (gid ``"capacity:<group>"``), its critical position a
         star (gid ``"critical:<group>"``), positions where the load path found no limit a
-        triangle at the top (gid ``"no_limit:<group>"``).
+        triangle at the top (gid ``"no_limit:<group>"``), positions capped below their collapse
+        load a downward triangle (gid ``"capped:<group>"``).
     """
     crit = critical_positions(ds)
     fig = Figure(figsize=(7.0, 5.0))
@@ -63,17 +64,21 @@ def influence_line(ds: xr.Dataset) -> Figure:
         ax.plot(x, lam, color=colour, linestyle=style, marker=marker, markersize=4, linewidth=1.4,
                 gid=f"capacity:{c.group}")
         handles.append(Line2D([], [], color=colour, linestyle=style, marker=marker, markersize=4, label=name))
-        free = np.array([outcome[s] == "no_limit" for s in c.scenarios])
-        if free.any():
-            ax.plot(x[free], np.full(free.sum(), 0.97), transform=ax.get_xaxis_transform(), linestyle="none",
-                    marker="^", color=colour, markerfacecolor="white", gid=f"no_limit:{c.group}")
+        for kind, mark in (("no_limit", "^"), ("capped", "v")):
+            top = np.array([outcome[s] == kind for s in c.scenarios])
+            if top.any():
+                ax.plot(x[top], np.full(top.sum(), 0.97), transform=ax.get_xaxis_transform(), linestyle="none",
+                        marker=mark, color=colour, markerfacecolor="white", gid=f"{kind}:{c.group}")
         if c.scenario:
             ax.plot([c.load_x], [c.lambda_max], linestyle="none", marker="*", markersize=15, color=colour,
                     markeredgecolor="black", zorder=5, gid=f"critical:{c.group}")
             lines.append(f"{c.group + ': ' if c.group else ''}x = {c.load_x:.4g} m, λmax = {c.lambda_max:.4g}")
     if any(outcome[s] == "no_limit" for c in crit for s in c.scenarios):
         handles.append(Line2D([], [], linestyle="none", marker="^", color="black", markerfacecolor="white",
-                              label="no limit (carried at any λ)"))
+                              label="no limit (direct limit unbounded: carried at any λ)"))
+    if any(outcome[s] == "capped" for c in crit for s in c.scenarios):
+        handles.append(Line2D([], [], linestyle="none", marker="v", color="black", markerfacecolor="white",
+                              label="capped: lambda_cap below the collapse load (see lambda_direct)"))
     handles.append(Line2D([], [], linestyle="none", marker="*", markersize=12, color="grey", markeredgecolor="black",
                           label="critical position (smallest λmax)"))
     if lines:

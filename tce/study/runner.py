@@ -50,10 +50,11 @@ from typing import Any, Literal
 import joblib
 import xarray as xr
 
-from ..analysis.loadpath import LoadPathResult, load_path
+from ..analysis.loadpath import DEFAULT_RTOL, LoadPathResult, load_path
 from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
+from . import keys
 from .jobs import choose_jobs
 from .results import (
     FolderLocked,
@@ -90,7 +91,7 @@ LAMBDA_TOL = 1e-9
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
 #: outcomes of a load path, in the order the run summary lists them
-OUTCOMES = ("limit", "no_limit", "unbounded", "infeasible", "numerical")
+OUTCOMES = ("limit", "capped", "no_limit", "unbounded", "infeasible", "numerical")
 
 
 class RunError(RuntimeError):
@@ -176,13 +177,18 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     (:func:`with_drawn_states`).
     """
     analysis = _cold(_analysis(sc, assembly))
+    tol = sc.loads["tolerance"]
     lp = load_path(
         analysis,
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
-        atol=sc.loads["tolerance"],
+        # no tolerance given: relative to the limit, so the adequacy factor of a live load
+        # does not depend on its size (issue 21)
+        atol=0.0 if tol is None else tol,
+        rtol=DEFAULT_RTOL if tol is None else 0.0,
         lam_cap=sc.loads["lambda_cap"],
         loads=sc.loads_pattern,
+        bracket=keys.BRACKET,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     bracket = None
