@@ -108,7 +108,7 @@ def test_obj(tmp_path):
         (lambda b: b["faces"].pop(), GeometryError, ["broken", "not closed"]),
         (lambda b: b.update(faces=[f[::-1] for f in b["faces"]]), GeometryError, ["broken", "inverted"]),
         (lambda b: b["vertices"][6].__setitem__(2, 2.3), GeometryError, ["broken", "not planar"]),
-        (lambda b: b.update(faces=[[0, 1, 99]]), GeometryError, ["broken"]),
+        (lambda b: b.update(faces=[[0, 1, 99]]), AssemblyError, ["broken", "faces[0][2]", "from 0 to 7"]),
     ],
     ids=["open", "inverted", "non-planar", "bad-index"],
 )

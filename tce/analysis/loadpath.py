@@ -9,7 +9,7 @@ reported and stepped over: they are never taken as the limit). When that step is
 ``infeasible`` multiplier until ``hi - lo <= max(atol, rtol * hi)`` or until no float lies
 between them (so any tolerance ends); ``lambda_max`` is the last ``optimal`` multiplier (a
 safe lower bound). A path never takes more than :data:`MAX_INCREMENTS` increments. Every run
-also reports the direct lambda_max (:mod:`tce.limit`) and the gap, so the answer is checked
+also reports the direct lambda_max (:mod:`tce.core.limit`) and the gap, so the answer is checked
 each time.
 
 Narrowing (``bracket``): ``"direct"`` (default) first solves the two ends of a bracket
@@ -27,7 +27,7 @@ import math
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -51,8 +51,9 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-#: Most load increments a path may take (``lam_cap / step``): about a minute of solves.
-MAX_INCREMENTS = 100_000
+#: Most load increments a path may take (``lam_cap / step``): 100,000 took 52 s on a 6-voussoir arch;
+#: 10,000 resolve a path to 1e-4 of lambda_cap (the limit itself is bisected to ``atol``).
+MAX_INCREMENTS = 10_000
 #: increments a path takes up to its direct limit when no step is given
 AUTO_INCREMENTS = 20
 #: increment of a path without a step whose direct limit is not a positive number
@@ -63,7 +64,7 @@ DEFAULT_CAP = 100.0
 DEFAULT_RTOL = 1e-6
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class LoadPathResult(Result):
     """A load path and its limit (``ok`` when ``status == "limit"``).
 
@@ -98,6 +99,8 @@ class LoadPathResult(Result):
         Time of the whole call (s).
     """
 
+    HEADLINE = ("lambda_max", "lambda_upper", "lambda_direct", "alpha", "n_solves")
+
     OK = ("limit",)
 
     alpha: float
@@ -128,6 +131,27 @@ class LoadPathResult(Result):
     def path(self) -> list[TCEResult]:
         """The steps sorted by lambda."""
         return sorted(self.steps, key=lambda r: r.lam)
+
+    def _arrays(self) -> tuple[dict[str, tuple], dict[str, Any]]:
+        """The steps sorted by lambda along ``step``: ``lam``, ``status``, ``tce``, residuals
+        and each step's labelled arrays (:meth:`tce.core.solve.TCEResult.to_xarray`)."""
+        path = self.path
+        if not path:
+            return {}, {}
+        first, coords = path[0]._arrays()
+        data: dict[str, tuple] = {
+            "lam": (("step",), np.array([r.lam for r in path])),
+            "status": (("step",), np.array([r.status for r in path], dtype=object)),
+            "tce": (("step",), np.array([r.tce for r in path]), {"units": "kN m"}),
+            "eq_residual": (("step",), np.array([r.eq_residual for r in path])),
+            "cone_residual": (("step",), np.array([r.cone_residual for r in path])),
+        }
+        per_step = [first] + [r._arrays()[0] for r in path[1:]]
+        for name, (dims, _, attrs) in first.items():
+            if name != "vertex_point":
+                data[name] = (("step", *dims), np.stack([a[name][1] for a in per_step]), attrs)
+        data["vertex_point"] = first["vertex_point"]
+        return data, coords
 
     @property
     def at_limit(self) -> TCEResult | None:
@@ -216,6 +240,7 @@ def load_path(
     lam_cap: float | None = None,
     loads: LoadPattern | None = None,
     bracket: Literal["direct", "bisection"] = "direct",
+    mechanism: bool = True,
 ) -> LoadPathResult:
     """Increment lambda from 0, then narrow the first inadmissible increment.
 
@@ -260,6 +285,10 @@ def load_path(
     bracket : {"direct", "bisection"}
         How the last increment is narrowed (module docstring): first a bracket around the
         direct lambda_max, or bisection alone.
+    mechanism : bool
+        Whether the result's direct ``limit`` carries its collapse mechanism (classified
+        once, after the path; a study stores it). Without it the path costs its solves and
+        one direct lambda_max.
 
     Returns
     -------
@@ -286,7 +315,7 @@ def load_path(
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in (settlements or {}).items()}
     steps: list[TCEResult] = []
     solve_at = analysis.path(settlements=sett, loads=pattern)
-    lim = analysis.limit(loads=pattern)
+    lim = analysis.limit(loads=pattern, mechanism=False)  # the mechanism, when asked, at the end
     direct = lim.lambda_max
     step, cap, note = increments_and_cap(lim, step, lam_cap)
     if note:
@@ -368,7 +397,7 @@ def load_path(
         steps=steps,
         lambda_max=float(lam_max),
         lambda_upper=float(hi) if hi is not None else float("nan"),
-        limit=lim,
+        limit=analysis.limit(loads=pattern, mechanism=True) if mechanism else lim,
         n_solves=len(steps),
         solve_time=float(sum(s.solve_time for s in steps)),
         wall_time=time.perf_counter() - t0,

@@ -27,7 +27,7 @@ from ..core.result import Result
 __all__ = ["ThicknessResult", "arch_minimum_thickness", "minimum_thickness"]
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class ThicknessResult(Result):
     """Outcome of a minimum-thickness bisection (``status`` is ``optimal``: a bracket was
     found; the thickness is a verified standing one whatever ``undecided`` says).
@@ -44,6 +44,8 @@ class ThicknessResult(Result):
     undecided : int
         Solves whose status was ``numerical`` (treated as "does not stand").
     """
+
+    HEADLINE = ("thickness", "lower", "ratio", "n_solves", "undecided")
 
     thickness: float
     lower: float
@@ -144,17 +146,19 @@ def arch_minimum_thickness(
     loads: LoadPattern | None = None,
     lam: float = 0.0,
     progress: Callable[[int, int], None] | None = None,
+    joints: str = "radial",
 ) -> ThicknessResult:
     """Minimum thickness of a semicircular arch with fixed centreline radius (m).
 
     The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``;
-    ``loads``, ``lam`` and ``progress`` as in :func:`minimum_thickness`.
+    ``loads``, ``lam`` and ``progress`` as in :func:`minimum_thickness`; ``joints``
+    (``radial`` or ``vertical``) as in :func:`tce.structures.arch.semicircular_arch`.
     """
     check_positive(centre_radius=centre_radius, depth=depth)
     n = check_whole(voussoirs, "voussoirs")
 
     def build(t: float) -> Assembly:
-        return semicircular_arch(centre_radius - t / 2, t, depth, n)
+        return semicircular_arch(centre_radius - t / 2, t, depth, n, joints=joints)
 
     return minimum_thickness(
         build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius, loads=loads,

@@ -11,6 +11,8 @@ given):
 ``thrust.png``          forces on the supports against lambda (kind ``thrust``)
 ``states.png``          drawn states, ``states_2.png`` ... for further pages (``states``)
 ``thrust_lines.png``    lines of thrust per drawn state (``thrust_lines``; one line of blocks only)
+``transversal.png``     the pressure points across the depth of every joint (``transversal``; one line
+                        of blocks with a drawn spatial scenario: Figs. 5-6)
 ``base.png``            pressure points on the support interfaces (``base``)
 
 (a geometry sweep: the figures that draw blocks draw each structure apart, ``thrust_lines_2.png``,
@@ -40,9 +42,11 @@ from .data import (
     assembly,
     chain_interfaces,
     geometry_groups,
+    is_planar,
     mechanism_groups,
     plot_spec,
     state_pages,
+    structure_frame,
     swept_parameters,
 )
 from ..study.progress import Progress, track
@@ -88,10 +92,10 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
                 skipped.append("summary (nothing swept)")
             continue
         if kind == "capacity":
-            if "load_x" in ds.coords:
+            if "load_x" in ds.coords or "scan_x" in ds:
                 tasks.append(Task(name("capacity"), kind, ()))
             else:
-                skipped.append("capacity (no load-position sweep)")
+                skipped.append("capacity (no load-position sweep or search)")
             continue
         if kind == "bracket":
             from .materials import SWEPT
@@ -118,6 +122,15 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
                     skipped.append(f"thrust_lines of {group} (the structure is not one line of blocks)")
                 else:
                     pages.append((tuple(group), tuple(steps)))
+            elif kind == "transversal":
+                asm = assembly(ds, group[0])
+                if chain_interfaces(asm) is None or structure_frame(asm).kind == "radial":
+                    skipped.append(f"transversal of {group} (the structure is not one line of blocks)")
+                elif all(is_planar(ds, s) for s in group):
+                    skipped.append(f"transversal of {group} (every drawn scenario is planar: the pressure points "
+                                   "stay mid-depth)")
+                else:
+                    pages.append((tuple(group), tuple(steps)))
             elif kind == "base":
                 pages.append((tuple(group), tuple(steps)))
             elif kind == "mechanism":
@@ -140,6 +153,7 @@ def _builders() -> dict[str, Callable]:
         "thrust": figures.thrust_curves,
         "states": figures.states_figure,
         "thrust_lines": figures.thrust_lines,
+        "transversal": figures.transversal_figure,
         "base": figures.base_figure,
         "mechanism": figures.mechanism_view,
         "summary": figures.summary_figure,

@@ -37,7 +37,7 @@ by sector. Each support is the prism under its sector's base joint (a trapezoid 
 ``k`` -> course ``k+1`` in each sector (normal up the meridian, away from the base); and
 between neighbouring sectors of a course. Every interface has ``a < b`` (block indices)
 and its normal points from A into B. Supports do not get interfaces between each other
-(they would carry no unknowns anyway, see :mod:`tce.model`).
+(they would carry no unknowns anyway, see :mod:`tce.core.model`).
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from .params import check_positive, check_whole
+from .params import check_blocks, check_positive, check_whole
 from .assembly import Assembly, Block, Interface
 from .geometry import FaceTable, PolygonTable, oriented_polyhedra, prisms
 
@@ -112,6 +112,7 @@ def hemispherical_dome(
     check_positive(radius=radius, thickness=thickness, unit_weight=unit_weight)
     sectors = check_whole(sectors, "sectors", 3)
     courses = check_whole(courses, "courses")
+    check_blocks(sectors * (courses + 1), f"sectors x (courses + 1) = {sectors} x ({courses} + 1)")
     if not thickness < 2.0 * radius:
         raise ValueError(f"thickness must be < 2 * radius (the intrados radius R - t/2 > 0), got {thickness!r}")
     try:
@@ -230,7 +231,7 @@ def radial_settlement(
     -------
     dict
         ``{support_name: [ux, uy, 0, 0, 0, 0]}`` (m, rad), ready for
-        :meth:`tce.solve.TCESolver.solve`.
+        :meth:`tce.core.solve.TCESolver.solve`.
 
     Raises
     ------

@@ -61,8 +61,8 @@ must be a regular file (not a folder, a device or a pipe).
 
 Units are SI (m, kN) after loading. Every loaded block is checked (closed, consistently
 oriented, planar faces, positive volume), blocks must not overlap
-(:func:`tce.contacts.check_overlaps`), interfaces are read and checked or detected
-(:func:`tce.contacts.detect_interfaces`) and the assembly is validated (a support, no
+(:func:`tce.structures.contacts.check_overlaps`), interfaces are read and checked or detected
+(:func:`tce.structures.contacts.detect_interfaces`) and the assembly is validated (a support, no
 loose block). Errors name the file and the block or interface.
 """
 
@@ -86,7 +86,7 @@ from shapely.geometry import Polygon
 from .assembly import Assembly, AssemblyError, Block, Interface
 from .contacts import check_overlaps, detect_interfaces
 from .geometry import GeometryError, Polyhedron, frame_from_normal, newell_normal
-from .params import did_you_mean
+from .params import MAX_BLOCKS, did_you_mean
 
 __all__ = [
     "MAX_BLOCKS",
@@ -108,8 +108,6 @@ log = logging.getLogger(__name__)
 MAX_FILE_BYTES = 256 * 2**20
 #: Deepest nesting of JSON arrays and objects (a tce file needs 4, a COMPAS file about 8).
 MAX_DEPTH = 64
-#: Most blocks in an assembly (the study runner applies it to generated structures too).
-MAX_BLOCKS = 50_000
 #: Most vertices of one block.
 MAX_BLOCK_VERTICES = 10_000
 #: Most vertices of all blocks together.
@@ -208,41 +206,160 @@ def _check_counts(path: Path, blocks: list[RawBlock]) -> None:
         raise InputLimitError(f"{path}: {total} vertices, more than MAX_VERTICES = {MAX_VERTICES}")
 
 
+class _Doc:
+    """Typed access to a decoded JSON document: every value is checked for its type (not its
+    truthiness), and every error names the file and the key (``blocks[2].faces[0][1]``)."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+
+    def fail(self, key: str, msg: str) -> AssemblyError:
+        return AssemblyError(f"{self.path}: {key}: {msg}")
+
+    @staticmethod
+    def _got(value: Any) -> str:
+        text = json.dumps(value) if isinstance(value, (str, int, float, bool, type(None))) else repr(value)
+        return text if len(text) <= 40 else text[:37] + "..."
+
+    def obj(self, key: str, value: Any, allowed: Iterable[str] | None = None) -> Mapping:
+        """An object; with ``allowed``, one that holds no other key (a misspelling is named)."""
+        if not isinstance(value, Mapping):
+            raise self.fail(key, f"must be an object {{...}}, got {self._got(value)}")
+        if allowed is not None:
+            allowed = list(allowed)
+            for k in value:
+                if k not in allowed:
+                    raise self.fail(f"{key}.{k}" if key else str(k), f"unknown key{did_you_mean(k, allowed)}; keys: {allowed}")
+        return value
+
+    def array(self, key: str, value: Any) -> list:
+        if not isinstance(value, list):
+            raise self.fail(key, f"must be a list [...], got {self._got(value)}")
+        return value
+
+    def text(self, key: str, value: Any) -> str:
+        """A non-empty string without control characters (names become labels and file names)."""
+        if not isinstance(value, str) or not value:
+            raise self.fail(key, f"must be a non-empty string, got {self._got(value)}")
+        if any(ord(c) < 32 or ord(c) == 127 for c in value):
+            raise self.fail(key, f"holds a control character, got {self._got(value)}")
+        return value
+
+    def flag(self, key: str, value: Any) -> bool:
+        if not isinstance(value, bool):
+            raise self.fail(key, f"must be true or false, got {self._got(value)}")
+        return value
+
+    def number(self, key: str, value: Any, positive: bool = False) -> float:
+        """A finite JSON number (not a boolean, not a quoted number); ``> 0`` when ``positive``."""
+        ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+        if not ok or (positive and not value > 0):
+            raise self.fail(key, f"must be a finite number{' > 0' if positive else ''}, got {self._got(value)}")
+        return float(value)
+
+    def index(self, key: str, value: Any, size: int) -> int:
+        """A whole number in ``[0, size)`` (not a boolean, not 1.5)."""
+        if not isinstance(value, int) or isinstance(value, bool) or not 0 <= value < size:
+            raise self.fail(key, f"must be a vertex index, a whole number from 0 to {size - 1}, got {self._got(value)}")
+        return value
+
+    def point(self, key: str, value: Any) -> list[float]:
+        """``[x, y, z]``, ``{"x": .., "y": .., "z": ..}`` or a COMPAS 2 ``Point``
+        (``{"dtype": "compas.geometry/Point", "data": [x, y, z]}``)."""
+        if isinstance(value, Mapping) and "dtype" in value:
+            if not str(value["dtype"]).endswith(("/Point", "/Vector")):
+                raise self.fail(key, f"must be a point, got a {value['dtype']!r}")
+            value = value.get("data")
+        if isinstance(value, Mapping):
+            return [self.number(f"{key}.{c}", value.get(c)) for c in "xyz"]
+        if not isinstance(value, list) or len(value) != 3:
+            raise self.fail(key, f"must be a point [x, y, z], got {self._got(value)}")
+        return [self.number(f"{key}[{i}]", c) for i, c in enumerate(value)]
+
+    def points(self, key: str, value: Any) -> np.ndarray:
+        return np.array([self.point(f"{key}[{i}]", p) for i, p in enumerate(self.array(key, value))], dtype=float).reshape(-1, 3)
+
+    def faces(self, key: str, value: Any, size: int) -> list[list[int]]:
+        out = []
+        for i, f in enumerate(self.array(key, value)):
+            loop = self.array(f"{key}[{i}]", f)
+            if len(loop) < 3:
+                raise self.fail(f"{key}[{i}]", f"a face needs at least 3 vertex indices, got {self._got(loop)}")
+            out.append([self.index(f"{key}[{i}][{j}]", k, size) for j, k in enumerate(loop)])
+        return out
+
+
+#: keys of a tce JSON file, of one of its blocks and of one of its interfaces
+_TCE_KEYS = ("format", "version", "units", "unit_weight", "blocks", "interfaces", "meta")
+_BLOCK_KEYS = ("name", "vertices", "faces", "support", "unit_weight")
+_INTERFACE_KEYS = ("a", "b", "points", "normal", "stiffness")
+
+
 def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
-    """Parse a tce JSON assembly (see module docstring)."""
+    """Parse a tce JSON assembly (see module docstring), checking every value's type."""
     path = Path(path)
     d = _load_json(path, _read_text(path)) if data is None else data
-    if not isinstance(d, Mapping) or not isinstance(d.get("blocks"), list):
-        raise _err(path, 'not a tce assembly: expected an object with a "blocks" list')
-    if len(d["blocks"]) > MAX_BLOCKS:
-        raise InputLimitError(f"{path}: {len(d['blocks'])} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
-    units = d.get("units") or {}
-    if not isinstance(units, Mapping):
-        raise _err(path, f'"units" must be an object like {{"length": "m", "force": "kN"}}, got {units!r}')
+    doc = _Doc(path)
+    if not isinstance(d, Mapping) or "blocks" not in d:
+        raise _err(path, f'not a tce assembly: expected an object with a "blocks" list, got {_kind(d)}')
+    doc.obj("", d, _TCE_KEYS)
+    raw_blocks = doc.array("blocks", d["blocks"])
+    if len(raw_blocks) > MAX_BLOCKS:
+        raise InputLimitError(f"{path}: {len(raw_blocks)} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
+    units = doc.obj("units", d.get("units", {}), ("length", "force"))
     lu, fu = units.get("length", "m"), units.get("force", "kN")
-    if lu not in _LENGTH or fu not in _FORCE:
-        raise _err(path, f"unknown units {units!r}; length one of {list(_LENGTH)}, force one of {list(_FORCE)}")
+    if not isinstance(lu, str) or lu not in _LENGTH:
+        raise doc.fail("units.length", f"must be one of {list(_LENGTH)}, got {doc._got(lu)}")
+    if not isinstance(fu, str) or fu not in _FORCE:
+        raise doc.fail("units.force", f"must be one of {list(_FORCE)}, got {doc._got(fu)}")
+    if "version" in d and (d["version"] != 1 or isinstance(d["version"], bool)):
+        raise doc.fail("version", f"this tce reads version 1, got {doc._got(d['version'])}")
+    if "format" in d and d["format"] != "tce-assembly":
+        raise doc.fail("format", f'must be "tce-assembly", got {doc._got(d["format"])}')
     blocks = []
-    for k, b in enumerate(d["blocks"]):
-        if not isinstance(b, Mapping):
-            raise _err(path, f"blocks[{k}]: a block must be an object with 'vertices' and 'faces', got {b!r:.40}")
-        name = str(b.get("name", f"b{k + 1}"))
-        try:
-            v = np.asarray(b["vertices"], dtype=float)
-            faces = [[int(i) for i in f] for f in b["faces"]]
-        except (KeyError, TypeError, ValueError) as exc:
-            raise _err(path, f"block {name!r}: needs 'vertices' [[x, y, z], ...] and 'faces' [[i, j, k, ...], ...] ({exc})") from None
-        if v.ndim != 2 or v.shape[1] != 3:
-            raise _err(path, f"block {name!r}: vertices must be a list of [x, y, z]")
-        uw = b.get("unit_weight")
-        blocks.append(RawBlock(name, v, faces, bool(b.get("support", False)), None if uw is None else float(uw)))
+    for k, b in enumerate(raw_blocks):
+        doc.obj(f"blocks[{k}]", b, _BLOCK_KEYS)
+        name = doc.text(f"blocks[{k}].name", b["name"]) if "name" in b else f"b{k + 1}"
+        key = f"blocks[{k}] ({name})" if "name" in b else f"blocks[{k}]"
+        for need in ("vertices", "faces"):
+            if need not in b:
+                raise doc.fail(key, f"needs {need!r} ([[x, y, z], ...] and [[i, j, k, ...], ...])")
+        v = doc.points(f"{key}.vertices", b["vertices"])
+        faces = doc.faces(f"{key}.faces", b["faces"], len(v))
+        support = doc.flag(f"{key}.support", b["support"]) if "support" in b else False
+        uw = doc.number(f"{key}.unit_weight", b["unit_weight"], positive=True) if "unit_weight" in b else None
+        blocks.append(RawBlock(name, v, faces, support, uw))
+    interfaces = None
+    if "interfaces" in d:
+        interfaces = []
+        for k, it in enumerate(doc.array("interfaces", d["interfaces"])):
+            key = f"interfaces[{k}]"
+            doc.obj(key, it, _INTERFACE_KEYS)
+            for need in ("a", "b", "points"):
+                if need not in it:
+                    raise doc.fail(key, f"needs {need!r} (blocks a and b by name, points [[x, y, z], ...])")
+            normal = None if it.get("normal") is None else doc.point(f"{key}.normal", it["normal"])
+            interfaces.append(dict(
+                a=doc.text(f"{key}.a", it["a"]), b=doc.text(f"{key}.b", it["b"]),
+                points=doc.points(f"{key}.points", it["points"]).tolist(), normal=normal, label=key,
+                stiffness=doc.number(f"{key}.stiffness", it["stiffness"], positive=True) if "stiffness" in it else 1.0,
+            ))
     return RawAssembly(
         blocks,
-        d.get("interfaces"),
-        None if d.get("unit_weight") is None else float(d["unit_weight"]),
+        interfaces,
+        doc.number("unit_weight", d["unit_weight"], positive=True) if "unit_weight" in d else None,
         _LENGTH[lu],
         _FORCE[fu],
-        dict(d.get("meta") or {}),
+        dict(doc.obj("meta", d["meta"])) if "meta" in d else {},
+    )
+
+
+def _kind(value: Any) -> str:
+    """What a decoded JSON value is, in words."""
+    if isinstance(value, Mapping):
+        return f"an object with keys {list(value)[:6]}"
+    return {list: "a JSON list", str: "a JSON string", bool: "a JSON boolean", type(None): "null"}.get(
+        type(value), "a JSON number"
     )
 
 
@@ -257,7 +374,10 @@ def read_obj(path: str | Path) -> RawAssembly:
             continue
         try:
             if tok[0] == "v":
-                verts.append([float(x) for x in tok[1:4]])
+                xyz = [float(x) for x in tok[1:4]]
+                if len(xyz) != 3 or not all(math.isfinite(c) for c in xyz):
+                    raise ValueError
+                verts.append(xyz)
             elif tok[0] in ("o", "g"):
                 name = " ".join(tok[1:]) or f"block{len(groups) + 1}"
                 if groups and not groups[-1][1] and tok[0] == "g":
@@ -294,82 +414,137 @@ def _unwrap(obj: Any) -> Any:
     return obj
 
 
-def read_compas_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
-    """Parse a COMPAS assembly JSON file (compas_assembly / compas_cra)."""
+def _or(value: Any, default: Any) -> Any:
+    """``value``, or ``default`` when it is null (COMPAS writes null for an unset attribute)."""
+    return default if value is None else value
+
+
+def _node_order(nodes: Mapping) -> list:
+    """Node keys in order: whole numbers first, by value, then the others as text."""
+    return sorted(nodes, key=lambda k: (0, int(k)) if str(k).lstrip("-").isdigit() else (1, str(k)))
+
+
+def read_compas_json(path: str | Path, data: Any = None) -> RawAssembly:
+    """Parse a COMPAS assembly JSON file (compas_assembly, compas_cra) or a compas_dem
+    ``BlockModel`` (module docstring), checking every value's type."""
     path = Path(path)
-    d = _unwrap(_load_json(path, _read_text(path)) if data is None else data)
+    raw = _load_json(path, _read_text(path)) if data is None else data
+    doc = _Doc(path)
+    d = _unwrap(raw)
     graph = _unwrap(d.get("graph", d)) if isinstance(d, Mapping) else None
     nodes = graph.get("node", graph.get("nodes")) if isinstance(graph, Mapping) else None
     if not isinstance(nodes, Mapping):
-        raise _err(path, "not a COMPAS assembly: no graph nodes found (data.graph.data.node)")
-    default_support = bool((graph.get("default_node_attributes") or {}).get("is_support", False))
+        raise _err(
+            path,
+            f"not a block file tce reads: got {_kind(raw)}; expected a tce assembly (an object with a "
+            '"blocks" list), a COMPAS assembly (data.graph.data.node) or a compas_dem BlockModel',
+        )
+    elements = d.get("elements") if isinstance(d.get("elements"), Mapping) else None  # a compas_dem BlockModel
+    defaults = graph.get("default_node_attributes") or {}
+    default_support = doc.flag("graph.default_node_attributes.is_support", _or(defaults.get("is_support"), False))
     blocks = []
-    for key in sorted(nodes, key=lambda k: (0, int(k)) if str(k).lstrip("-").isdigit() else (1, str(k))):
-        node = nodes[key] or {}
-        mesh = _unwrap(node.get("block", node))
+    for key in _node_order(nodes):
+        where = f"graph.node.{key}"
+        node = doc.obj(where, _or(nodes[key], {}))
+        support = node.get("is_support", default_support)
+        if elements is not None and "element" in node:
+            guid = node["element"]
+            if not isinstance(guid, str) or guid not in elements:
+                raise doc.fail(f"{where}.element", f"no element {doc._got(guid)} in data.elements")
+            where = f"elements.{guid}"
+            element = doc.obj(where, _unwrap(elements[guid]))
+            support = element.get("is_support", support)
+            mesh = _unwrap(element.get("geometry"))
+            transform = _unwrap(element.get("transformation"))
+        else:
+            mesh, transform = _unwrap(node.get("block", node)), None
         if not isinstance(mesh, Mapping) or "vertex" not in mesh or "face" not in mesh:
-            raise _err(path, f"block {key!r}: node has no block mesh with 'vertex' and 'face'")
-        vkeys = list(mesh["vertex"])
-        vid = {str(k): n for n, k in enumerate(vkeys)}
-        rows = []
-        for k in vkeys:
-            v = mesh["vertex"][k]
-            rows.append([float(v[c]) for c in "xyz"] if isinstance(v, Mapping) else [float(c) for c in v[:3]])
+            raise _err(path, f"block {key!r} ({where}): no block mesh with 'vertex' and 'face'")
+        vertex = doc.obj(f"{where}.vertex", mesh["vertex"])
+        vid = {str(k): n for n, k in enumerate(vertex)}
+        v = np.array([doc.point(f"{where}.vertex.{k}", vertex[k]) for k in vertex], dtype=float).reshape(-1, 3)
+        if transform is not None:
+            v = _transformed(doc, f"{where}.transformation", transform, v)
         faces_d = mesh["face"]
-        fkeys = sorted(faces_d, key=lambda k: int(k)) if isinstance(faces_d, Mapping) else range(len(faces_d))
-        try:
-            faces = [[vid[str(i)] for i in faces_d[k]] for k in fkeys]
-        except KeyError as exc:
-            raise _err(path, f"block {key!r}: a face refers to vertex {exc} that does not exist") from None
-        blocks.append(RawBlock(str(key), np.asarray(rows, dtype=float), faces, bool(node.get("is_support", default_support))))
-    return RawAssembly(blocks, _compas_interfaces(path, graph, [b.name for b in blocks]) or None)
+        if isinstance(faces_d, Mapping):
+            fitems = [(f"{where}.face.{k}", faces_d[k]) for k in _node_order(faces_d)]
+        else:
+            fitems = [(f"{where}.face[{k}]", f) for k, f in enumerate(doc.array(f"{where}.face", faces_d))]
+        faces = []
+        for fkey, loop in fitems:
+            loop = doc.array(fkey, loop)
+            if len(loop) < 3:
+                raise doc.fail(fkey, f"a face needs at least 3 vertices, got {doc._got(loop)}")
+            for i in loop:
+                if isinstance(i, bool) or not isinstance(i, (int, str)) or str(i) not in vid:
+                    raise doc.fail(fkey, f"refers to vertex {doc._got(i)} that does not exist")
+            faces.append([vid[str(i)] for i in loop])
+        blocks.append(RawBlock(str(key), v, faces, doc.flag(f"{where}.is_support", support)))
+    return RawAssembly(blocks, _compas_interfaces(doc, graph, [b.name for b in blocks]) or None)
 
 
-def _compas_frame_normal(frame: Any) -> np.ndarray | None:
+def _transformed(doc: _Doc, key: str, transform: Any, v: np.ndarray) -> np.ndarray:
+    """``v`` moved by a COMPAS ``Transformation`` (``{"matrix": 4 x 4 rows}``)."""
+    rows = doc.array(f"{key}.matrix", doc.obj(key, transform).get("matrix"))
+    if len(rows) != 4:
+        raise doc.fail(f"{key}.matrix", "must be 4 rows of 4 numbers")
+    m = np.array([[doc.number(f"{key}.matrix[{i}][{j}]", x) for j, x in enumerate(doc.array(f"{key}.matrix[{i}]", r))]
+                  for i, r in enumerate(rows)], dtype=object)
+    if m.shape != (4, 4):
+        raise doc.fail(f"{key}.matrix", "must be 4 rows of 4 numbers")
+    m = m.astype(float)
+    if not np.allclose(m[3], [0.0, 0.0, 0.0, 1.0]):
+        raise doc.fail(f"{key}.matrix", "a projective transformation (its last row is not [0, 0, 0, 1])")
+    return v @ m[:3, :3].T + m[:3, 3]
+
+
+def _compas_frame_normal(doc: _Doc, key: str, frame: Any) -> np.ndarray | None:
     """z axis (``xaxis x yaxis``) of a COMPAS frame ``{point, xaxis, yaxis}`` or ``[point, xaxis, yaxis]``."""
     frame = _unwrap(frame)
+    if frame is None:
+        return None
     if isinstance(frame, Mapping):
-        axes = frame.get("xaxis"), frame.get("yaxis")
-    elif isinstance(frame, (list, tuple)) and len(frame) == 3:
+        if frame.get("xaxis") is None or frame.get("yaxis") is None:
+            return None
+        axes = frame["xaxis"], frame["yaxis"]
+    elif isinstance(frame, list) and len(frame) == 3:
         axes = frame[1], frame[2]
     else:
-        return None
-    if axes[0] is None or axes[1] is None:
-        return None
-    return np.cross(np.asarray(axes[0], dtype=float), np.asarray(axes[1], dtype=float))
+        raise doc.fail(key, f"must be a frame {{point, xaxis, yaxis}}, got {doc._got(frame)}")
+    return np.cross(doc.point(f"{key}.xaxis", axes[0]), doc.point(f"{key}.yaxis", axes[1]))
 
 
-def _compas_interfaces(path: Path, graph: Mapping, order: list[str]) -> list[dict]:
+def _compas_interfaces(doc: _Doc, graph: Mapping, order: list[str]) -> list[dict]:
     """Interfaces stored on the graph's edges, as tce interface items (see :func:`_file_interfaces`).
 
-    An edge ``u -> v`` holds a list ``"interfaces"`` (compas_cra) or one ``"interface"``
-    (compas_assembly); each is ``{"points": [[x, y, z], ...], "frame": {...}}``, its frame's
+    An edge ``u -> v`` holds a list ``"interfaces"`` (compas_cra), one ``"interface"``
+    (compas_assembly) or a list ``"contacts"`` (compas_dem); each is ``{"points": [...],
+    "frame": {...}}`` (points as ``[x, y, z]`` or COMPAS 2 ``Point`` objects), its frame's
     z axis from u into v. Items are given with ``a`` the block of lower index (points and
     normal reversed when needed) and a ``label`` for messages.
     """
     edges = graph.get("edge", graph.get("edges"))
-    if not isinstance(edges, Mapping):
+    if edges is None:
         return []
     position = {name: k for k, name in enumerate(order)}
     out = []
-    for u, row in edges.items():
-        for v, attr in (row or {}).items() if isinstance(row, Mapping) else ():
-            attr = attr or {}
+    for u, row in doc.obj("graph.edge", edges).items():
+        for v, attr in doc.obj(f"graph.edge.{u}", _or(row, {})).items():
+            attr = doc.obj(f"graph.edge.{u}.{v}", _or(attr, {}))
             stored = attr.get("interfaces")
+            if stored is None:
+                stored = attr.get("contacts")
             if stored is None and attr.get("interface") is not None:
                 stored = [attr["interface"]]
-            for k, item in enumerate(stored or []):
+            for k, item in enumerate(doc.array(f"graph.edge.{u}.{v}.interfaces", _or(stored, []))):
                 item = _unwrap(item)
                 label = f"interface {k} of edge {u}-{v}"
                 if str(u) not in position or str(v) not in position:
-                    raise _err(path, f"{label}: the edge joins a block that does not exist")
+                    raise _err(doc.path, f"{label}: the edge joins a block that does not exist")
                 if not isinstance(item, Mapping) or "points" not in item:
-                    raise _err(path, f"{label}: no 'points' polygon")
-                try:
-                    pts = np.asarray(item["points"], dtype=float)
-                except (TypeError, ValueError):
-                    raise _err(path, f"{label}: 'points' must be a list of [x, y, z]") from None
-                normal = _compas_frame_normal(item.get("frame"))
+                    raise _err(doc.path, f"{label}: no 'points' polygon")
+                pts = doc.points(f"{label}: points", item["points"])
+                normal = _compas_frame_normal(doc, f"{label}: frame", item.get("frame"))
                 a, b = str(u), str(v)
                 if position[a] > position[b]:
                     a, b, pts = b, a, pts[::-1]
@@ -503,7 +678,7 @@ def _file_interfaces(
             if n @ n_ab < 0:
                 log.info("%s: %s: the stored normal points from B into A; oriented from A into B", path, name)
             n_ab = n if n @ n_ab > 0 else -n
-        out.append(Interface(a, b, pts, n_ab))
+        out.append(Interface(a, b, pts, n_ab, stiffness=it.get("stiffness", 1.0)))
     return out
 
 
@@ -533,10 +708,10 @@ def load_assembly(
         file's default, then 20 kN/m^3.
     tol : float
         Relative geometric tolerance of the contact and overlap checks, see
-        :func:`tce.contacts.detect_interfaces`. Faces must be planar within
+        :func:`tce.structures.contacts.detect_interfaces`. Faces must be planar within
         ``min(tol, 1e-6)`` times the block size (what :meth:`Assembly.validate` requires).
     min_area, angle_tol : float, optional
-        Passed to :func:`tce.contacts.detect_interfaces`.
+        Passed to :func:`tce.structures.contacts.detect_interfaces`.
     nonplanar : {"error", "triangulate"}, optional
         What to do with a face that is not planar: report it, or split it into triangles
         (for curved surfaces given as quad meshes). Default: ``"triangulate"`` for COMPAS
@@ -545,7 +720,7 @@ def load_assembly(
         needs a looser ``tol`` and ``angle_tol``, and ``check_overlap=False`` if the
         facetted blocks interpenetrate; a file that stores its interfaces needs neither.
     check_overlap : bool
-        Run :func:`tce.contacts.check_overlaps` (at ``max(tol, interface_tol)`` when the
+        Run :func:`tce.structures.contacts.check_overlaps` (at ``max(tol, interface_tol)`` when the
         file's interfaces are used).
     detect : bool, optional
         Detect the interfaces from the geometry; by default only when the file stores none
@@ -578,7 +753,7 @@ def load_assembly(
         raw, fmt = read_obj(path), "obj"
     elif ext == ".json":
         data = _load_json(path, _read_text(path))
-        if isinstance(data, Mapping) and isinstance(data.get("blocks"), list):
+        if isinstance(data, Mapping) and "blocks" in data:
             raw, fmt = read_tce_json(path, data), "tce-json"
         else:
             raw, fmt = read_compas_json(path, data), "compas-json"

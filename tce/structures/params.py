@@ -10,7 +10,21 @@ import difflib
 import math
 from collections.abc import Iterable, Sequence
 
-__all__ = ["check_choice", "check_positive", "check_whole", "did_you_mean"]
+__all__ = ["MAX_BLOCKS", "check_blocks", "check_choice", "check_positive", "check_whole", "did_you_mean"]
+
+#: Most blocks in an assembly: a block file's (:mod:`tce.structures.io`) and every generator's.
+MAX_BLOCKS = 50_000
+
+
+def check_blocks(count: int, how: str) -> None:
+    """Raise ``ValueError`` when a generator would make more than :data:`MAX_BLOCKS` blocks.
+
+    Called before anything is built, so that no parameter makes a generator run out of
+    memory or time. ``how`` says how ``count`` follows from the parameters
+    (``"voussoirs + 2 = 10000002"``, naming them for a study file's message).
+    """
+    if count > MAX_BLOCKS:
+        raise ValueError(f"{how} = {count} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
 
 
 def check_positive(**params: float) -> None:

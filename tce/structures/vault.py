@@ -62,7 +62,7 @@ from shapely.geometry import Polygon
 from .arch import _at_depth, _mirror_joints, semicircle_joints
 from .assembly import Assembly, Block, Interface
 from .geometry import Polyhedron, newell_normal, prism
-from .params import check_choice, check_positive, check_whole
+from .params import check_blocks, check_choice, check_positive, check_whole
 
 __all__ = ["barrel_vault", "groin_vault"]
 
@@ -192,6 +192,7 @@ def barrel_vault(
     check_positive(inner_radius=inner_radius, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs")
     nc = check_whole(courses, "courses")
+    check_blocks((n + 3) * nc, f"at most (voussoirs + 3) x courses = ({n} + 3) x {nc}")  # shifted courses and supports
     check_choice(bond, "bond", BONDS)
     check_choice(supports, "supports", BARREL_SUPPORTS)
     h = float(thickness) if support_height is None else support_height
@@ -317,6 +318,7 @@ def groin_vault(
     n = check_whole(voussoirs, "voussoirs", 2)
     if n % 2:
         raise ValueError(f"voussoirs must be an even number (a crown joint in each web's mid-plane), got {voussoirs!r}")
+    check_blocks(4 * n + 8, f"4 webs x voussoirs + up to 8 supports = 4 x {n} + 8")
     check_choice(supports, "supports", GROIN_SUPPORTS)
     h = float(thickness) if support_height is None else support_height
     check_positive(support_height=h)

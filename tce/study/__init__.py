@@ -1,11 +1,21 @@
-"""Studies: TOML files (``schema``), the parallel runner (``runner``), results datasets (``results``)
-and the ``tce`` command line (``cli``).
+"""Studies: TOML files (``schema``), the parallel runner (``runner``) and results datasets
+(``results``). Nothing here draws: the command line (:mod:`tce.cli`) composes running and drawing.
 
-The schema's public names are re-exported here (the runner, which needs xarray and joblib,
-is imported from :mod:`tce.study.runner`).
+The schema's public names are re-exported here, imported on first use (so that the ``tce``
+program handles Ctrl-C before numpy, pydantic and the rest are imported; the runner, which
+needs xarray and joblib, is imported from :mod:`tce.study.runner`).
 """
 
+from typing import Any
+
 from . import jobs as _jobs  # noqa: F401  (first: honours TCE_NO_DASK before anything imports xarray)
-from .schema import Scenario, Study, StudyError, build_material, build_structure, load_study, parse_study
 
 __all__ = ["Scenario", "Study", "StudyError", "build_material", "build_structure", "load_study", "parse_study"]
+
+
+def __getattr__(name: str) -> Any:
+    if name in __all__:
+        from . import schema
+
+        return getattr(schema, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

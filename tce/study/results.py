@@ -43,6 +43,7 @@ from ..analysis.loadpath import LoadPathResult
 from ..analysis.nonassoc import NonAssocResult
 from ..core.model import InterfaceMap
 from ..core.resultants import global_vertex_forces
+from ..core.result import DOFS, WRENCH_COMPONENTS, XYZ
 from ..core.solve import SOLVER_NAME, TCEResult
 from .schema import Scenario, Study
 
@@ -65,9 +66,6 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-COMPONENTS = ("Fx", "Fy", "Fz", "Mx", "My", "Mz")
-XYZ = ("x", "y", "z")
-DOF = ("vx", "vy", "vz", "wx", "wy", "wz")
 #: variables that measure cost, not the answer (they differ from run to run)
 TIMING = ("solve_time", "wall_time")
 #: data variables every scenario file holds (a file without one of them is solved again)
@@ -123,6 +121,26 @@ META: dict[str, tuple[str, str]] = {
     "load_point": ("m", "point of application of each declared load (a distributed load: each part's resultant)"),
     "load_force": ("kN", "force of each declared load, global frame (a scaled load: at lambda = 1)"),
     "load_scaled": ("1", "1 for a live load (multiplied by lambda), 0 for a fixed load"),
+    # finite settlements ([settlement_path] only; tce.analysis.settlement_path, docs/settlements.md)
+    "settlement_capacity": ("1", "settlement capacity: largest magnitude found standing, in multiples of the "
+                            "scenario's settlement vectors (NaN unless the outcome is collapse, snap_through "
+                            "or contact_lost)"),
+    "settlement_upper": ("1", "smallest magnitude found not standing (NaN if none)"),
+    "settlement_outcome": ("-", "how the settlement path ended (collapse, snap_through, contact_lost, "
+                           "no_collapse, infeasible, incompatible, numerical, no_motion)"),
+    "settlement_message": ("-", "what decided the settlement path's outcome"),
+    "settlement_hinge_sequence": ("-", "interfaces that start rotating (hinge) or close again, with the magnitude"),
+    "settlement_n_solves": ("-", "linear programs solved along the settlement path"),
+    "settlement_reaction": ("kN, kN m", "wrench each support exerts on the structure at each magnitude, global "
+                            "frame, about the support's current centroid"),
+    "settlement_lambda_max": ("1", "lambda_max of the lateral pattern on the deformed structure (NaN unless "
+                              "lambda = true)"),
+    "settlement_hinge": ("-", "1 for the interfaces that rotate in the mechanism at each magnitude"),
+    "settlement_open": ("-", "number of open ends (0, 1 or 2) of each interface at each magnitude"),
+    "settlement_displacement": ("m, rad", "displacement (ux, uy, uz) of each block's centroid and its rotation "
+                                "vector (rx, ry, rz) from the reference placement, along dof"),
+    "settlement_step": ("-", "standing configuration of the settlement path, in order of magnitude"),
+    "settlement_magnitude": ("1", "settlement magnitude, in multiples of the scenario's settlement vectors"),
     # coordinates
     "scenario": ("-", "scenario name"),
     "step": ("-", "load-path step, sorted by load multiplier"),
@@ -142,7 +160,24 @@ META: dict[str, tuple[str, str]] = {
     "thickness": ("m", "thickness"),
     "depth": ("m", "depth"),
     "radius": ("m", "mid-surface radius"),
-    "load_x": ("m", "plan abscissa of the moving (scaled, on_top) point loads"),
+    "load_x": ("m", "plan abscissa of the reference of the moving loads (vehicles, scaled on_top point loads)"),
+    "load_notes": ("-", "loads dropped because they lie off the deck, one line each (empty: none)"),
+    # critical position search ([loads] critical_position; tce.analysis.critical)
+    "critical_x": ("m", "reference position of the moving loads of least direct lambda_max (the load path runs there)"),
+    "critical_lambda": ("1", "least direct lambda_max over the positions (at critical_x)"),
+    "critical_status": ("-", "status of the critical-position search (optimal, unbounded, infeasible, numerical)"),
+    "critical_ties": ("-", "other positions with the same least lambda_max (m, comma-separated; empty: none)"),
+    "critical_solves": ("-", "direct limit solves made by the critical-position search"),
+    "critical_xtol": ("m", "tolerance of the critical-position search on the position"),
+    "scan": ("-", "position evaluated by the critical-position search"),
+    "scan_x": ("m", "reference position evaluated by the critical-position search"),
+    "scan_lambda": ("1", "direct lambda_max at scan_x (inf: carried at any multiplier)"),
+    # assessment ([assessment]; tce.analysis.assessment)
+    "adequacy_factor": ("1", "multiplier of the factored live load at collapse under the factored dead load (>= 1: adequate)"),
+    "adequacy_status": ("-", "status of the factored direct limit (optimal, unbounded, infeasible, numerical)"),
+    "assessed_vehicles": ("-", "the live vehicles assessed, with their total loads"),
+    "dead_factor": ("1", "partial factor on every fixed load (self-weight included) of the assessment"),
+    "live_factor": ("1", "partial factor on the live loads of the assessment"),
     "cohesion": ("kN/m^2", "cohesion of the joints"),
     "tensile_strength": ("kN/m^2", "tensile strength of the joints"),
     "compressive_strength": ("kN/m^2", "compressive strength of the joints (per contact vertex)"),
@@ -273,6 +308,8 @@ def _load_vars(lp: LoadPathResult, analysis: Analysis) -> tuple[dict[str, tuple]
         "load_force": (("scenario", "load", "xyz"), applied.forces[None]),
         "load_scaled": (("scenario", "load"), applied.scaled.astype(float)[None]),
     }
+    if lp.loads is not None and lp.loads.vehicle:
+        data["load_notes"] = (("scenario",), _text(["\n".join(applied.notes)]))
     return data, {"load": (("load",), np.arange(len(applied.blocks)))}
 
 
@@ -282,11 +319,11 @@ def _coords(sc: Scenario, analysis: Analysis, n_steps: int) -> dict[str, tuple]:
         "scenario": (("scenario",), _text([sc.name])),
         "step": (("step",), np.arange(n_steps)),
         "support": (("support",), _text(a.support_names)),
-        "component": (("component",), _text(COMPONENTS)),
+        "component": (("component",), _text(WRENCH_COMPONENTS)),
         "interface": (("interface",), _text([f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces])),
         "xyz": (("xyz",), _text(XYZ)),
         "block": (("block",), _text(a.names)),
-        "dof": (("dof",), _text(DOF)),
+        "dof": (("dof",), _text(DOFS)),
         "settlement": (("scenario",), _text([sc.settlement])),
     }
     for k, v in sc.params.items():
@@ -319,7 +356,11 @@ def _nonassoc_vars(na: NonAssocResult) -> dict[str, tuple]:
 
 
 def scenario_dataset(
-    sc: Scenario, lp: LoadPathResult, analysis: Analysis, nonassoc: NonAssocResult | None = None
+    sc: Scenario,
+    lp: LoadPathResult,
+    analysis: Analysis,
+    nonassoc: NonAssocResult | None = None,
+    settlement: xr.Dataset | None = None,
 ) -> xr.Dataset:
     """The one-scenario dataset of a load path (``docs/results.md``).
 
@@ -334,6 +375,9 @@ def scenario_dataset(
     nonassoc : NonAssocResult, optional
         The non-associative bracket (materials with ``flow = "non-associative"``): adds
         ``lambda_assoc``, ``lambda_nonassoc`` and the ``nonassoc_*`` variables.
+    settlement : xarray.Dataset, optional
+        The finite-settlement variables (``[settlement_path]``:
+        :func:`tce.study.settlement.settlement_vars`), merged in.
     """
     path = lp.path
     n_itf = len(analysis.assembly.interfaces)
@@ -349,6 +393,8 @@ def scenario_dataset(
     loads, load_coord = _load_vars(lp, analysis)
     data.update(loads)
     ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)) | load_coord)
+    if settlement is not None:
+        ds = ds.merge(settlement)
     ds.attrs["scenario_key"] = sc.key
     return _label(ds)
 
@@ -539,7 +585,9 @@ def folder_lock(directory: Path) -> Iterator[Path]:
         os.ftruncate(fd, 0)
         os.pwrite(fd, record.encode(), 0)
         os.fsync(fd)
-    except OSError as exc:
+    except OSError as exc:  # a full disk: the lock is ours, remove it with its empty record
+        with contextlib.suppress(OSError):
+            os.unlink(path)
         os.close(fd)
         raise storage_error(path, exc) from None
     try:

@@ -1,10 +1,11 @@
-"""Run a study: solve its missing scenarios in parallel, keep each as it finishes, merge, plot.
+"""Run a study: solve its missing scenarios in parallel, keep each as it finishes, merge.
 
 :func:`run_study` expands a :class:`tce.study.Study` into scenarios, skips those already
 written under ``<out>/<study name>/scenarios/`` that can be trusted
 (:func:`tce.study.results.load_finished`), and solves the rest: in this process with
 ``jobs=1``, in a pool of worker processes with ``jobs > 1`` (``backend="loky"``, the
-default), or on a Dask distributed cluster through joblib's ``dask`` backend. Each worker
+default; workers are forked from a fork server that imported tce once, see
+:func:`_context`), or on a Dask distributed cluster through joblib's ``dask`` backend. Each worker
 keeps the :class:`tce.analysis.Analysis` of the structures and materials it has met, so
 operators are built once per worker and reused; the structure itself is built once per
 run (when the study is validated) and sent to the workers. The answer of a scenario does
@@ -22,7 +23,8 @@ Faults (``docs/studies.md``, "Faults and resuming"):
   kept, ``results.nc`` is not replaced, and a rerun solves only what is missing.
 - Ctrl-C (:class:`KeyboardInterrupt`) stops the workers at once (a worker that is writing
   a file finishes it first), removes the temporary files and re-raises.
-- Workers ignore Ctrl-C (the parent decides) and end within a second if the parent dies.
+- Workers ignore Ctrl-C from their start (the parent decides: :mod:`tce.signals`) and
+  end within a second, silently, if the parent dies.
 - One run at a time per study folder (:func:`tce.study.results.folder_lock`); the folder
   is created and locked before anything is solved, so an unwritable destination fails
   with :class:`RunError` before the run.
@@ -54,8 +56,11 @@ from ..analysis.loadpath import DEFAULT_RTOL, LoadPathResult, load_path
 from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
+from ..analysis.assessment import adequacy_factor
+from ..analysis.critical import critical_position
 from . import keys
 from .jobs import choose_jobs
+from .positions import with_adequacy, with_critical
 from .results import (
     FolderLocked,
     StorageError,
@@ -69,9 +74,12 @@ from .results import (
     write_scenario,
 )
 from .schema import Scenario, Study, build_material
+from ..signals import quiet_children
+from .settlement import settlement_vars
 
 __all__ = [
     "LAMBDA_TOL",
+    "FigureFault",
     "RunError",
     "RunFault",
     "RunReport",
@@ -80,7 +88,6 @@ __all__ = [
     "same_lambda",
     "solve_scenario",
     "with_drawn_states",
-    "write_plots",
 ]
 
 log = logging.getLogger(__name__)
@@ -90,6 +97,8 @@ Backend = Literal["loky", "dask"]
 LAMBDA_TOL = 1e-9
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
+#: draws a written results dataset: (dataset, study folder, processes) -> files written
+Draw = Callable[[xr.Dataset, Path, int], Sequence[Path]]
 #: outcomes of a load path, in the order the run summary lists them
 OUTCOMES = ("limit", "capped", "no_limit", "unbounded", "infeasible", "numerical")
 
@@ -112,6 +121,11 @@ class RunFault(RuntimeError):
     def __init__(self, report: RunReport) -> None:
         super().__init__("\n".join(report.faults))
         self.report = report
+
+
+class FigureFault(RunFault):
+    """``results.nc`` was written, but its figures could not be (a full or unwritable disk;
+    exit code 3 in the CLI): ``tce plot`` draws them again."""
 
 
 @dataclass
@@ -178,6 +192,12 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     """
     analysis = _cold(_analysis(sc, assembly))
     tol = sc.loads["tolerance"]
+    pattern, crit = sc.loads_pattern, None
+    if sc.loads.get("critical_position"):
+        crit = critical_position(analysis, pattern, start=sc.loads["positions"])
+        log.debug("scenario %r: critical position %s", sc.name, crit.message)
+        if crit.ok:
+            pattern = crit.pattern
     lp = load_path(
         analysis,
         settlements=sc.settlements,
@@ -187,14 +207,21 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
         atol=0.0 if tol is None else tol,
         rtol=DEFAULT_RTOL if tol is None else 0.0,
         lam_cap=sc.loads["lambda_cap"],
-        loads=sc.loads_pattern,
+        loads=pattern,
         bracket=keys.BRACKET,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     bracket = None
     if analysis.material.flow == "non-associative":
-        bracket = nonassociative_limit(analysis, loads=sc.loads_pattern)
-    return scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+        bracket = nonassociative_limit(analysis, loads=pattern)
+    settlement = settlement_vars(sc, assembly, analysis.material) if sc.settlement_path is not None else None
+    ds = scenario_dataset(
+        sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket, settlement=settlement
+    )
+    if "dead_factor" in sc.loads:
+        factors = sc.loads["dead_factor"], sc.loads["live_factor"]
+        ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
+    return ds if crit is None else with_critical(ds, crit)
 
 
 def same_lambda(a: float, b: float) -> bool:
@@ -275,10 +302,26 @@ def _on_terminate(signum: int, frame: Any) -> None:
 
 
 def _watch_parent(parent: int) -> None:
-    """End this worker within a second of its parent's death (``kill -9`` of ``tce run``)."""
-    while os.getppid() == parent:
+    """End this worker within a second of its parent's death (``kill -9`` of ``tce run``).
+
+    The worker's own parent is ``parent`` (spawned) or the fork server (forked from it,
+    which ends when ``parent`` does): either way the worker is re-parented when its parent
+    dies; ``parent`` is also watched directly."""
+    ppid = os.getppid()
+    while os.getppid() == ppid and _alive(parent):
         time.sleep(0.5)
     os.kill(os.getpid(), signal.SIGTERM)
+
+
+def _alive(pid: int) -> bool:
+    """Whether a process ``pid`` exists."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: int) -> None:
@@ -290,7 +333,7 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
     while True:
         try:
             task = conn.recv()
-        except EOFError:
+        except (EOFError, OSError):  # the parent ended (a reset connection when it was killed)
             return
         if task is None:
             return
@@ -302,7 +345,10 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
             reply = ("storage", sc.name, str(exc))
         except Exception as exc:  # noqa: BLE001 - reported to the parent with its traceback
             reply = ("error", sc.name, f"{type(exc).__name__}: {exc}", traceback.format_exc())
-        conn.send(reply)
+        try:
+            conn.send(reply)
+        except OSError:  # the parent ended: the scenario's file is written, a rerun reuses it
+            return
 
 
 # ----------------------------------------------------------------------------- caller side
@@ -335,14 +381,6 @@ def _grouped(scenarios: list[Scenario]) -> list[Scenario]:
     for k, sc in enumerate(scenarios):
         first.setdefault(sc.group, k)
     return sorted(scenarios, key=lambda sc: first[sc.group])
-
-
-def write_plots(ds: xr.Dataset, outdir: Path, jobs: int = 1) -> list[Path]:
-    """Figures and interactive view of a results dataset (:func:`tce.plot.write_figures`,
-    ``[plots]`` of the study), drawn by up to ``jobs`` processes; imported only when drawn."""
-    from .. import plot
-
-    return list(plot.write_figures(ds, Path(outdir), jobs=jobs))
 
 
 class _Tally:
@@ -395,9 +433,24 @@ def _death(process: mp.process.BaseProcess, sc: Scenario | None) -> str:
     return f"worker process {process.pid} {how} {what}; the other scenarios went on"
 
 
+def _context() -> mp.context.BaseContext:
+    """How worker processes start: forked from a fork server that has imported tce once
+    (``forkserver`` with :mod:`tce.study.runner` preloaded), where the platform has one;
+    spawned (each importing numpy, scipy, xarray, Clarabel and tce again) elsewhere.
+
+    The fork server is started by the first pool of the process and kept for later runs;
+    it ignores Ctrl-C and ends with the process. A forked worker starts in milliseconds
+    instead of a fresh interpreter's 1.5-3 CPU seconds of imports."""
+    if "forkserver" not in mp.get_all_start_methods():
+        return mp.get_context("spawn")
+    ctx = mp.get_context("forkserver")
+    ctx.set_forkserver_preload([__name__])
+    return ctx
+
+
 def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tally: _Tally) -> None:
     """Solve ``todo`` in ``jobs`` worker processes (see the module docstring for faults)."""
-    ctx = mp.get_context("spawn")
+    ctx = _context()
     queue = deque(todo)
     workers: dict[Any, list] = {}  # parent end of the pipe -> [process, scenario being solved]
     stopping = False
@@ -406,7 +459,8 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
     def start() -> Any:
         conn, child = ctx.Pipe()
         process = ctx.Process(target=_worker, args=(child, str(directory), os.getpid(), level), daemon=True)
-        process.start()
+        with quiet_children():  # a Ctrl-C while it imports its modules is the parent's to handle
+            process.start()
         child.close()
         workers[conn] = [process, None]
         return conn
@@ -532,10 +586,11 @@ def run_study(
     backend: Backend = "loky",
     scheduler: str | None = None,
     progress: Progress | None = None,
-    plots: bool = True,
+    plots: Draw | None = None,
     fresh: bool = False,
 ) -> RunReport:
-    """Solve every scenario of ``study`` not solved yet and write ``results.nc`` (and figures).
+    """Solve every scenario of ``study`` not solved yet and write ``results.nc`` (and, given
+    ``plots``, its figures).
 
     Parameters
     ----------
@@ -556,8 +611,12 @@ def run_study(
     progress : callable, optional
         ``progress(done, total, steps)`` before the first scenario (``done = 0``) and after
         each scenario solved.
-    plots : bool
-        Write the figures after the results.
+    plots : callable, optional
+        ``plots(ds, folder, jobs) -> list of Path``: draws the written results dataset into the
+        study's folder (still under its lock) with up to ``jobs`` processes; the files it
+        returns are :attr:`RunReport.figures`. The command line passes
+        :func:`tce.plot.write_figures` (the runner does not import :mod:`tce.plot`); default:
+        no figures.
     fresh : bool
         Delete the scenario files of earlier runs first (under the folder's lock).
 
@@ -572,6 +631,8 @@ def run_study(
     RunFault
         The run ended with a fault; every finished scenario is on disk, ``results.nc``
         was not replaced.
+    FigureFault
+        ``results.nc`` was written but a figure could not be (a :class:`RunFault`).
     KeyboardInterrupt
         Ctrl-C; every finished scenario is on disk.
     """
@@ -630,5 +691,9 @@ def run_study(
             raise RunFault(report) from None
         log.info("wrote %s", report.results)
         if plots:
-            report.figures = write_plots(ds, directory, jobs=jobs)
+            try:
+                report.figures = list(plots(ds, directory, jobs))
+            except OSError as exc:  # a full or unwritable disk: results.nc is written
+                report.faults.append(str(storage_error(Path(exc.filename or directory), exc)))
+                raise FigureFault(report) from None
     return report

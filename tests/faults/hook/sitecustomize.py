@@ -6,9 +6,10 @@ for the scenario named SCENARIO:
 
 - ``kill``: the process solving it kills itself with SIGKILL before solving (as the
   out-of-memory killer does);
-- ``interrupt``: after its file is written, the process sends SIGINT to its process group
-  (as Ctrl-C in a terminal does) and waits 3 s before reporting it done, so the parent is
-  interrupted while a finished scenario is not yet returned;
+- ``interrupt``: after its file is written (and, with ARG, once ARG scenario files are in its
+  folder, so that another worker's scenario is finished too), the process sends SIGINT to its
+  process group (as Ctrl-C in a terminal does) and waits 3 s before reporting it done, so the
+  parent is interrupted while a finished scenario is not yet returned;
 - ``fill``: after its file is written, the file system of the folder ARG is filled up;
 - ``hold``: before solving, the process waits until the file ARG exists.
 """
@@ -45,6 +46,8 @@ if _SPEC:
                 time.sleep(0.05)
         result = _solve_and_write(sc, assembly, directory)
         if sc.name == _NAME and _KIND == "interrupt":
+            while _ARG and len(list(Path(directory).glob("*.nc"))) < int(_ARG[0]):
+                time.sleep(0.05)
             os.killpg(os.getpgrp(), signal.SIGINT)
             time.sleep(3)
         if sc.name == _NAME and _KIND == "fill":

@@ -6,6 +6,8 @@
                          critical position of a load-position sweep).
 ``tce plot RESULTS.nc``  the figures of a results file (``--scenario S --step 0.1``: one on demand).
 ``tce view RESULTS.nc``  the interactive 3D view (one offline HTML file).
+``tce report RESULTS.nc``  the calculation report: one self-contained HTML file and its PDF
+                         (also written by ``tce run`` unless ``--no-report``).
 ``tce export RESULTS.nc --vtk``  ParaView files: blocks, vertex forces, resultants per step.
 
 Exit codes (``tce run``): 0 success; 2 bad input or a run that cannot start (a bad study,
@@ -13,20 +15,31 @@ an unwritable, full or locked results folder: one message on stderr, no tracebac
 nothing solved); 3 a run that ended with a fault (a worker killed, a disk full, a
 scenario that failed: one line each, every finished scenario kept, a rerun resumes); 4
 with ``--strict``, a run whose scenarios did not all end at a limit; 130 interrupted
-(Ctrl-C; finished scenarios are kept).
+(Ctrl-C; finished scenarios are kept), 143 for SIGTERM and 129 for SIGHUP, which stop it
+the same way (:mod:`tce.signals`).
+
+Every command: 2 for bad input (a missing, foreign or damaged results file, an ``--out``
+that is a file or cannot be written: nothing written); 3 for a storage fault while it writes
+(a disk that fills, one line naming the path); an interrupted command prints one line, no
+traceback; a closed output pipe (``tce show | head``) ends it quietly.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import logging
+import math
+import os
 import sys
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
-from .. import __version__
-from .schema import PLOT_KINDS
+from . import __version__
+from .signals import exit_code, handle_signals
+from .study.guards import check_path
+from .study.schema import PLOT_KINDS
 
 __all__ = ["main"]
 
@@ -35,6 +48,10 @@ log = logging.getLogger("tce")
 
 class UsageError(Exception):
     """Bad input from the user: reported in one message, exit code 2."""
+
+
+class WriteFault(Exception):
+    """A storage fault while a command writes (a full disk): one message, exit code 3."""
 
 
 def _jobs(text: str) -> int:
@@ -61,6 +78,7 @@ def _target(text: str) -> float | str:
 
 
 def _parser() -> argparse.ArgumentParser:
+
     p = argparse.ArgumentParser(
         prog="tce",
         description="Total Complementary Energy analysis of masonry as rigid blocks in unilateral "
@@ -95,7 +113,8 @@ def _parser() -> argparse.ArgumentParser:
         "--strict", action="store_true",
         help="exit with code 4 unless every scenario ends at a limit (for scripted pipelines)",
     )
-    run.add_argument("--no-plots", action="store_true", help="write the results only")
+    run.add_argument("--no-plots", action="store_true", help="write the results only (no figures, no report)")
+    run.add_argument("--no-report", action="store_true", help="no calculation report (report.html, report.pdf)")
 
     show = sub.add_parser("show", help="summarise a results file", description="One line per scenario of RESULTS.nc.")
     show.add_argument("results", type=Path, metavar="RESULTS.nc")
@@ -138,6 +157,16 @@ def _parser() -> argparse.ArgumentParser:
     export.add_argument("--scenario", action="append", default=None, metavar="NAME",
                         help="scenario to export (name or shell pattern; repeatable; default: all)")
 
+    report = sub.add_parser(
+        "report", help="write the calculation report of a results file",
+        description="Write report.html (one self-contained file: structure, material, loads, scenarios, method and "
+        "references, results tables, every figure, warnings, provenance) and report.pdf printed from it by headless "
+        "Chromium (skipped, with the reason, when no chromium is found).",
+    )
+    report.add_argument("results", type=Path, metavar="RESULTS.nc")
+    report.add_argument("--out", type=Path, default=None, metavar="DIR", help="folder (default: beside RESULTS.nc)")
+    report.add_argument("--no-pdf", action="store_true", help="the HTML only")
+
     check = sub.add_parser(
         "check",
         help="run the numerical stability report",
@@ -146,6 +175,8 @@ def _parser() -> argparse.ArgumentParser:
         "status, residual, retry used and time. Exit code 1 if a case fails.",
     )
     check.add_argument("--select", metavar="TEXT", default=None, help="only the cases whose name contains TEXT")
+    check.add_argument("--validation", action="store_true",
+                       help="instead, the validation atlas: tce against published values (docs/validation.md)")
 
     bench = sub.add_parser(
         "bench",
@@ -171,15 +202,67 @@ def _setup_logging(verbose: bool, quiet: bool) -> None:
         logging.getLogger("matplotlib").setLevel(logging.ERROR)
 
 
-def _open_results(path: Path):
+#: variables the figures and the view need (a results file of an older tce may lack some)
+RESULTS_VARS = ("lambda_max", "outcome", "status", "lam", "block_centroid")
+
+
+def _open_results(path: Path, needs: Sequence[str] = RESULTS_VARS):
+    """The results dataset at ``path``; a missing, unreadable, foreign (not written by tce) or
+    older file (without a variable of ``needs``) is a :class:`UsageError` saying which."""
     import xarray as xr
 
     if not path.is_file():
         raise UsageError(f"{path}: no such results file; fix: give the results.nc written by 'tce run'")
     try:
-        return xr.load_dataset(path)
-    except (OSError, ValueError) as exc:
-        raise UsageError(f"{path}: not a readable results file ({exc})") from None
+        ds = xr.load_dataset(path)
+    except (OSError, ValueError, RuntimeError) as exc:
+        raise UsageError(f"{path}: not a readable results file ({exc}); fix: give the results.nc written by 'tce run'") from None
+    if "tce_version" not in ds.attrs or "scenario" not in ds.dims:
+        raise UsageError(
+            f"{path}: not a results file written by tce (no tce_version attribute or scenario dimension); "
+            "fix: give the results.nc written by 'tce run'"
+        )
+    missing = [v for v in needs if v not in ds.variables]
+    if missing:
+        raise UsageError(
+            f"{path}: written by an older tce ({ds.attrs['tce_version']}): no {', '.join(missing)}; "
+            "fix: run the study again with this tce"
+        )
+    return ds
+
+
+def _out_folder(out: Path, option: str = "--out") -> Path:
+    """``out`` as a folder to write into: created if needed; a file in its way, or a folder
+    that cannot be written, is a :class:`UsageError` (nothing written)."""
+    import os
+    import shutil
+
+    from .study.runner import MIN_FREE
+
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"{option}: {out} is a file, not a folder; fix: give a folder (or remove the file)")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UsageError(f"{option}: cannot create {out} ({exc.strerror}); fix: give another {option}") from None
+    if not os.access(out, os.W_OK | os.X_OK):
+        raise UsageError(f"{option}: cannot write {out} (read-only or not permitted); fix: give another {option}")
+    free = shutil.disk_usage(out).free
+    if free < MIN_FREE:
+        raise UsageError(f"{option}: cannot write {out}: {free} bytes free; fix: free some space or give another {option}")
+    return out
+
+
+@contextlib.contextmanager
+def _writing(where: Path) -> Iterator[None]:
+    """An :class:`OSError` while the block writes under ``where`` (a disk that fills) is a
+    :class:`WriteFault` naming the path."""
+    from .study.results import storage_error
+
+    try:
+        yield
+    except OSError as exc:
+        raise WriteFault(str(storage_error(Path(exc.filename or where), exc))) from None
 
 
 class _Bar:
@@ -191,7 +274,7 @@ class _Bar:
         self.bar = None
 
     def __call__(self, done: int, total: int, steps: int) -> None:
-        from .progress import Progress
+        from .study.progress import Progress
 
         if self.bar is None:
             self.bar = Progress(total, self.desc, unit="scenario")
@@ -207,12 +290,21 @@ class _Bar:
 
 
 #: exit codes of ``tce run`` (module docstring)
-EXIT_FAULT, EXIT_STRICT, EXIT_INTERRUPTED = 3, 4, 130
+EXIT_FAULT, EXIT_STRICT = 3, 4
+#: exit code when the standard output is closed early (a shell's 128 + SIGPIPE)
+EXIT_PIPE = 141
+
+
+def _draw(ds, folder: Path, jobs: int) -> list[Path]:
+    """The figures and view of a finished run (the study's ``[plots]``), drawn into its folder."""
+    from . import plot
+
+    return plot.write_figures(ds, folder, jobs=jobs)
 
 
 def _run(args: argparse.Namespace) -> int:
-    from .runner import OUTCOMES, RunError, RunFault, run_study
-    from .schema import StudyError, load_study
+    from .study.runner import OUTCOMES, FigureFault, RunError, RunFault, run_study
+    from .study.schema import StudyError, load_study
 
     if args.scheduler and args.backend != "dask":
         raise UsageError("--scheduler needs --backend dask")
@@ -225,10 +317,20 @@ def _run(args: argparse.Namespace) -> int:
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,
-            progress=bar, plots=not args.no_plots, fresh=args.fresh,
+            progress=bar, plots=None if args.no_plots else _draw, fresh=args.fresh,
         )
     except RunError as exc:
         raise UsageError(str(exc)) from None
+    except FigureFault as fault:
+        bar.close()
+        (line,) = fault.report.faults
+        print(f"tce: error: {line}", file=sys.stderr)
+        print(
+            f"tce: {fault.report.results} is written, its figures are not: 'tce plot {fault.report.results}' "
+            "draws them once there is space",
+            file=sys.stderr,
+        )
+        return EXIT_FAULT
     except RunFault as fault:
         bar.close()
         for line in fault.report.faults:
@@ -240,16 +342,18 @@ def _run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return EXIT_FAULT
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:
         bar.close()
-        print(f"tce: interrupted; {kept}: run the same command again to resume", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        print(f"tce: interrupted ({exc or 'SIGINT'}); {kept}: run the same command again to resume", file=sys.stderr)
+        return exit_code(exc)
     bar.close()
     counts = {o: list(report.outcomes.values()).count(o) for o in OUTCOMES}
     counts.update({o: n for o, n in Counter(report.outcomes.values()).items() if o not in counts})
     what = f"{len(report.solved)} solved" + (f", {len(report.reused)} reused" if report.reused else "")
     tally = ", ".join(f"{n} {o}" for o, n in counts.items() if n)
     print(f"{report.results}: {len(report.outcomes)} scenarios ({what}): {tally}; {len(report.figures)} figures")
+    if not (args.no_plots or args.no_report):
+        _report_lines(_write_report(report.results, figures=report.figures))
     odd = {name: o for name, o in report.outcomes.items() if o != "limit"}
     for name, outcome in odd.items():
         print(f"  {outcome}: {name}")
@@ -257,25 +361,28 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _show(args: argparse.Namespace) -> int:
-    ds = _open_results(args.results)
     cols = ["lambda_max", "lambda_direct", "lambda_gap", "outcome", "model", "n_solves", "solve_time", "wall_time"]
-    missing = [c for c in cols if c not in ds]
-    if missing or "scenario" not in ds.dims:
-        raise UsageError(f"{args.results}: not a tce results file (missing {missing or ['scenario']})")
+    ds = _open_results(args.results, cols)
     table = ds[cols].to_dataframe()[cols].rename(columns={"lambda_direct": "direct", "lambda_gap": "gap"})
     print(f"study {ds.attrs.get('study_name', '?')} (tce {ds.attrs.get('tce_version', '?')}, {ds.attrs.get('solver', '?')})")
     print(table.to_string(float_format=lambda v: f"{v:.6g}"))
     _show_outcomes(ds)
     if "load_x" in ds.coords:
         _show_critical(ds)
+    if "critical_x" in ds:
+        _show_search(ds)
+    if "load_notes" in ds:
+        _show_notes(ds)
+    if "adequacy_factor" in ds:
+        _show_assessment(ds)
     return 0
 
 
 def _show_outcomes(ds) -> None:
     """One line per scenario that did not end at a limit: its outcome, what it means and why
     (:func:`tce.study.outcomes.outcome_words`)."""
-    from ..plot.data import study_cap
-    from .outcomes import outcome_words
+    from .plot.data import study_cap
+    from .study.outcomes import outcome_words
 
     for k, name in enumerate(ds["scenario"].values):
         outcome = str(ds["outcome"].values[k])
@@ -287,15 +394,64 @@ def _show_outcomes(ds) -> None:
         print(f"{name}: {outcome}: {words}" + (f"; {reason}" if reason else ""))
 
 
+def _show_assessment(ds) -> None:
+    """The assessment of each scenario (``[assessment]``): the live load, where it is worst,
+    the collapse load, the partial factors and the adequacy factor."""
+    print("assessment (adequacy factor: multiplier of the factored live load at collapse under the factored "
+          "dead load; >= 1: adequate):")
+    for k, name in enumerate(ds["scenario"].values):
+        what = str(ds["assessed_vehicles"].values[k]) or "the live loads"
+        where = ""
+        if "critical_x" in ds and math.isfinite(ds["critical_x"].values[k]):
+            where = f" at its critical position x = {float(ds['critical_x'].values[k]):.4g} m"
+        lam = float(ds["lambda_max"].values[k])
+        collapse = f"collapses at {lam:.4g} x the declared live load" if math.isfinite(lam) else \
+            f"load path outcome {ds['outcome'].values[k]}"
+        gd, gl = float(ds["dead_factor"].values[k]), float(ds["live_factor"].values[k])
+        af, status = float(ds["adequacy_factor"].values[k]), str(ds["adequacy_status"].values[k])
+        if status == "optimal":
+            verdict = f"adequacy factor {af:.4g}: {'adequate' if af >= 1.0 else 'NOT adequate'}"
+        elif status == "unbounded":
+            verdict = "adequacy factor unbounded (carried at any multiplier): adequate"
+        else:
+            verdict = f"no adequacy factor ({status})"
+        print(f"  {name}: {what}{where}: {collapse} (unfactored); partial factors dead {gd:g}, live {gl:g}: {verdict}")
+
+
+def _show_search(ds) -> None:
+    """The critical position each scenario's search found (``[loads] critical_position``)."""
+    print("critical position of the moving loads (searched; the load path runs there):")
+    for k, name in enumerate(ds["scenario"].values):
+        status = str(ds["critical_status"].values[k])
+        if status != "optimal":
+            print(f"  {name}: {status}: no critical position"
+                  + (" (carried at any multiplier at every position)" if status == "unbounded" else ""))
+            continue
+        ties = str(ds["critical_ties"].values[k])
+        print(f"  {name}: x = {float(ds['critical_x'].values[k]):.6g} m (to {float(ds['critical_xtol'].values[k]):.2g} m), "
+              f"direct lambda_max = {float(ds['critical_lambda'].values[k]):.6g}, "
+              f"{int(ds['critical_solves'].values[k])} limit solves"
+              + (f"; tied (same lambda_max) at x = {ties} m, the leftmost reported" if ties else ""))
+
+
+def _show_notes(ds) -> None:
+    """Loads dropped because they lie off the deck, per scenario."""
+    for name, notes in zip(ds["scenario"].values, ds["load_notes"].values):
+        for line in str(notes).splitlines():
+            print(f"{name}: note: {line}")
+
+
 def _show_critical(ds) -> None:
     """The critical position of a load-position sweep, per group of the other coordinates."""
-    from .positions import critical_positions
+    from .study.positions import critical_positions
 
     print("critical load position (smallest lambda_max over load_x):")
     for c in critical_positions(ds):
         where = f"{c.group}: " if c.group else ""
         if c.scenario:
-            print(f"  {where}load_x = {c.load_x:.6g} m, lambda_max = {c.lambda_max:.6g} (scenario {c.scenario})")
+            print(f"  {where}load_x = {c.load_x:.6g} m, lambda_max = {c.lambda_max:.6g} (scenario {c.scenario})"
+                  + (f"; tied (same lambda_max within the tolerance) at load_x = {', '.join(f'{t:.6g}' for t in c.ties)} m"
+                     if c.ties else ""))
         else:
             outcome = dict(zip(map(str, ds["scenario"].values), map(str, ds["outcome"].values)))
             seen = sorted({outcome[s] for s in c.scenarios})
@@ -308,7 +464,7 @@ _OPTIONS = {"scenarios": "--scenario", "steps": "--step", "kinds": "--kind"}
 def _spec(ds, **given):
     """The plotting spec of ``ds`` with the command line's replacements; a bad one is a usage
     error naming the option (or the ``[plots]`` key of the study stored in the file)."""
-    from ..plot.data import PlotSpecError, plot_spec
+    from .plot.data import PlotSpecError, plot_spec
 
     try:
         return plot_spec(ds, **given)
@@ -319,8 +475,8 @@ def _spec(ds, **given):
 
 
 def _plot(args: argparse.Namespace) -> int:
-    from ..plot.data import slug
-    from ..plot.output import write_figures
+    from .plot.data import slug
+    from .plot.output import write_figures
 
     ds = _open_results(args.results)
     on_demand = args.scenario is not None or args.step is not None
@@ -329,8 +485,9 @@ def _plot(args: argparse.Namespace) -> int:
     if on_demand and not spec.scenarios:
         raise UsageError("--scenario: no scenario selected")
     tag = slug("_".join([*(args.scenario or []), *(f"lam{s}" for s in args.step or [])]))[:80] if on_demand else ""
-    outdir = args.out or args.results.parent
-    figures = write_figures(ds, outdir, spec, jobs=args.jobs, tag=tag)
+    outdir = _out_folder(args.out or args.results.parent)
+    with _writing(outdir):
+        figures = write_figures(ds, outdir, spec, jobs=args.jobs, tag=tag)
     for f in figures if on_demand else []:
         print(f)
     print(f"{len(figures)} figures in {outdir}")
@@ -338,7 +495,7 @@ def _plot(args: argparse.Namespace) -> int:
 
 
 def _view(args: argparse.Namespace) -> int:
-    from ..plot.view import view_html
+    from .plot.view import view_html
 
     ds = _open_results(args.results)
     spec = _spec(ds, scenarios_=args.scenario)
@@ -347,9 +504,12 @@ def _view(args: argparse.Namespace) -> int:
     out = args.out or args.results.parent / "view.html"
     if out.suffix.lower() not in (".html", ".htm"):
         raise UsageError(f"--out: {out} is not an .html file")
+    if out.is_dir():
+        raise UsageError(f"--out: {out} is a folder, not an .html file")
+    _out_folder(out.parent)
     page = view_html(ds, spec.scenarios)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(page, encoding="utf-8")
+    with _writing(out):
+        out.write_text(page, encoding="utf-8")
     print(out)
     if args.open:
         import webbrowser
@@ -359,37 +519,54 @@ def _view(args: argparse.Namespace) -> int:
 
 
 def _export(args: argparse.Namespace) -> int:
-    from ..plot.export import export_vtk
+    from .plot.export import export_vtk
 
-    ds = _open_results(args.results)
+    ds = _open_results(args.results, (*RESULTS_VARS, "vertex_force", "vertex_point", "vertex_interface"))
     names = None
     if args.scenario:
         names = _spec(ds, scenarios_=args.scenario).scenarios
-    if "vertex_force" not in ds:
-        raise UsageError(f"{args.results}: no vertex forces (written by an older tce); fix: run the study again")
-    out = args.out or args.results.parent / "vtk"
-    files = export_vtk(ds, out, names)
+    out = _out_folder(args.out or args.results.parent / "vtk")
+    with _writing(out):
+        files = export_vtk(ds, out, names)
     print(f"{len(files)} VTK files in {out}")
     return 0
 
 
+def _write_report(results: Path, out: Path | None = None, figures: list[Path] | None = None, pdf: bool = True):
+    """The calculation report (:func:`tce.report.write_report`); a results file it cannot read is a usage error."""
+    from .report import write_report
+
+    try:
+        return write_report(results, out, figures=figures, pdf=pdf)
+    except (KeyError, ValueError) as exc:
+        raise UsageError(f"{results}: cannot write its report: not a complete tce results file ({exc})") from None
+
+
+def _report_lines(files) -> None:
+    print(f"report: {files.html}" + (f", {files.pdf}" if files.pdf else f" (PDF skipped: {files.skipped})"))
+
+
+def _report(args: argparse.Namespace) -> int:
+    _open_results(args.results).close()  # a missing or unreadable file: one message, exit 2
+    _report_lines(_write_report(args.results, args.out, pdf=not args.no_pdf))
+    return 0
+
+
 def _check(args: argparse.Namespace) -> int:
-    from ..quality.check import check_command
+    from .quality.check import check_command
 
     return check_command(args)
 
 
 def _bench(args: argparse.Namespace) -> int:
-    from ..quality.bench import bench_command
+    from .quality.bench import bench_command
 
     return bench_command(args)
 
 
 def _without_dask() -> None:
     """Keep xarray from importing dask in this program and its workers (:mod:`tce.study.jobs`)."""
-    import os
-
-    from .jobs import NO_DASK, block_dask_import
+    from .study.jobs import NO_DASK, block_dask_import
 
     os.environ[NO_DASK] = "1"
     block_dask_import()
@@ -404,17 +581,33 @@ def main(argv: Sequence[str] | None = None) -> int:
         Arguments without the program name (default: ``sys.argv[1:]``, the ``tce``
         program, which then keeps dask from being imported unless ``--backend dask``).
     """
-    args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
-    _setup_logging(args.verbose, args.quiet)
-    if argv is None and getattr(args, "backend", None) != "dask":
-        _without_dask()
-    commands = {"run": _run, "show": _show, "plot": _plot, "view": _view, "export": _export, "check": _check,
-                "bench": _bench}
+    handle_signals()  # first: Ctrl-C or SIGTERM at any moment, imports included, ends in one line
     try:
+        args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
+        _setup_logging(args.verbose, args.quiet)
+        if argv is None and getattr(args, "backend", None) != "dask":
+            _without_dask()
+        commands = {"run": _run, "show": _show, "plot": _plot, "view": _view, "export": _export, "report": _report,
+                    "check": _check, "bench": _bench}
+        for option, value in vars(args).items():
+            if isinstance(value, Path):
+                try:
+                    check_path(value, option.upper() if option in ("study", "results") else f"--{option}")
+                except ValueError as exc:
+                    raise UsageError(str(exc)) from None
         return commands[args.command](args)
+    except KeyboardInterrupt as exc:
+        print(f"tce: interrupted ({exc or 'SIGINT'})", file=sys.stderr)
+        return exit_code(exc)
     except UsageError as exc:
         print(f"tce: error: {exc}", file=sys.stderr)
         return 2
+    except WriteFault as exc:
+        print(f"tce: error: {exc}", file=sys.stderr)
+        return EXIT_FAULT
+    except BrokenPipeError:  # the reader went away (``tce show | head``): stop quietly, as SIGPIPE would
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # Python's own flush at exit finds no pipe
+        return EXIT_PIPE
 
 
 if __name__ == "__main__":  # pragma: no cover

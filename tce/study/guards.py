@@ -1,0 +1,202 @@
+"""Guards on a study file before and after it is parsed: what it is, how big, how deep, and
+how much work it asks for.
+
+:func:`read_study_text` reads a study file only if it is a regular file (not a folder, a
+device such as ``/dev/zero``, a pipe that would block the reader, or a link to one of these)
+of at most :data:`MAX_STUDY_BYTES`, whose path holds no NUL character. :func:`check_text`
+refuses TOML text nested more than :data:`MAX_TOML_DEPTH` deep before it is parsed
+(arrays, inline tables and dotted keys), :func:`check_tree` the same of the parsed document, and any key or
+text value holding a control character (a NUL in a scenario name or a path would pass the
+schema and then break every file name made from it). :func:`check_work` bounds what a valid
+study asks for before it is expanded: at most :data:`MAX_SCENARIOS` scenarios, at most
+:data:`MAX_SOLVES` solves in the worst case (every scenario's load path to ``lambda_cap``
+plus its drawn states) and at most :data:`MAX_DRAWN_STATES` drawn states (scenarios drawn
+times ``[plots] steps``), each message giving the estimate and the keys that set it.
+
+Every refusal is a :class:`tce.study.schema.StudyError` naming the file and the key.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import stat
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+__all__ = [
+    "MAX_DRAWN_STATES",
+    "MAX_SCENARIOS",
+    "MAX_SOLVES",
+    "MAX_STUDY_BYTES",
+    "MAX_TOML_DEPTH",
+    "check_path",
+    "check_text",
+    "check_tree",
+    "check_work",
+    "read_study_text",
+]
+
+#: Largest study file read (bytes): a study is a page of text; sweeps are lists, not files.
+MAX_STUDY_BYTES = 2**20
+#: Deepest nesting of tables and arrays in a study (a study needs 4).
+MAX_TOML_DEPTH = 16
+#: Most scenarios in a study (settlement cases x directions x sweep values).
+MAX_SCENARIOS = 10_000
+#: Most solves a study may ask for in the worst case (every load path to lambda_cap).
+MAX_SOLVES = 20_000_000
+#: Most drawn states (per-scenario figures' scenarios x ``[plots] steps``).
+MAX_DRAWN_STATES = 200
+
+
+class StudyError(ValueError):
+    """A study file that cannot be run; the message says where and how to fix it (raised by
+    these guards and by :mod:`tce.study.schema`, which exports it)."""
+
+
+def _worst_steps(step: float | None, cap: float | None) -> int:
+    """Most load increments of one path (:func:`tce.analysis.loadpath.increments_and_cap`):
+    ``cap / step`` when both are given; anchored on the direct limit otherwise (about
+    ``AUTO_INCREMENTS``, or at most ``MAX_INCREMENTS`` for a given step without a cap)."""
+    from ..analysis.loadpath import AUTO_INCREMENTS, MAX_INCREMENTS
+
+    if step is not None and cap is not None:
+        return math.floor(cap / step) + 1
+    return MAX_INCREMENTS + 1 if step is not None else AUTO_INCREMENTS + 2
+
+
+def _error(msg: str) -> Exception:
+    return StudyError(msg)
+
+
+def check_path(path: Path | str, what: str) -> None:
+    """Refuse a path holding a NUL character (no file can have one); ``what`` names it."""
+    if "\0" in str(path):
+        raise _error(f"{what}: {str(path)!r} holds a NUL character; fix: give a file name without it")
+
+
+def read_study_text(path: Path) -> str:
+    """The text of the study file ``path``, read only if it is a regular file of at most
+    :data:`MAX_STUDY_BYTES` (links are followed: a link to ``/dev/zero`` is a device)."""
+    check_path(path, "the study file")
+    fix = "fix: give a readable TOML file"
+    try:
+        info = path.stat()
+    except OSError as exc:
+        raise _error(f"{path}: cannot read the study file ({exc.strerror or exc}); {fix}") from None
+    if not stat.S_ISREG(info.st_mode):
+        kind = "a folder" if stat.S_ISDIR(info.st_mode) else "a pipe" if stat.S_ISFIFO(info.st_mode) else "a device or socket"
+        raise _error(f"{path}: not a regular file ({kind}); {fix}")
+    if info.st_size > MAX_STUDY_BYTES:
+        raise _error(f"{path}: {info.st_size} bytes, more than MAX_STUDY_BYTES = {MAX_STUDY_BYTES}; {fix}")
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read(MAX_STUDY_BYTES + 1)  # the file may grow between stat and read
+        if len(data) > MAX_STUDY_BYTES:
+            raise _error(f"{path}: more than MAX_STUDY_BYTES = {MAX_STUDY_BYTES} bytes; {fix}")
+        return data.decode("utf-8")
+    except OSError as exc:
+        raise _error(f"{path}: cannot read the study file ({exc.strerror or exc}); {fix}") from None
+    except UnicodeDecodeError as exc:
+        raise _error(f"{path}: not a UTF-8 text file ({exc.reason} at byte {exc.start}); {fix}") from None
+
+
+#: TOML strings (basic, literal, multi-line), replaced by a word before the text is scanned
+_TOML_STRING = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'')
+_TOML_COMMENT = re.compile(r"#[^\n]*")
+
+
+def check_text(path: Path, text: str) -> None:
+    """Refuse TOML text nested more than :data:`MAX_TOML_DEPTH` deep, in one linear pass
+    before it is parsed (the parser recurses once per level of arrays and inline tables,
+    and takes time quadratic in the length of a dotted key)."""
+    import numpy as np  # here: the tce program imports this module before it handles Ctrl-C
+
+    bare = _TOML_COMMENT.sub("", _TOML_STRING.sub("s", text))
+    chain = re.search(r"[\w-]+(?:[ \t]*\.[ \t]*[\w-]+){%d,}" % MAX_TOML_DEPTH, bare)
+    codes = np.frombuffer(bare.encode("utf-8"), dtype=np.uint8)
+    depth = np.cumsum(np.isin(codes, (ord("["), ord("{"))).astype(np.int64) - np.isin(codes, (ord("]"), ord("}"))))
+    deepest = int(np.argmax(depth)) if len(depth) else 0
+    if chain is None and (not len(depth) or depth[deepest] <= MAX_TOML_DEPTH):
+        return
+    at = chain.start() if chain is not None else deepest
+    line = bare.count("\n", 0, at) + 1
+    raise _error(
+        f"{path}: line {line}: nested more than MAX_TOML_DEPTH = {MAX_TOML_DEPTH} deep; fix: a study needs "
+        "tables of values and lists, no deeper"
+    )
+
+
+def _key(parts: list[Any]) -> str:
+    out = ""
+    for p in parts:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
+    return out or "(top level)"
+
+
+def check_tree(path: Path, data: Any) -> None:
+    """Refuse nesting deeper than :data:`MAX_TOML_DEPTH` and control characters in keys and
+    text values (walked without recursion)."""
+    stack: list[tuple[Any, list[Any]]] = [(data, [])]
+    while stack:
+        node, where = stack.pop()
+        if len(where) > MAX_TOML_DEPTH:
+            raise _error(
+                f"{path}: {_key(where[:3])}: nested more than MAX_TOML_DEPTH = {MAX_TOML_DEPTH} deep; "
+                "fix: a study needs tables of values and lists, no deeper"
+            )
+        if isinstance(node, Mapping):
+            items = list(node.items())
+        elif isinstance(node, list):
+            items = list(enumerate(node))
+        else:
+            items = []
+            if isinstance(node, str) and _control(node):
+                raise _error(f"{path}: {_key(where)}: the text {node[:40]!r} holds a control character; fix: remove it")
+        for k, v in items:
+            if isinstance(k, str) and _control(k):
+                raise _error(f"{path}: {_key(where)}: the key {k[:40]!r} holds a control character; fix: remove it")
+            stack.append((v, where + [k]))
+
+
+def _control(text: str) -> bool:
+    return any(ord(c) < 32 or ord(c) == 127 for c in text)
+
+
+def check_work(path: Path, spec: Any, drawn_scenarios: int | None = None) -> None:
+    """Refuse a study that asks for more than :data:`MAX_SCENARIOS` scenarios or
+    :data:`MAX_SOLVES` worst-case solves (checked before the scenarios are expanded), or,
+    given the number of scenarios drawn, more than :data:`MAX_DRAWN_STATES` drawn states.
+    ``spec`` is the parsed file (a :class:`tce.study.schema.StudyFile`; not imported here, the
+    schema imports these guards)."""
+    cases = len(spec.scenarios)
+    alphas = len(spec.loads.alphas)
+    sweeps = spec.sweep.items()
+    factors = [("scenarios", cases, "settlement case(s)"), ("loads.alpha", alphas, "direction(s)")]
+    factors += [(f"sweep.{k}", len(v), "values") for k, v in sweeps]
+    count = math.prod(n for _, n, _ in factors)
+    if count > MAX_SCENARIOS:
+        how = " x ".join(f"{n} {what} of {key}" for key, n, what in factors)
+        key = max(factors, key=lambda f: f[1])[0]
+        raise _error(
+            f"{path}: {key}: {how} = {count} scenarios, more than MAX_SCENARIOS = {MAX_SCENARIOS}; "
+            "fix: sweep fewer values, or split the study"
+        )
+    loads = spec.loads
+    steps = _worst_steps(loads.lambda_step, loads.lambda_cap)
+    states = len(spec.plots.lambdas)
+    solves = count * (steps + 2 + states)
+    if solves > MAX_SOLVES:
+        raise _error(
+            f"{path}: loads: {count} scenarios x ({steps} load steps to lambda_cap = {loads.lambda_cap} "
+            f"by lambda_step = {loads.lambda_step} + 2 + {states} drawn) = {solves} solves at most, more than "
+            f"MAX_SOLVES = {MAX_SOLVES}; fix: a larger lambda_step, a smaller lambda_cap or fewer scenarios"
+        )
+    if drawn_scenarios is not None and drawn_scenarios * len(spec.plots.steps) > MAX_DRAWN_STATES:
+        n = drawn_scenarios * len(spec.plots.steps)
+        raise _error(
+            f"{path}: plots.steps: {drawn_scenarios} scenario(s) drawn x {len(spec.plots.steps)} steps = {n} "
+            f"drawn states, more than MAX_DRAWN_STATES = {MAX_DRAWN_STATES}; fix: draw fewer steps or name "
+            "fewer scenarios in [plots] scenarios"
+        )
