@@ -22,7 +22,7 @@ from tce.core.loads import LoadPattern
 from tce.core.material import Material
 from tce.structures.arch import segmental_arch, semicircular_arch
 from tce.study import load_study
-from tce.study.cli import main
+from tce.cli import main
 from tce.study.runner import run_study
 
 BRIDGE = """
@@ -59,7 +59,7 @@ force = [0.0, 0.0, {f}]
 def _run(tmp_path: Path, name: str, force: float, extra: str = "") -> xr.Dataset:
     path = tmp_path / f"{name}.toml"
     path.write_text(BRIDGE.format(f=-force, extra=extra).replace('name = "bridge"', f'name = "{name}"'))
-    report = run_study(load_study(path), out=tmp_path / "out", jobs=1, plots=False)
+    report = run_study(load_study(path), out=tmp_path / "out", jobs=1)
     return xr.load_dataset(report.results)
 
 

@@ -111,7 +111,7 @@ right = [0.001, 0.0, 0.0, 0.0, 0.0, 0.0]
 def test_the_dataset_decides_uniqueness(tmp_path: Path) -> None:
     path = tmp_path / "canon.toml"
     path.write_text(STUDY)
-    ds = xr.load_dataset(run_study(load_study(path), out=tmp_path, jobs=1, plots=False).results)
+    ds = xr.load_dataset(run_study(load_study(path), out=tmp_path, jobs=1).results)
     for s in ("outward", "none"):
         ok = ds.status.sel(scenario=s).values == "optimal"
         u = ds.unique.sel(scenario=s).values[ok]

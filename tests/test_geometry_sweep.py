@@ -24,6 +24,7 @@ matplotlib.use("Agg")
 from tce.core.analysis import Analysis  # noqa: E402
 from tce.core.material import Material  # noqa: E402
 from tce.plot import data  # noqa: E402
+from tce.plot import write_figures  # noqa: E402
 from tce.plot.export import export_vtk  # noqa: E402
 from tce.plot.figures import states_figure  # noqa: E402
 from tce.plot.output import figure_tasks  # noqa: E402
@@ -67,7 +68,8 @@ def results(tmp_path_factory: pytest.TempPathFactory) -> Path:
     d = tmp_path_factory.mktemp("sweep")
     path = d / "study.toml"
     path.write_text(STUDY)
-    report = run_study(load_study(path), out=d / "results", jobs=1, plots=True)
+    report = run_study(load_study(path), out=d / "results", jobs=1,
+                       plots=lambda ds, folder, jobs: write_figures(ds, folder, jobs=jobs))
     return report.results
 
 

@@ -57,7 +57,7 @@ EDITS = {
 def _run(folder: Path, text: str) -> tuple[list[str], list[str]]:
     path = folder / "study.toml"
     path.write_text(text)
-    report = run_study(load_study(path), out=folder / "out", jobs=1, plots=False)
+    report = run_study(load_study(path), out=folder / "out", jobs=1)
     return report.solved, report.reused
 
 
