@@ -116,3 +116,18 @@ def test_the_dataset_decides_uniqueness(tmp_path: Path) -> None:
         ok = ds.status.sel(scenario=s).values == "optimal"
         u = ds.unique.sel(scenario=s).values[ok]
         assert u.size and np.all(np.isin(u, [0.0, 1.0]))  # decided: never NaN
+
+
+def test_the_energy_weighs_each_contact_by_its_area() -> None:
+    """A dome (contacts of 8 different areas, the spatial SOCP) settling at one support: the
+    canonical state is the stiff compliant answer (k = 1e7: measured 1.5e-7 W apart), which a
+    rule that weighed every force component alike misses (measured 9e-3 W apart)."""
+    from tce.structures.dome import hemispherical_dome
+
+    dome = hemispherical_dome(5.0, 0.5, 6, 3)
+    settle = {dome.support_names[0]: [0.0, 0.0, -0.001, 0.0, 0.0, 0.0]}
+    rigid = Analysis(dome, Material(friction=0.8)).solve(0.0, 0.0, settle)
+    stiff = Analysis(dome, Material(friction=0.8, normal_stiffness=1e7, shear_stiffness=1e7)).solve(0.0, 0.0, settle)
+    W = float(dome.weights[list(dome.free_indices)].sum())
+    assert rigid.status == stiff.status == "optimal" and rigid.unique is False
+    assert np.abs(stiff.vertex_forces - rigid.vertex_forces).max() <= 1e-6 * W
