@@ -195,9 +195,12 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     pattern, crit = sc.loads_pattern, None
     if sc.loads.get("critical_position"):
         crit = critical_position(analysis, pattern, start=sc.loads["positions"])
-        log.debug("scenario %r: critical position %s", sc.name, crit.message)
         if crit.ok:
+            log.debug("scenario %r: critical position %s", sc.name, crit.message)
             pattern = crit.pattern
+        else:
+            log.warning("scenario %r: no critical position (%s): %s; the load path runs at the declared position",
+                        sc.name, crit.status, crit.message)
     lp = load_path(
         analysis,
         settlements=sc.settlements,
