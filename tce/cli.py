@@ -366,10 +366,7 @@ def _show(args: argparse.Namespace) -> int:
     table = ds[cols].to_dataframe()[cols].rename(columns={"lambda_direct": "direct", "lambda_gap": "gap"})
     print(f"study {ds.attrs.get('study_name', '?')} (tce {ds.attrs.get('tce_version', '?')}, {ds.attrs.get('solver', '?')})")
     print(table.to_string(float_format=lambda v: f"{v:.6g}"))
-    if "no_limit_reason" in ds:  # results written before tce explained them have none
-        for name, why in zip(ds["scenario"].values, ds["no_limit_reason"].values):
-            if str(why):
-                print(f"{name}: no_limit: {why}")
+    _show_outcomes(ds)
     if "load_x" in ds.coords:
         _show_critical(ds)
     if "critical_x" in ds:
@@ -379,6 +376,22 @@ def _show(args: argparse.Namespace) -> int:
     if "adequacy_factor" in ds:
         _show_assessment(ds)
     return 0
+
+
+def _show_outcomes(ds) -> None:
+    """One line per scenario that did not end at a limit: its outcome, what it means and why
+    (:func:`tce.study.outcomes.outcome_words`)."""
+    from .plot.data import study_cap
+    from .study.outcomes import outcome_words
+
+    for k, name in enumerate(ds["scenario"].values):
+        outcome = str(ds["outcome"].values[k])
+        if outcome == "limit":
+            continue
+        var = f"{outcome}_reason"
+        reason = str(ds[var].values[k]) if var in ds else ""
+        words = outcome_words(outcome, float(ds["lambda_direct"].values[k]), study_cap(ds), label=False)
+        print(f"{name}: {outcome}: {words}" + (f"; {reason}" if reason else ""))
 
 
 def _show_assessment(ds) -> None:
@@ -440,7 +453,9 @@ def _show_critical(ds) -> None:
                   + (f"; tied (same lambda_max within the tolerance) at load_x = {', '.join(f'{t:.6g}' for t in c.ties)} m"
                      if c.ties else ""))
         else:
-            print(f"  {where}no position has a finite lambda_max")
+            outcome = dict(zip(map(str, ds["scenario"].values), map(str, ds["outcome"].values)))
+            seen = sorted({outcome[s] for s in c.scenarios})
+            print(f"  {where}no position has a finite lambda_max (outcomes: {', '.join(seen)}; see the lines above)")
 
 
 _OPTIONS = {"scenarios": "--scenario", "steps": "--step", "kinds": "--kind"}

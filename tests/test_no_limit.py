@@ -148,4 +148,4 @@ def test_dataset_and_show_carry_the_reason(tmp_path, capsys):
     assert main(["show", str(tmp_path / "typeb" / "results.nc")]) == 0
     out = capsys.readouterr().out
     for name, why in zip(ds["scenario"].values, reasons):
-        assert f"{name}: no_limit: {why}" in out
+        assert f"{name}: no_limit: the direct limit is unbounded, the live loads are carried at any lambda; {why}" in out

@@ -41,7 +41,15 @@ from ..core.solve import TCEResult
 from ..structures.assembly import Assembly
 from .loadpath import LoadPathResult
 
-__all__ = ["Diagnosis", "NoLimit", "binding_interfaces", "diagnose", "explain_no_limit", "no_limit_reason"]
+__all__ = [
+    "Diagnosis",
+    "NoLimit",
+    "binding_interfaces",
+    "diagnose",
+    "explain_no_limit",
+    "no_limit_reason",
+    "unbounded_reason",
+]
 
 #: interfaces named in a no-limit message before "and k more"
 NAMED = 6
@@ -241,6 +249,59 @@ def no_limit_reason(analysis: Analysis, lp: LoadPathResult) -> str:
         return ""
     reached = max((r.lam for r in lp.steps if r.ok), default=None)
     return explain_no_limit(analysis, reached=reached, loads=lp.loads).summary
+
+
+_COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
+
+
+def unbounded_reason(analysis: Analysis, lp: LoadPathResult) -> str:
+    """Why a load path ended ``unbounded`` ("" for any other outcome): which support motion the
+    material cannot follow, and why, as :func:`no_limit_reason` explains ``no_limit``.
+
+    An unbounded TCE has a certificate: a self-stress ``d`` (``A_eq d = 0``, ``d`` in the
+    recession cone of the contact law: a force state that carries no load) whose support
+    reactions do positive work on the prescribed motion, ``-(B_sup d) . U < 0``
+    (:func:`tce.core.problem.recession_problem`); adding any multiple of it lowers the energy
+    without end. The supports whose reactions do that work are the motions the material
+    cannot follow; the contacts it loads say how: mainly tangential forces at contacts with
+    no friction limit (a Heyman material cannot slide, and the motion asks it to), or
+    mainly normal forces (rigid contacts cannot shorten, and the motion presses the blocks
+    together).
+    """
+    if lp.outcome != "unbounded":
+        return ""
+    step = next(r for r in lp.steps if r.status == "unbounded")
+    solver = analysis.solver(step.model)
+    model, a = solver.model, analysis.assembly
+    U = np.asarray(step.settlements, dtype=float)
+    d = solver.recession_direction(U)
+    if not np.all(np.isfinite(d)):
+        return "the support motion is incompatible with the material (the self-stress that shows why was not found)"
+    F = d.reshape(model.n_contacts, model.dim)
+    work = -(model.B_sup @ d).reshape(-1, 6) * U.reshape(-1, 6)  # per support and component, in -(R . U)
+    names = list(a.support_names)
+    moving = [k for k in range(len(names)) if work[k].sum() < -1e-9 * max(np.abs(work).max(), 1e-300)]
+    what = [
+        f"{names[k]} ({', '.join(f'{c} = {v:g}' for c, v in zip(_COMPONENTS, U.reshape(-1, 6)[k]) if v)})"
+        for k in moving
+    ]
+    mag = np.linalg.norm(F, axis=1)
+    hot = sorted({int(model.contact_interface[c]) for c in np.flatnonzero(mag > 1e-6 * max(mag.max(), 1e-300))})
+    itfs = [f"{a.names[a.interfaces[k].a]}|{a.names[a.interfaces[k].b]}" for k in hot]
+    listed = _names(itfs[:NAMED] + ([f"{len(itfs) - NAMED} more"] if len(itfs) > NAMED else []))
+    tangential = float(np.abs(F[:, 1:]).sum()) > float(np.abs(F[:, 0]).sum())
+    if tangential and analysis.material.friction is None:
+        why = ("the joints have no friction limit (Heyman material): they take any tangential force and cannot "
+               "slide, and the motion asks them to; give the joints a friction coefficient")
+    elif tangential:
+        why = "the motion asks the contacts to slide in a way their friction cones do not allow"
+    else:
+        why = ("rigid contacts cannot shorten, and the motion presses the blocks together; give the joints a "
+               "stiffness (normal_stiffness) to let them follow it")
+    who = f"the motion of support{'s' if len(what) > 1 else ''} {_names(what)}" if what else "the support motion"
+    return (f"{who} cannot be followed: a self-stress (a force state carrying no load) through {listed} is "
+            f"admissible and its reactions do positive work on that motion, so the energy decreases without end; "
+            f"{why}")
 
 
 def diagnose(

@@ -22,6 +22,7 @@ within the tolerance of the limit; the direct bracket takes about half the solve
 
 from __future__ import annotations
 
+import logging
 import math
 import time
 from collections.abc import Callable, Mapping
@@ -37,11 +38,30 @@ from ..core.loads import LoadPattern, as_pattern
 from ..core.result import Result
 from ..core.solve import TCEResult
 
-__all__ = ["MAX_INCREMENTS", "LoadPathResult", "load_path"]
+__all__ = [
+    "AUTO_INCREMENTS",
+    "DEFAULT_CAP",
+    "DEFAULT_RTOL",
+    "DEFAULT_STEP",
+    "MAX_INCREMENTS",
+    "LoadPathResult",
+    "increments_and_cap",
+    "load_path",
+]
+
+log = logging.getLogger(__name__)
 
 #: Most load increments a path may take (``lam_cap / step``): 100,000 took 52 s on a 6-voussoir arch;
 #: 10,000 resolve a path to 1e-4 of lambda_cap (the limit itself is bisected to ``atol``).
 MAX_INCREMENTS = 10_000
+#: increments a path takes up to its direct limit when no step is given
+AUTO_INCREMENTS = 20
+#: increment of a path without a step whose direct limit is not a positive number
+DEFAULT_STEP = 0.02
+#: cap of a path without one whose direct limit is undecided (``numerical``)
+DEFAULT_CAP = 100.0
+#: relative tolerance on lambda_max of a study that gives no ``tolerance``
+DEFAULT_RTOL = 1e-6
 
 
 @dataclass(frozen=True, eq=False, kw_only=True, repr=False)
@@ -182,19 +202,69 @@ def _first_inadmissible(lo: float | None, steps: list[TCEResult]) -> str:
     return "numerical" if any(s.status == "numerical" for s in steps) else "infeasible"
 
 
+def increments_and_cap(
+    lim: LimitResult, step: float | None, lam_cap: float | None
+) -> tuple[float, float, str]:
+    """The increment and the largest multiplier the path tries, anchored on the direct limit.
+
+    See :func:`load_path`. Returns ``(increment, cap, note)``; ``note`` says when an
+    explicit step was coarsened.
+    """
+    finite = lim.status == "optimal" and math.isfinite(lim.lambda_max) and lim.lambda_max > 0
+    note = ""
+    if step is None:
+        step = lim.lambda_max / (AUTO_INCREMENTS + 0.5) if finite else DEFAULT_STEP
+    elif finite and lim.lambda_max / step > MAX_INCREMENTS:
+        note = (f"; lambda_step = {step:g} would take {lim.lambda_max / step:.3g} increments to the direct limit "
+                f"{lim.lambda_max:.6g}: {AUTO_INCREMENTS} increments of {lim.lambda_max / (AUTO_INCREMENTS + 0.5):.6g} "
+                "were taken")
+        step = lim.lambda_max / (AUTO_INCREMENTS + 0.5)
+    if lam_cap is not None:
+        cap = lam_cap
+    elif lim.status == "optimal":
+        cap = math.inf  # the first infeasible increment lies just above the direct limit
+    elif lim.status in ("unbounded", "infeasible"):
+        cap = AUTO_INCREMENTS * step  # the direct problem decided it; the increments trace the path
+    else:
+        cap = DEFAULT_CAP  # the direct limit is undecided: search as far as a cap
+    return step, cap, note
+
+
 def load_path(
     analysis: Analysis,
     alpha: float | None = None,
     settlements: Mapping[str, ArrayLike] | None = None,
-    step: float = 0.02,
+    step: float | None = None,
     atol: float = 1e-6,
     rtol: float = 0.0,
-    lam_cap: float = 100.0,
+    lam_cap: float | None = None,
     loads: LoadPattern | None = None,
     bracket: Literal["direct", "bisection"] = "direct",
     mechanism: bool = True,
 ) -> LoadPathResult:
-    """Increment lambda by ``step`` from 0, then narrow the first inadmissible increment.
+    """Increment lambda from 0, then narrow the first inadmissible increment.
+
+    The direct limit (:meth:`tce.core.analysis.Analysis.limit`) is solved first and anchors
+    the path (issue 21), so that a live load of 1 N, 1 kN or 1 MN gives the same adequacy
+    factor in the same number of solves:
+
+    - **step**: by default the path reaches the direct lambda_max in :data:`AUTO_INCREMENTS`
+      increments (``lambda_direct / (AUTO_INCREMENTS + 0.5)``, so no increment falls on the
+      limit itself); :data:`DEFAULT_STEP` when the direct limit is not a positive number.
+      An explicit step is kept, unless it would take more than :data:`MAX_INCREMENTS`
+      increments to reach the direct limit (then the default is taken and the message
+      says so).
+    - **cap**: none by default when the direct limit is finite (the path goes on until an
+      increment is inadmissible); ``AUTO_INCREMENTS * step`` when it is unbounded or
+      infeasible (the direct problem decided: the increments trace the path);
+      :data:`DEFAULT_CAP` when it is undecided. A cap given below the direct limit ends
+      the path with the outcome ``capped`` ("capped at X, below the collapse load Y").
+    - when the increments end admissible at the cap (or at :data:`MAX_INCREMENTS`) below a
+      finite direct limit that the cap does not cut, the bracket around the direct limit
+      (:func:`_confirm_direct`) is solved to find the inadmissible end.
+    - ``no_limit`` only when the direct limit is unbounded and every increment up to the
+      cap is admissible; with a finite direct limit that the path cannot confirm, or an
+      undecided one, the outcome is ``numerical``.
 
     Parameters
     ----------
@@ -203,13 +273,13 @@ def load_path(
         Lateral direction (degrees, from +x towards +y) of the default pattern (0 when None).
     settlements : dict, optional
         Support motions (m, rad) about each support centroid.
-    step : float
-        Load increment (> 0).
+    step : float, optional
+        Load increment (> 0); default anchored on the direct limit (above).
     atol, rtol : float
         Bisection stops when ``hi - lo <= max(atol, rtol * hi)``; at least one > 0.
-    lam_cap : float
-        Largest multiplier tried before the path gives up (``outcome = "no_limit"``);
-        ``lam_cap / step`` may not exceed :data:`MAX_INCREMENTS`.
+    lam_cap : float, optional
+        Largest multiplier the increments try (above); ``lam_cap / step`` may not exceed
+        :data:`MAX_INCREMENTS` and ``step`` may not exceed ``lam_cap``.
     loads : LoadPattern, optional
         The load pattern instead of ``alpha`` (its live part is multiplied by lambda).
     bracket : {"direct", "bisection"}
@@ -224,22 +294,32 @@ def load_path(
     -------
     LoadPathResult
     """
-    if not (math.isfinite(step) and step > 0):
+    if step is not None and not (math.isfinite(step) and step > 0):
         raise ValueError(f"step must be a finite number > 0, got {step!r}")
+    if lam_cap is not None and not (math.isfinite(lam_cap) and lam_cap > 0):
+        raise ValueError(f"lam_cap must be a finite number > 0, got {lam_cap!r}")
     if not (atol >= 0 and rtol >= 0 and (atol > 0 or rtol > 0)):
         raise ValueError(f"tolerances must be >= 0 and not both 0, got atol={atol!r}, rtol={rtol!r}")
     if bracket not in ("direct", "bisection"):
         raise ValueError(f"bracket must be 'direct' or 'bisection', got {bracket!r}")
-    if not lam_cap / step <= MAX_INCREMENTS:
-        raise ValueError(
-            f"lam_cap / step = {lam_cap / step:.3g} load increments, more than {MAX_INCREMENTS}: "
-            "use a larger step or a smaller lam_cap"
-        )
+    if step is not None and lam_cap is not None:
+        if step > lam_cap:
+            raise ValueError(f"step = {step!r} is larger than lam_cap = {lam_cap!r}: no increment but 0 would be tried")
+        if not lam_cap / step <= MAX_INCREMENTS:
+            raise ValueError(
+                f"lam_cap / step = {lam_cap / step:.3g} load increments, more than {MAX_INCREMENTS}: "
+                "use a larger step or a smaller lam_cap"
+            )
     t0 = time.perf_counter()
     pattern = as_pattern(alpha, loads)
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in (settlements or {}).items()}
     steps: list[TCEResult] = []
     solve_at = analysis.path(settlements=sett, loads=pattern)
+    lim = analysis.limit(loads=pattern, mechanism=False)  # the mechanism, when asked, at the end
+    direct = lim.lambda_max
+    step, cap, note = increments_and_cap(lim, step, lam_cap)
+    if note:
+        log.warning("load path%s", note)
 
     def run(lam: float) -> TCEResult:
         r = solve_at(lam)
@@ -248,10 +328,9 @@ def load_path(
 
     lo: float | None = None
     hi: float | None = None
-    outcome = "no_limit"
+    outcome = ""
     k = 0
-    while k * step <= lam_cap:
-        lam = k * step
+    while k <= MAX_INCREMENTS and math.isfinite(lam := k * step) and lam <= cap:
         r = run(lam)
         if r.status == "optimal":
             lo = lam
@@ -262,20 +341,30 @@ def load_path(
         elif r.status == "unbounded":
             outcome = "unbounded"
             break
+        elif lim.status == "optimal" and lam > direct:
+            break  # undecided above the direct limit (a huge step): the bracket around it decides
         k += 1
-    if outcome == "no_limit" and not steps[-1].ok:
-        outcome = "numerical"  # the last steps up to lam_cap are undecided: not known to stand
+    width = max(atol, rtol * abs(direct)) if math.isfinite(direct) else atol
+    if not outcome:  # the increments ended admissible at the cap, or undecided
+        if lim.status == "optimal" and lam_cap is not None and lam_cap < direct - width and steps[-1].ok:
+            outcome = "capped"
+        elif lim.status == "optimal" and lo is not None and (steps[-1].ok or steps[-1].lam > direct):
+            lo, top = _confirm_direct(run, lo, math.inf, direct, atol, rtol)
+            outcome, hi = ("limit", top) if math.isfinite(top) else ("numerical", None)
+        elif not steps[-1].ok:
+            outcome = "numerical"  # the last steps are undecided: not known to stand
+        else:
+            outcome = "no_limit" if lim.status == "unbounded" else "numerical"
     if outcome == "limit":
         assert lo is not None and hi is not None
         if bracket == "direct":
-            lo, hi = _confirm_direct(run, lo, hi, analysis.limit(loads=pattern, mechanism=False).lambda_max, atol, rtol)
+            lo, hi = _confirm_direct(run, lo, hi, direct, atol, rtol)
         lo_bracket = lo  # admissible end of the bracket; `lo` stays the last optimal step
         while hi - lo_bracket > max(atol, rtol * abs(hi)):
             mid = 0.5 * (lo_bracket + hi)
             if not lo_bracket < mid < hi:
                 break  # the bracket is two neighbouring floats: no multiplier lies between them
             r = run(mid)
-            direct = analysis.limit(loads=pattern, mechanism=False).lambda_max
             if r.status == "optimal":
                 lo = lo_bracket = mid
             elif r.status == "infeasible":
@@ -295,16 +384,20 @@ def load_path(
             # tolerance of the limit, so the last optimal one is not the answer
             outcome = "numerical"
     lam_max = lo if outcome == "limit" and lo is not None else float("nan")
+    if outcome == "capped":
+        message = f"capped at lambda = {cap:.6g}, below the collapse load lambda_direct = {direct:.6g}"
+    else:
+        message = f"{outcome} after {len(steps)} solves"
     return LoadPathResult(
         status=outcome,
-        message=f"{outcome} after {len(steps)} solves",
+        message=message + note,
         alpha=pattern.direction,
         loads=pattern,
         settlements=sett,
         steps=steps,
         lambda_max=float(lam_max),
         lambda_upper=float(hi) if hi is not None else float("nan"),
-        limit=analysis.limit(loads=pattern, mechanism=mechanism),
+        limit=analysis.limit(loads=pattern, mechanism=True) if mechanism else lim,
         n_solves=len(steps),
         solve_time=float(sum(s.solve_time for s in steps)),
         wall_time=time.perf_counter() - t0,

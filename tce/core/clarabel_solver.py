@@ -52,6 +52,10 @@ class SolverOptions:
         same, infeasible loads got their certificate in ~15 iterations instead of running
         to the limit, and solves were 1.5-3x faster; an answer still has to pass
         ``residual_tol``, so a load within ~1e-8 of lambda_max may be ``optimal``.
+    canonical : bool
+        Report the canonical state of a rigid scene (:mod:`tce.core.canonical`: the optimal
+        state of least unit-stiffness strain energy) and decide its uniqueness, instead of
+        the point of the optimal face the solver happened to return.
     """
 
     tol: float = 1e-10
@@ -59,6 +63,7 @@ class SolverOptions:
     feas_tol: float = 1e-9
     max_iter: int = 200
     refine: bool = False
+    canonical: bool = True
 
     def settings(
         self, robust: bool = False, tight: bool = False, refine: bool = True, kkt: str = "qdldl"

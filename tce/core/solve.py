@@ -59,6 +59,7 @@ from .clarabel_solver import SOLVER_NAME, ClarabelSolver, Solution, SolverOption
 from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
 from .material import Material
 from .model import InterfaceMap, Model
+from .canonical import CanonicalSolver
 from .problem import Formulation, phase1_b, phase1_problem, q_scale, recession_problem, tce_b, tce_problem
 from .result import STATUSES, WRENCH_COMPONENTS, XYZ, Result
 
@@ -135,8 +136,10 @@ class TCEResult(Result):
     eq_residual, cone_residual : float
         Relative equilibrium residual and contact-law violation of the answer.
     unique : bool or None
-        True with compliance (strictly convex); False for a rigid scene with no support
-        motion (every admissible state is a minimiser); None otherwise (unknown).
+        True with compliance (strictly convex). Rigid: decided by comparing the solver's
+        answer with the canonical state (:mod:`tce.core.canonical`), which is then the state
+        reported; None only when the canonical state could not be found (and a rigid scene
+        without support motion is then False: every admissible state is a minimiser).
     iterations : int
         Interior-point iterations (main problem).
     setup_time : float
@@ -264,6 +267,7 @@ class TCESolver:
         self._feas: ClarabelSolver | None = None
         self._recession_cache: dict[bytes, tuple[float, float, NDArray[np.float64]]] = {}
         self._vectors_last: tuple[LoadPattern, tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None
+        self._canonical: CanonicalSolver | None = None
 
     # ------------------------------------------------------------ problem vectors
     def vectors(self, loads: LoadPattern) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -458,10 +462,26 @@ class TCESolver:
                     res = self.formulation.residuals_scaled(F2, b_eq)
                     if self._passes(res):
                         status, retry, F = "optimal", name, F2
+        unique = None
         if status != "optimal":
             F = res = None
+        elif self.formulation.D is None and self.options.canonical:
+            can = self._canonical_solver().state(b, self._q(U), F)
+            stime += can.solve_time
+            setup += can.setup_time
+            res_c = None if can.forces is None else self.formulation.residuals_scaled(can.forces, b_eq)
+            if res_c is not None and self._passes(res_c):
+                F, res, unique = can.forces, res_c, can.unique
+            else:
+                notes.append("canonical state not found: the solver's state kept")
         return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,
-                            sol.iterations, retry, "; ".join(notes))
+                            sol.iterations, retry, "; ".join(notes), unique)
+
+    def _canonical_solver(self) -> CanonicalSolver:
+        """The warm solver of canonical states (built on first use)."""
+        if self._canonical is None:
+            self._canonical = CanonicalSolver(self.formulation, self.options)
+        return self._canonical
 
     # ------------------------------------------------------------ checks and results
     def _passes(self, res: tuple[float, float]) -> bool:
@@ -482,6 +502,7 @@ class TCESolver:
         iterations: int,
         retry: str,
         message: str,
+        unique: bool | None = None,
     ) -> TCEResult:
         model = self.model
         if F is None or res is None:
@@ -495,11 +516,10 @@ class TCESolver:
             eq, cone = res
             tce = self.formulation.energy(F, U, wrench)
         if self.formulation.D is not None:
-            unique: bool | None = True
-        elif not (self._q_last[4] if self._q_last is not None and self._q_last[2] is U else np.any(U)):
-            unique = False
-        else:
-            unique = None
+            unique = True
+        elif unique is None and not (self._q_last[4] if self._q_last is not None and self._q_last[2] is U
+                                     else np.any(U)):
+            unique = False  # undecided (no canonical state): every admissible state is a minimiser
         if retry:
             log.debug("solve at lam=%g of %s: %s decided by %s (%s)", lam, loads, status, retry, message)
         return TCEResult.of_fields(dict(

@@ -1,7 +1,8 @@
 """What the figures, the interactive view and the VTK export read from a results dataset.
 
 Everything here takes a results dataset (``docs/results.md``) and returns plain numbers,
-arrays and strings; nothing draws. The geometry comes from ``ds.attrs["assembly"]`` and
+arrays and strings; nothing draws. The geometry of each scenario comes from the attr
+``assembly`` (or ``assembly_<k>`` for the scenarios whose ``geometry`` is k) and
 the drawing choices from the ``[plots]`` table of the study text ``ds.attrs["study"]``
 (:class:`tce.study.schema.PlotsSection`), so a results file copied anywhere redraws the
 same figures.
@@ -37,6 +38,7 @@ from numpy.typing import NDArray
 from ..structures.assembly import Assembly
 from ..study.positions import critical_positions
 from ..study.runner import same_lambda
+from ..study.outcomes import outcome_words, status_words
 from ..study.schema import PLOT_KINDS, PlotsSection
 
 __all__ = [
@@ -47,10 +49,13 @@ __all__ = [
     "assembly",
     "chain_interfaces",
     "find_state",
+    "geometry",
+    "geometry_groups",
     "group_identical",
     "hinge_segments",
     "join_names",
     "mechanism_groups",
+    "one_geometry",
     "optimal_steps",
     "outcome_note",
     "plot_spec",
@@ -58,6 +63,7 @@ __all__ = [
     "slug",
     "state_pages",
     "structure_frame",
+    "study_cap",
     "support_forces",
     "swept_parameters",
     "unique_note",
@@ -72,15 +78,8 @@ SWEPT = {"alpha": "degree", "friction": "–", "cohesion": "kN/m²", "tensile_st
 #: figure kinds drawn by default (``base`` is asked for by name)
 DEFAULT_KINDS = tuple(k for k in PLOT_KINDS if k != "base")
 
-_OUTCOMES = {
-    "limit": "",
-    "unbounded": "unbounded: the support motion is incompatible with the material (no state of finite energy)",
-    "infeasible": "infeasible: no admissible state, not even at λ = 0",
-    "no_limit": "no limit: still admissible at the cap λ = {cap:.3g}",
-    "numerical": "numerical: the solver could not decide the limit",
-}
 #: note of a state flagged non-unique (``unique == 0``)
-NOT_UNIQUE = "not necessarily unique (rigid, no support motion): one admissible state of many"
+NOT_UNIQUE = "not unique: of the many optimal states, the canonical one (least unit-stiffness energy) is drawn"
 
 
 # ---------------------------------------------------------------------------- dataset access
@@ -89,13 +88,52 @@ def _assembly_from_json(text: str) -> Assembly:
     return Assembly.from_dict(json.loads(text))
 
 
-def assembly(ds: xr.Dataset) -> Assembly:
-    """The assembly stored in ``ds.attrs["assembly"]`` (parsed once per text)."""
+def geometry(ds: xr.Dataset, scenario: str | None = None) -> int:
+    """Index of the structure a scenario was solved on (0 for the first scenario's, and for
+    every scenario of a file without a ``geometry`` variable)."""
+    if scenario is None or "geometry" not in ds:
+        return 0
+    return int(value(ds, "geometry", scenario))
+
+
+def assembly(ds: xr.Dataset, scenario: str | None = None) -> Assembly:
+    """The assembly a scenario was solved on (default: the first scenario's), parsed once
+    per text: the attr ``assembly`` for geometry 0, ``assembly_<k>`` for geometry k
+    (a geometry sweep, ``docs/results.md``)."""
+    k = geometry(ds, scenario)
+    key = "assembly" if k == 0 else f"assembly_{k}"
     try:
-        data = ds.attrs["assembly"]
+        data = ds.attrs[key]
     except KeyError:
-        raise ValueError("the dataset has no 'assembly' attribute: geometry cannot be drawn") from None
+        raise ValueError(f"the dataset has no {key!r} attribute: geometry cannot be drawn") from None
     return _assembly_from_json(data if isinstance(data, str) else json.dumps(data))
+
+
+def geometry_groups(ds: xr.Dataset, names: Sequence[str]) -> list[list[str]]:
+    """``names`` split into groups solved on the same structure, in order of first appearance
+    (one group unless a geometry sweep is drawn): a figure draws one structure."""
+    groups: dict[int, list[str]] = {}
+    for s in names:
+        groups.setdefault(geometry(ds, s), []).append(s)
+    return list(groups.values())
+
+
+def one_geometry(ds: xr.Dataset, names: Sequence[str]) -> Assembly:
+    """The one structure the scenarios ``names`` were solved on.
+
+    Raises
+    ------
+    ValueError
+        They were solved on different structures (a geometry sweep): draw each group of
+        :func:`geometry_groups` apart.
+    """
+    groups = geometry_groups(ds, names)
+    if len(groups) > 1:
+        raise ValueError(
+            f"the scenarios {list(names)} were solved on {len(groups)} different structures: draw each group "
+            f"of geometry_groups() on its own blocks"
+        )
+    return assembly(ds, names[0] if names else None)
 
 
 def scenarios(ds: xr.Dataset) -> list[str]:
@@ -271,7 +309,7 @@ def find_state(ds: xr.Dataset, scenario: str, target: Target) -> State:
     """The step of ``scenario`` at multiplier ``target`` (or at lambda_max for ``"max"``).
 
     ``"max"`` is the optimal step at ``lambda_max``; without a limit (outcome
-    ``no_limit``), the last optimal step. A number is the step at that multiplier if it
+    ``no_limit`` or ``capped``), the last optimal step. A number is the step at that multiplier if it
     was solved; if that step is not optimal, or the multiplier lies above the smallest one
     found inadmissible, the state has no step and its note says so.
     """
@@ -285,7 +323,7 @@ def find_state(ds: xr.Dataset, scenario: str, target: Target) -> State:
             at = [k for k in ok if same_lambda(lam[k], lmax)]
             if at:
                 return State(scenario, target, int(at[-1]), float(lam[at[-1]]), _notes(ds, scenario, at[-1]))
-        if outcome == "no_limit" and ok.size:
+        if outcome in ("no_limit", "capped") and ok.size:
             k = int(ok[-1])
             return State(scenario, float(lam[k]), k, float(lam[k]), _notes(ds, scenario, k))
         return State(scenario, target, None, float("nan"), outcome_note(ds, scenario) or "no λmax")
@@ -295,7 +333,7 @@ def find_state(ds: xr.Dataset, scenario: str, target: Target) -> State:
         k = hits[0]
         if status[k] == "optimal":
             return State(scenario, target, k, float(lam[k]), _notes(ds, scenario, k))
-        return State(scenario, target, None, target, f"{status[k]}: no admissible state")
+        return State(scenario, target, None, target, status_words(status[k], lam="λ"))
     upper = float(value(ds, "lambda_upper", scenario)) if "lambda_upper" in ds else float("nan")
     if not ok.size:
         return State(scenario, target, None, target, outcome_note(ds, scenario) or "no admissible state")
@@ -312,19 +350,25 @@ def _notes(ds: xr.Dataset, scenario: str, step: int) -> str:
 
 
 def outcome_note(ds: xr.Dataset, scenario: str) -> str:
-    """What a reader must know about a scenario whose outcome is not ``limit`` ("" if it is).
+    """What a reader must know about a scenario whose outcome is not ``limit`` ("" if it is),
+    in the words of :func:`tce.study.outcomes.outcome_words`.
 
-    A ``no_limit`` outcome carries its explanation (``no_limit_reason``, from
-    :func:`tce.analysis.diagnose.no_limit_reason`) when the dataset has one.
+    A ``no_limit`` or ``unbounded`` outcome carries its explanation (``no_limit_reason``,
+    ``unbounded_reason``) when the dataset has one; ``capped`` names the study's cap and the
+    direct limit.
     """
     outcome = text(ds, "outcome", scenario, "limit")
-    if outcome not in _OUTCOMES:
-        return outcome
-    lam = value(ds, "lam", scenario).astype(float)
-    cap = float(np.nanmax(lam)) if np.isfinite(lam).any() else float("nan")
-    note = _OUTCOMES[outcome].format(cap=cap)
-    why = text(ds, "no_limit_reason", scenario) if outcome == "no_limit" else ""
-    return f"{note}: {why}" if why else note
+    reason = text(ds, f"{outcome}_reason", scenario) if outcome in ("no_limit", "unbounded") else ""
+    direct = float(value(ds, "lambda_direct", scenario)) if "lambda_direct" in ds else math.nan
+    return outcome_words(outcome, direct=direct, cap=study_cap(ds), reason=reason, lam="λ")
+
+
+def study_cap(ds: xr.Dataset) -> float | None:
+    """The ``[loads] lambda_cap`` of the study stored in ``ds`` (None: none given)."""
+    try:
+        return json.loads(ds.attrs["loads"]).get("lambda_cap")
+    except (KeyError, TypeError, ValueError):
+        return None
 
 
 def unique_note(ds: xr.Dataset, scenario: str) -> str:

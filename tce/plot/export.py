@@ -4,7 +4,9 @@
 
 ``blocks.vtu``
     The blocks as triangles (every face fan-triangulated); cell data ``block`` (index in
-    the dataset's ``block`` order) and ``support`` (1 for supports).
+    the dataset's ``block`` order) and ``support`` (1 for supports). A geometry sweep adds
+    ``blocks_<k>.vtu`` for the scenarios solved on structure k (``geometry`` in
+    ``docs/results.md``): each scenario's collection shows its own blocks.
 ``<scenario>/forces_<k>.vtu``
     Step ``k`` (an optimal step, in lambda order): every interface vertex as a VTK vertex
     with point data ``force`` (kN, on block B, global frame) and ``fn`` (its component
@@ -35,14 +37,14 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from .data import assembly, optimal_steps, scenarios, slug
+from ..structures.assembly import Assembly
+from .data import assembly, geometry, optimal_steps, scenarios, slug
 
 __all__ = ["export_vtk"]
 
 
-def _triangles(ds: xr.Dataset, displaced: Sequence[NDArray[np.float64]] | None = None):
+def _triangles(asm: Assembly, ds: xr.Dataset, displaced: Sequence[NDArray[np.float64]] | None = None):
     """Points, triangles and per-triangle block index of the blocks (optionally displaced)."""
-    asm = assembly(ds)
     order = [str(b) for b in ds["block"].values] if "block" in ds.coords else list(asm.names)
     points, tris, block = [], [], []
     base = 0
@@ -97,18 +99,29 @@ def export_vtk(ds: xr.Dataset, out: Path | str, names: Sequence[str] | None = No
     if missing:
         raise ValueError(f"the dataset has no {missing[0]!r} (written by an older tce): run the study again")
     out = Path(out)
-    asm = assembly(ds)
     written = []
-    points, tris, block = _triangles(ds)
-    support = np.array([int(asm.blocks[asm.index[str(ds["block"].values[b])]].support) for b in block])
-    written.append(_write(out / "blocks.vtu", points, [("triangle", tris)],
-                          cell_data={"block": [block], "support": [support]}))
-    vp = np.asarray(ds["vertex_point"].transpose("vertex", "xyz").values, float)
-    normal_of = {f"{asm.names[i.a]}|{asm.names[i.b]}": i.normal for i in asm.interfaces}
-    vnormal = np.array([normal_of[str(n)] for n in ds["vertex_interface"].values]).reshape(-1, 3)
+    blocks: dict[int, tuple] = {}  # geometry -> (file name, points, triangles, block of each triangle)
+
+    def blocks_of(s: str) -> tuple:
+        g = geometry(ds, s)
+        if g not in blocks:
+            asm = assembly(ds, s)
+            points, tris, block = _triangles(asm, ds)
+            support = np.array([int(asm.blocks[asm.index[str(ds["block"].values[b])]].support) for b in block])
+            name = "blocks.vtu" if g == 0 else f"blocks_{g}.vtu"
+            written.append(_write(out / name, points, [("triangle", tris)],
+                                  cell_data={"block": [block], "support": [support]}))
+            blocks[g] = (name, points, tris, block)
+        return blocks[g]
+
     for s in names or scenarios(ds):
+        asm = assembly(ds, s)
+        blocks_file, points, tris, block = blocks_of(s)
         sub = ds.sel(scenario=s)
         folder = out / slug(s)
+        vp = np.asarray(sub["vertex_point"].transpose("vertex", "xyz").values, float)
+        normal_of = {f"{asm.names[i.a]}|{asm.names[i.b]}": i.normal for i in asm.interfaces}
+        vnormal = np.array([normal_of[str(n)] for n in ds["vertex_interface"].values]).reshape(-1, 3)
         vf = np.asarray(sub["vertex_force"].transpose("step", "vertex", "xyz").values, float)
         pp = np.asarray(sub["pressure_point"].transpose("step", "interface", "xyz").values, float)
         res = np.asarray(sub["resultant"].transpose("step", "interface", "xyz").values, float)
@@ -123,7 +136,7 @@ def export_vtk(ds: xr.Dataset, out: Path | str, names: Sequence[str] | None = No
                                   point_data={"resultant": res[k][ok], "torque": tq[k][ok],
                                               "interface": ok.astype(np.int64)}))
             entries += [(lam[k], 0, f"{slug(s)}/forces_{n:03d}.vtu"), (lam[k], 1, f"{slug(s)}/resultants_{n:03d}.vtu"),
-                        (lam[k], 2, "blocks.vtu")]
+                        (lam[k], 2, blocks_file)]
         if "mechanism" in ds:
             vel = np.asarray(sub["mechanism"].sel(block=list(asm.names)).transpose("block", "dof").values, float)
             if np.all(np.isfinite(vel)) and np.any(vel):

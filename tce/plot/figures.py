@@ -36,7 +36,7 @@ Figures
     lambda_max against each swept parameter, one row per settlement case (cases with the
     same answers share a row).
 
-A state that is not necessarily unique (rigid, no support motion) or a scenario whose
+A state whose optimum is not unique (the canonical state is drawn, :mod:`tce.core.canonical`) or a scenario whose
 outcome is not ``limit`` carries a note on every figure that draws it.
 """
 
@@ -66,6 +66,7 @@ from .data import (
     SWEPT,
     State,
     assembly,
+    one_geometry,
     chain_interfaces,
     find_state,
     group_identical,
@@ -301,7 +302,7 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
         ``"lambda_max"``.
     """
     names = list(names or scenarios(ds))
-    asm = assembly(ds)
+    asm = assembly(ds, names[0] if names else None)  # the frame of the span: the same for every geometry
     frame = structure_frame(asm)
     spatial = any(not is_planar(ds, s) for s in names)
     comps = (["H", "S", "V"] + ([] if frame.kind == "radial" else ["M"])) if spatial else ["H", "V"]
@@ -334,7 +335,7 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
                     for j, sup in enumerate(supports)]
     if any(faint.values()):
         handles.append(Line2D([], [], color="black", alpha=0.4, linewidth=2.5,
-                              label="faint: state not necessarily unique\n(rigid, no support motion)"))
+                              label="faint: optimum not unique\n(the canonical state is drawn)"))
     notes = [f"{s}: {outcome_note(ds, s)}" for s in names if outcome_note(ds, s)]
     limits = sorted({round(float(value(ds, "lambda_max", s)), 9) for s in names
                      if math.isfinite(float(value(ds, "lambda_max", s)))})
@@ -640,8 +641,8 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
         ``"resultants"``, heads ``"resultants-heads"``) are centred on the projected
         pressure points (line ``"pressure_points"``), to the scale stated in the legend.
     """
-    asm = assembly(ds)
     names = list(dict.fromkeys(s for s, _ in panels))
+    asm = one_geometry(ds, names)
     targets = list(dict.fromkeys(t for _, t in panels))
     states = {(s, t): find_state(ds, s, t) for s, t in panels}
     arrays = _Arrays(ds, names)
@@ -727,11 +728,11 @@ def thrust_lines(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object]
     ValueError
         The structure is not one line of blocks.
     """
-    asm = assembly(ds)
+    names, targets = list(names), list(targets)
+    asm = one_geometry(ds, names)
     chain = chain_interfaces(asm)
     if chain is None:
         raise ValueError("the structure is not one line of blocks: it has no line of thrust")
-    names, targets = list(names), list(targets)
     camera = draw.Camera.elevation()
     styles = _Styles.of(ds, names)
     arrays = _Arrays(ds, names)
@@ -767,7 +768,8 @@ def thrust_lines(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object]
             if first is not None:
                 _hinges(sheet.ax, ds, first, asm, camera, planar=True, offset=off)
         same = "; ".join(join_names([keys[i] for i in g], 4) for g in groups if len(g) > 1)
-        title = " / ".join(sorted(labels)) if labels else f"λ = {t}: no admissible state"
+        # no state drawn: each scenario's own note says why (its outcome, or the step's status)
+        title = " / ".join(sorted(labels)) if labels else f"λ = {t}: no state drawn (see the notes)"
         sheet.title(r, c, title + ("\n" + _wrap("coincide: " + same, width) if same else ""))
     sheet.fig.suptitle(f"{_study(ds)}: lines of thrust (pressure points, elevation)", fontsize=FONT + 2,
                        y=1 - 0.12 / sheet.height)
@@ -786,10 +788,10 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
     Horizontal interfaces are drawn in plan (x, y); others in their own frame (t1, t2).
     Points carry the gid ``"base:<interface>:<scenario>"``.
     """
-    asm = assembly(ds)
+    names, targets = list(names), list(targets)
+    asm = one_geometry(ds, names)
     sup = set(asm.support_indices)
     itfs = [k for k, i in enumerate(asm.interfaces) if (i.a in sup) != (i.b in sup)]
-    names, targets = list(names), list(targets)
     styles = _Styles.of(ds, names)
     cols = min(len(itfs), 4)
     rows = math.ceil(len(itfs) / cols)
@@ -869,7 +871,7 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str]) -> Figure:
     """
     names = list(names)
     s0 = names[0]
-    asm = assembly(ds)
+    asm = one_geometry(ds, names)
     vel = np.asarray(ds["mechanism"].sel(scenario=s0).sel(block=list(asm.names)).transpose("block", "dof").values,
                      float)
     verts = [np.asarray(b.shape.vertices, float) for b in asm.blocks]
@@ -973,7 +975,8 @@ def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[o
     ValueError
         The structure is not one line of blocks, or its supports do not lie on a line.
     """
-    asm = assembly(ds)
+    names = list(names)
+    asm = one_geometry(ds, names)
     chain = chain_interfaces(asm)
     frame = structure_frame(asm)
     if chain is None or frame.kind == "radial":

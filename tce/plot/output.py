@@ -14,6 +14,9 @@ given):
 ``transversal.png``     the pressure points across the depth of every joint (``transversal``; one line
                         of blocks with a drawn spatial scenario: Figs. 5-6)
 ``base.png``            pressure points on the support interfaces (``base``)
+
+(a geometry sweep: the figures that draw blocks draw each structure apart, ``thrust_lines_2.png``,
+``base_2.png`` ... for the scenarios of the second structure, and so on)
 ``mechanism.png``       collapse mechanism, ``mechanism_2.png`` ... for other mechanisms (``mechanism``)
 ``summary.png``         lambda_max against the swept parameters (``summary``; sweeps only)
 ``bracket.png``         lambda_max against a swept material parameter with the non-associative
@@ -41,6 +44,7 @@ from .data import (
     PlotSpec,
     assembly,
     chain_interfaces,
+    geometry_groups,
     is_planar,
     mechanism_groups,
     plot_spec,
@@ -116,34 +120,37 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
         if not names:
             skipped.append(f"{kind} (no scenario drawn: name them in [plots] scenarios)")
             continue
-        if kind == "thrust":
-            tasks.append(Task(name("thrust"), kind, (tuple(names),)))
-        elif kind == "states":
-            for k, page in enumerate(state_pages(names, steps)):
-                tasks.append(Task(name("states" if k == 0 else f"states_{k + 1}"), kind, (tuple(page),)))
-        elif kind == "thrust_lines":
-            if chain_interfaces(assembly(ds)) is None:
-                skipped.append("thrust_lines (the structure is not one line of blocks)")
-            else:
-                tasks.append(Task(name("thrust_lines"), kind, (tuple(names), tuple(steps))))
-        elif kind == "transversal":
-            asm = assembly(ds)
-            if chain_interfaces(asm) is None or structure_frame(asm).kind == "radial":
-                skipped.append("transversal (the structure is not one line of blocks)")
-            elif all(is_planar(ds, s) for s in names):
-                skipped.append("transversal (every drawn scenario is planar: the pressure points stay mid-depth)")
-            else:
-                tasks.append(Task(name("transversal"), kind, (tuple(names), tuple(steps))))
-        elif kind == "base":
-            tasks.append(Task(name("base"), kind, (tuple(names), tuple(steps))))
-        elif kind == "mechanism":
-            groups = mechanism_groups(ds, names)
-            if not groups:
-                skipped.append("mechanism (no scenario drawn has one)")
-            for k, group in enumerate(groups):
-                tasks.append(Task(name("mechanism" if k == 0 else f"mechanism_{k + 1}"), kind, (tuple(group),)))
-        elif kind == "view":
-            tasks.append(Task(name("view", "html"), kind, (tuple(names),)))
+        if kind in ("thrust", "view"):  # the view switches structures with the scenario
+            tasks.append(Task(name(kind, "html" if kind == "view" else "png"), kind, (tuple(names),)))
+            continue
+        # the other kinds draw blocks: each group of scenarios on its own structure (a
+        # geometry sweep), pages numbered on across the groups
+        pages: list[tuple] = []
+        for group in geometry_groups(ds, names):
+            if kind == "states":
+                pages += [(tuple(page),) for page in state_pages(group, steps)]
+            elif kind == "thrust_lines":
+                if chain_interfaces(assembly(ds, group[0])) is None:
+                    skipped.append(f"thrust_lines of {group} (the structure is not one line of blocks)")
+                else:
+                    pages.append((tuple(group), tuple(steps)))
+            elif kind == "transversal":
+                asm = assembly(ds, group[0])
+                if chain_interfaces(asm) is None or structure_frame(asm).kind == "radial":
+                    skipped.append(f"transversal of {group} (the structure is not one line of blocks)")
+                elif all(is_planar(ds, s) for s in group):
+                    skipped.append(f"transversal of {group} (every drawn scenario is planar: the pressure points "
+                                   "stay mid-depth)")
+                else:
+                    pages.append((tuple(group), tuple(steps)))
+            elif kind == "base":
+                pages.append((tuple(group), tuple(steps)))
+            elif kind == "mechanism":
+                pages += [(tuple(g),) for g in mechanism_groups(ds, group)]
+        if kind == "mechanism" and not pages:
+            skipped.append("mechanism (no scenario drawn has one)")
+        for k, args in enumerate(pages):
+            tasks.append(Task(name(kind if k == 0 else f"{kind}_{k + 1}"), kind, args))
     for what in skipped:
         log.info("not drawn: %s", what)
     return tasks

@@ -29,7 +29,8 @@ from numpy.typing import NDArray
 
 from ..core.model import lateral_direction
 from . import draw
-from .data import NOT_UNIQUE, assembly, hinge_segments, optimal_steps, outcome_note, scenarios, value
+from ..structures.assembly import Assembly
+from .data import NOT_UNIQUE, assembly, geometry, hinge_segments, optimal_steps, outcome_note, scenarios, value
 from .figures import ARROW_FRACTION, MECHANISM_FRACTION, TORQUE_FRACTION, TORQUE_TOL
 from .load_arrows import declared_loads
 
@@ -95,9 +96,8 @@ def _arrow_polylines(start: NDArray[np.float64], end: NDArray[np.float64], head:
     return out.reshape(-1, 3)
 
 
-def _mesh(ds: xr.Dataset) -> tuple[dict, dict]:
+def _mesh(asm: Assembly) -> tuple[dict, dict]:
     """The blocks as one Mesh3d (fan-triangulated faces, supports grey) and their edges."""
-    asm = assembly(ds)
     x, i, j, k, colours, edges = [], [], [], [], [], []
     for b in asm.blocks:
         base = len(x)
@@ -177,7 +177,7 @@ def _states(pp: NDArray, res: NDArray, tq: NDArray, lam: NDArray, itf_names: lis
 
 def _mechanism(ds: xr.Dataset, s: str) -> dict:
     """Displaced block edges (exaggerated as in :func:`tce.plot.figures.mechanism_view`) and hinges."""
-    asm = assembly(ds)
+    asm = assembly(ds, s)
     if "mechanism" not in ds:
         return dict(edges=_lines([]), hinges=_lines([]), text="")
     vel = np.asarray(ds["mechanism"].sel(scenario=s).sel(block=list(asm.names)).transpose("block", "dof").values,
@@ -194,20 +194,38 @@ def _mechanism(ds: xr.Dataset, s: str) -> dict:
                 text=f"mechanism exaggerated: largest displacement drawn {sc * dmax:.2f} m")
 
 
-def view_data(ds: xr.Dataset, names: Sequence[str] | None = None) -> dict:
-    """The data of the page (what the browser draws), as plain JSON-able values."""
-    asm = assembly(ds)
-    names = list(names or scenarios(ds))
-    force, torque = _scales(ds, names, asm.size)
-    mesh, edges = _mesh(ds)
-    itf_names = [str(x) for x in ds["interface"].values]
-    normals = np.array([i.normal for i in asm.interfaces])
+def _structure(asm: Assembly, force: float) -> dict:
+    """What the page draws of one structure: its blocks, their edges and the self-weight arrows."""
+    mesh, edges = _mesh(asm)
     free = list(asm.free_indices)
     centres, weights = asm.centroids[free], asm.weights[free]
-    head = 0.03 * asm.size
-    dead = _arrow_polylines(centres, centres - weights[:, None] * np.array([0, 0, 1.0]) * force, head)
+    dead = _arrow_polylines(centres, centres - weights[:, None] * np.array([0, 0, 1.0]) * force, 0.03 * asm.size)
+    return dict(mesh=mesh, edges=edges, dead=_lines(dead))
+
+
+def view_data(ds: xr.Dataset, names: Sequence[str] | None = None) -> dict:
+    """The data of the page (what the browser draws), as plain JSON-able values.
+
+    ``structures`` holds the blocks of each structure the scenarios were solved on (one,
+    unless a geometry sweep is drawn); each scenario's ``structure`` indexes it, and the
+    page shows a scenario on its own blocks."""
+    names = list(names or scenarios(ds))
+    asm0 = assembly(ds, names[0] if names else None)
+    force, torque = _scales(ds, names, asm0.size)
+    itf_names = [str(x) for x in ds["interface"].values]
+    drawn: dict[int, int] = {}  # geometry of the dataset -> index in `structures`
+    structures = []
     out = []
     for s in names:
+        g = geometry(ds, s)
+        asm = assembly(ds, s)
+        if g not in drawn:
+            drawn[g] = len(structures)
+            structures.append(_structure(asm, force))
+        normals = np.array([i.normal for i in asm.interfaces])
+        free = list(asm.free_indices)
+        centres, weights = asm.centroids[free], asm.weights[free]
+        head = 0.03 * asm.size
         ok = optimal_steps(ds, s)
         sub = ds.sel(scenario=s)
         pp = np.asarray(sub["pressure_point"].transpose("step", "interface", "xyz").values, float)
@@ -225,11 +243,10 @@ def view_data(ds: xr.Dataset, names: Sequence[str] | None = None) -> dict:
             st["note"] = "; ".join(n for n in (outcome, NOT_UNIQUE if unique[k] == 0.0 else "") if n)
         lmax = float(value(ds, "lambda_max", s))
         at_max = [n for n, st in enumerate(steps) if math.isfinite(lmax) and abs(st["lam"] - lmax) <= 1e-12]
-        out.append(dict(name=s, steps=steps, start=at_max[-1] if at_max else max(len(steps) - 1, 0),
+        out.append(dict(name=s, structure=drawn[g], steps=steps, start=at_max[-1] if at_max else max(len(steps) - 1, 0),
                         lmax=lmax if math.isfinite(lmax) else None, outcome=outcome,
                         mechanism=_mechanism(ds, s)))
-    return dict(title=str(ds.attrs.get("study_name", "")) or "tce results", mesh=mesh, edges=edges,
-                dead=_lines(dead), scenarios=out,
+    return dict(title=str(ds.attrs.get("study_name", "")) or "tce results", structures=structures, scenarios=out,
                 scale=f"arrows: 1 kN = {force:.3g} m" + (f"; torque arcs: radius 1 kN m = {torque:.3g} m" if torque
                                                           else ""))
 
@@ -263,14 +280,15 @@ const sel = document.getElementById("scenario"), slider = document.getElementByI
 const mech = document.getElementById("mech");
 const line = (name, colour, width, legend) => ({{type: "scatter3d", mode: "lines", name: name,
   line: {{color: colour, width: width}}, hoverinfo: "skip", showlegend: legend, x: [], y: [], z: []}});
+const S0 = D.structures[0];
 const traces = [
-  D.mesh, D.edges,
+  Object.assign({{}}, S0.mesh), Object.assign({{}}, S0.edges),
   line("interface resultant at pressure point", "#c0141e", 5, true),
   {{type: "scatter3d", mode: "markers", name: "pressure point", marker: {{size: 3, color: "#c0141e"}},
     hoverinfo: "text", text: [], x: [], y: [], z: []}},
   line("torque about the normal", "#000000", 3, true),
   line("live loads (lateral λ W, applied loads)", "#0072B2", 4, true),
-  Object.assign(line("self-weight W", "#009E73", 3, true), D.dead),
+  Object.assign(line("self-weight W", "#009E73", 3, true), S0.dead),
   line("collapse mechanism (exaggerated)", "#555555", 2, true),
   line("hinge", "#0072B2", 9, true),
 ];
@@ -280,7 +298,7 @@ const layout = {{margin: {{l: 0, r: 0, t: 10, b: 0}}, legend: {{x: 0, y: 1}},
 function state() {{
   const sc = D.scenarios[sel.value], st = sc.steps[slider.value];
   if (!st) {{
-    document.getElementById("lam").textContent = "no admissible state";
+    document.getElementById("lam").textContent = "no state to show";
     document.getElementById("note").textContent = sc.outcome;
     Plotly.restyle("plot", {{x: [[], [], [], []], y: [[], [], [], []], z: [[], [], [], []]}}, [2, 3, 4, 5]);
     return;
@@ -299,7 +317,11 @@ function mechanism() {{
   state();
 }}
 function scenario() {{
-  const sc = D.scenarios[sel.value];
+  const sc = D.scenarios[sel.value], g = D.structures[sc.structure];
+  // each scenario on its own blocks (a geometry sweep solves each on another structure)
+  Plotly.restyle("plot", {{x: [g.mesh.x], y: [g.mesh.y], z: [g.mesh.z], i: [g.mesh.i], j: [g.mesh.j],
+    k: [g.mesh.k], facecolor: [g.mesh.facecolor]}}, [0]);
+  Plotly.restyle("plot", {{x: [g.edges.x, g.dead.x], y: [g.edges.y, g.dead.y], z: [g.edges.z, g.dead.z]}}, [1, 6]);
   slider.max = Math.max(sc.steps.length - 1, 0);
   slider.value = sc.start;
   mechanism();

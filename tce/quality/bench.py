@@ -28,6 +28,9 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
 ``load_path``
     Number of solves and time of the load path against the bisection tolerance, against
     the direct lambda_max.
+``canonical``
+    The same load paths with and without canonical states (:mod:`tce.core.canonical`),
+    planar LP and 3D SOCP: the extra cost as a ratio, and how many steps were decided unique.
 ``discretisation``
     Arches of 8 to 400 voussoirs: time and error of lambda_90max against its closed form
     ``(d/2) / z_c`` (``z_c`` the voussoirs' centroid height) and of the minimum thickness
@@ -429,6 +432,42 @@ def _load_path(quick: bool) -> list[dict[str, Any]]:
                          note=f"{r.outcome}; gap to direct {r.gap:.2g}; {r.n_solves} solves "
                               f"(bisection {res['bisection'].n_solves}); includes the direct lambda_max solve")
                 )
+    return rows
+
+
+# ---------------------------------------------------------------- canonical states
+def _canonical(quick: bool) -> list[dict[str, Any]]:
+    """The extra cost of canonical states (:mod:`tce.core.canonical`): the same load paths
+    with and without them (interleaved, same run), planar LP and 3D SOCP; ``ratio`` is the
+    median time with over the median time without."""
+    from ..core.analysis import Analysis
+    from ..analysis.loadpath import load_path
+
+    arch = semicircular_arch().validate()
+    rows: list[dict[str, Any]] = []
+    scenes = (("arch in plane, 1 mm spreading (planar LP)", SETTLEMENT),
+              ("arch, 1 mm transversal motion (3D SOCP)", {"right": [0.0, 0.001, 0.0, 0.0, 0.0, 0.0]}))
+    for case, sett in scenes:
+        times: dict[bool, list[float]] = {True: [], False: []}
+        res: dict[bool, Any] = {}
+        for _ in range(1 if quick else 5):
+            for on in (False, True):
+                an = Analysis(arch, Material(friction=FRICTION), options=SolverOptions(canonical=on))
+                t0 = time.perf_counter()
+                res[on] = load_path(an, 0.0, sett, step=0.02, atol=1e-6)
+                times[on].append(time.perf_counter() - t0)
+        base = statistics.median(times[False])
+        for on in (False, True):
+            r = res[on]
+            unique = [s.unique for s in r.steps if s.ok]
+            rows.append(_row(
+                "canonical", case, "canonical states" if on else "solver's states", solver="CLARABEL",
+                model=r.steps[-1].model, n_blocks=len(arch.blocks), n_solves=r.n_solves,
+                time_s=statistics.median(times[on]), solver_time_s=r.solve_time,
+                ratio=statistics.median(times[on]) / base,
+                note=f"{r.outcome}; steps decided unique: {sum(u is True for u in unique)}, not unique: "
+                     f"{sum(u is False for u in unique)}, undecided: {sum(u is None for u in unique)}",
+            ))
     return rows
 
 
@@ -1039,6 +1078,7 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "limit": _limit_rows,
     "limit_cost": _limit_cost,
     "load_path": _load_path,
+    "canonical": _canonical,
     "discretisation": _discretisation,
     "scaling": _scaling,
     "runs": _runs,

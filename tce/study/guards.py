@@ -55,6 +55,17 @@ class StudyError(ValueError):
     these guards and by :mod:`tce.study.schema`, which exports it)."""
 
 
+def _worst_steps(step: float | None, cap: float | None) -> int:
+    """Most load increments of one path (:func:`tce.analysis.loadpath.increments_and_cap`):
+    ``cap / step`` when both are given; anchored on the direct limit otherwise (about
+    ``AUTO_INCREMENTS``, or at most ``MAX_INCREMENTS`` for a given step without a cap)."""
+    from ..analysis.loadpath import AUTO_INCREMENTS, MAX_INCREMENTS
+
+    if step is not None and cap is not None:
+        return math.floor(cap / step) + 1
+    return MAX_INCREMENTS + 1 if step is not None else AUTO_INCREMENTS + 2
+
+
 def _error(msg: str) -> Exception:
     return StudyError(msg)
 
@@ -173,13 +184,13 @@ def check_work(path: Path, spec: Any, drawn_scenarios: int | None = None) -> Non
             "fix: sweep fewer values, or split the study"
         )
     loads = spec.loads
-    steps = math.floor(loads.lambda_cap / loads.lambda_step) + 1
+    steps = _worst_steps(loads.lambda_step, loads.lambda_cap)
     states = len(spec.plots.lambdas)
     solves = count * (steps + 2 + states)
     if solves > MAX_SOLVES:
         raise _error(
-            f"{path}: loads: {count} scenarios x ({steps} load steps to lambda_cap = {loads.lambda_cap:g} "
-            f"by lambda_step = {loads.lambda_step:g} + 2 + {states} drawn) = {solves} solves at most, more than "
+            f"{path}: loads: {count} scenarios x ({steps} load steps to lambda_cap = {loads.lambda_cap} "
+            f"by lambda_step = {loads.lambda_step} + 2 + {states} drawn) = {solves} solves at most, more than "
             f"MAX_SOLVES = {MAX_SOLVES}; fix: a larger lambda_step, a smaller lambda_cap or fewer scenarios"
         )
     if drawn_scenarios is not None and drawn_scenarios * len(spec.plots.steps) > MAX_DRAWN_STATES:

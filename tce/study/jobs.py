@@ -120,13 +120,17 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
         an.solve(0.0, first.alpha, first.settlements)
     t_solve = (time.process_time() - t0) / 3
     an.reset_solvers()
+    from ..analysis.loadpath import AUTO_INCREMENTS, MAX_INCREMENTS, increments_and_cap
+
     solves = 0.0
     for sc in scenarios:
-        step, cap = sc.loads["lambda_step"], sc.loads["lambda_cap"]
-        # the first analysis's limit in the scenario's direction, for every group (another
-        # material or structure changes it less than running to lam_cap would assume)
-        lam = an.limit(sc.alpha, mechanism=False).lambda_max
-        increments = min(lam, cap) / step + 1 if math.isfinite(lam) else cap / step + 1
+        if sc.group != first.group:  # another structure or material: as a path anchored on its limit
+            solves += AUTO_INCREMENTS + 4
+            continue
+        lim = an.limit(loads=sc.loads_pattern, mechanism=False)
+        step, cap, _ = increments_and_cap(lim, sc.loads["lambda_step"], sc.loads["lambda_cap"])
+        lam = lim.lambda_max
+        increments = min(lam, cap) / step + 1 if math.isfinite(lam) else min(cap / step, MAX_INCREMENTS) + 1
         solves += increments + 2
     groups = len({sc.group for sc in scenarios})
     work = solves * t_solve + len(scenarios) * SCENARIO_S + (groups - 1) * t_build

@@ -87,7 +87,8 @@ def critical_positions(ds: xr.Dataset) -> list[CriticalPosition]:
     """
     lam = {str(s): float(v) for s, v in zip(ds["scenario"].values, ds["lambda_max"].values)}
     x = {str(s): float(v) for s, v in zip(ds["scenario"].values, ds["load_x"].values)}
-    atol = 2.0 * float(json.loads(ds.attrs.get("loads", "{}")).get("tolerance", 0.0))
+    tol = json.loads(ds.attrs.get("loads", "{}")).get("tolerance")
+    atol = 2.0 * float(tol or 0.0)  # no tolerance: the path's is 1e-6 of the limit (DEFAULT_RTOL)
     out = []
     for group, scen in position_groups(ds).items():
         finite = [s for s in scen if math.isfinite(lam[s])]
@@ -95,7 +96,7 @@ def critical_positions(ds: xr.Dataset) -> list[CriticalPosition]:
             out.append(CriticalPosition(group, tuple(scen), "", float("nan"), float("nan")))
             continue
         least = min(lam[s] for s in finite)
-        tied = [s for s in finite if lam[s] - least <= max(atol, 1e-6 * abs(least))]  # sorted by load_x
+        tied = [s for s in finite if lam[s] - least <= max(atol, 2e-6 * abs(least))]  # sorted by load_x
         best = tied[0]
         out.append(CriticalPosition(group, tuple(scen), best, x[best], lam[best], tuple(x[s] for s in tied[1:])))
     return out

@@ -38,7 +38,7 @@ import xarray as xr
 
 from .. import __version__
 from ..core.analysis import Analysis
-from ..analysis.diagnose import no_limit_reason
+from ..analysis.diagnose import no_limit_reason, unbounded_reason
 from ..analysis.loadpath import LoadPathResult
 from ..analysis.nonassoc import NonAssocResult
 from ..core.model import InterfaceMap
@@ -56,6 +56,7 @@ __all__ = [
     "merge_scenarios",
     "remove_temporaries",
     "scenario_dataset",
+    "geometries",
     "scenario_path",
     "steps_dataset",
     "study_attrs",
@@ -73,7 +74,7 @@ SCENARIO_VARS = (
     "torque", "lambda_max", "lambda_upper", "lambda_direct", "lambda_gap", "lambda_kinematic",
     "certificate_gap", "n_solves", "solve_time", "wall_time", "outcome", "model", "mechanism",
     "interface_mode", "hinge_point", "interface_a", "interface_b", "block_centroid", "block_support",
-    "no_limit_reason", "unique", "vertex_force", "vertex_point", "vertex_interface",
+    "no_limit_reason", "unbounded_reason", "unique", "vertex_force", "vertex_point", "vertex_interface",
 )
 #: name of the lock file of a study folder
 LOCK_NAME = ".tce-run.lock"
@@ -87,8 +88,10 @@ META: dict[str, tuple[str, str]] = {
     "lambda_gap": ("1", "lambda_max minus lambda_direct"),
     "lambda_kinematic": ("1", "load multiplier from the virtual work of the loads on the mechanism"),
     "certificate_gap": ("1", "relative gap between kinematic and direct load multipliers"),
-    "outcome": ("-", "how the load path ended (limit, unbounded, infeasible, no_limit, numerical)"),
+    "outcome": ("-", "how the load path ended (limit, capped, no_limit, unbounded, infeasible, numerical)"),
     "no_limit_reason": ("-", "why there is no finite limit, in words (empty unless the outcome is no_limit)"),
+    "unbounded_reason": ("-", "which support motion the material cannot follow, and why, in words (empty unless the "
+                         "outcome is unbounded)"),
     "model": ("-", "model solved (planar or spatial)"),
     "n_solves": ("-", "number of TCE solves of the load path"),
     "solve_time": ("s", "wall time inside the solver's solve calls, summed over the load path (set-up excluded)"),
@@ -102,17 +105,18 @@ META: dict[str, tuple[str, str]] = {
     "resultant": ("kN", "interface resultant force on block B, global frame"),
     "pressure_point": ("m", "interface pressure point"),
     "torque": ("kN m", "torque about the interface normal at the pressure point, on block B"),
-    "unique": ("1", "1 if the step's force state is the unique minimiser, 0 if not (rigid, no support motion: "
-               "one admissible state of many), NaN if unknown"),
+    "unique": ("1", "1 if the step's force state is the unique minimiser, 0 if not (then the state stored is the "
+               "canonical one: least unit-stiffness energy among the minimisers, tce.core.canonical), NaN if undecided"),
     "vertex_force": ("kN", "force at each interface vertex on block B, global frame"),
-    "vertex_point": ("m", "interface vertex position"),
+    "vertex_point": ("m", "interface vertex position (in the scenario's own structure)"),
+    "geometry": ("-", "index k of the scenario's structure: its blocks are the attr 'assembly' (k = 0) or 'assembly_<k>'"),
     "vertex_interface": ("-", "interface of the vertex, as 'A|B' block names"),
     "mechanism": ("m, rad", "collapse mechanism velocities at the limit (unit amplitude, supports zero)"),
     "interface_mode": ("-", "interface behaviour in the mechanism (hinge, sliding, opening, closed)"),
     "hinge_point": ("m", "trace point of the hinge line (NaN if no hinge)"),
     "interface_a": ("-", "block A of the interface (the normal points from A into B)"),
     "interface_b": ("-", "block B of the interface"),
-    "block_centroid": ("m", "block centroid"),
+    "block_centroid": ("m", "block centroid (in the scenario's own structure)"),
     "block_support": ("-", "1 for support blocks, 0 for free blocks"),
     "load_point": ("m", "point of application of each declared load (a distributed load: each part's resultant)"),
     "load_force": ("kN", "force of each declared load, global frame (a scaled load: at lambda = 1)"),
@@ -278,16 +282,18 @@ def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int
 
 
 def _static_vars(analysis: Analysis, imap: InterfaceMap) -> dict[str, tuple]:
-    """Variables of the assembly and of the interface vertices of ``imap`` (no scenario dimension)."""
+    """Variables of the assembly and of the interface vertices of ``imap``: the coordinates
+    (``vertex_point``, ``block_centroid``) per scenario, since a geometry sweep gives each
+    scenario its own; names and support flags (the same for every scenario) without."""
     a = analysis.assembly
     names = [f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces]
     owner = np.asarray(imap.interfaces, dtype=int)[imap.vertex_slot]
     return {
-        "vertex_point": (("vertex", "xyz"), imap.vertex_points),
+        "vertex_point": (("scenario", "vertex", "xyz"), imap.vertex_points[None]),
         "vertex_interface": (("vertex",), _text([names[k] for k in owner])),
         "interface_a": (("interface",), _text([a.names[i.a] for i in a.interfaces])),
         "interface_b": (("interface",), _text([a.names[i.b] for i in a.interfaces])),
-        "block_centroid": (("block", "xyz"), a.centroids),
+        "block_centroid": (("scenario", "block", "xyz"), a.centroids[None]),
         "block_support": (("block",), np.asarray([int(b.support) for b in a.blocks])),
     }
 
@@ -382,6 +388,7 @@ def scenario_dataset(
     data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
     data.update(_static_vars(analysis, path[0].interface_map))
     data["no_limit_reason"] = (("scenario",), _text([no_limit_reason(analysis, lp)]))
+    data["unbounded_reason"] = (("scenario",), _text([unbounded_reason(analysis, lp)]))
     if nonassoc is not None:
         data.update(_nonassoc_vars(nonassoc))
     loads, load_coord = _load_vars(lp, analysis)
@@ -619,11 +626,35 @@ def _pad(ds: xr.Dataset, n_steps: int) -> xr.Dataset:
     return ds.reindex(step=np.arange(n_steps), fill_value=fill)
 
 
+def geometries(study: Study) -> tuple[list[dict], list[int]]:
+    """The distinct structures of a study's scenarios, in the order they first appear, and
+    the index of each scenario's (in :meth:`Study.scenarios` order).
+
+    Scenarios share a structure when their built assemblies are the same
+    (:attr:`Scenario.assembly_digest`); a geometry sweep (``thickness``, ``inner_radius``,
+    ``depth``, ``radius``) gives one per swept value.
+    """
+    seen: dict[str, int] = {}
+    structures: list[dict] = []
+    index = []
+    for sc in study.scenarios():
+        if sc.assembly_digest not in seen:
+            seen[sc.assembly_digest] = len(structures)
+            structures.append(sc.structure)
+        index.append(seen[sc.assembly_digest])
+    return structures, index
+
+
 def study_attrs(study: Study, models: Iterable[str]) -> dict[str, str]:
-    """Global attrs: study text, versions, solver, models, assembly and material."""
-    first = study.scenarios()[0]
-    assembly = study.assembly(first.structure)
-    return {
+    """Global attrs: study text, versions, solver, models, assemblies and material.
+
+    ``assembly`` is the structure of geometry 0 (the first scenario's); a geometry sweep
+    adds ``assembly_1``, ``assembly_2``, ... for the others (the ``geometry`` variable
+    names each scenario's)."""
+    structures, _ = geometries(study)
+    assembly = study.assembly(structures[0])
+    extra = {f"assembly_{k}": json.dumps(study.assembly(s).to_dict()) for k, s in enumerate(structures) if k}
+    return extra | {
         "study": study.text,
         "study_name": study.name,
         "tce_version": __version__,
@@ -639,8 +670,10 @@ def study_attrs(study: Study, models: Iterable[str]) -> dict[str, str]:
 def merge_scenarios(study: Study, parts: dict[str, xr.Dataset]) -> xr.Dataset:
     """The study dataset: ``parts`` (one dataset per scenario name) in the study's order.
 
-    Variables without a ``scenario`` dimension (the geometry) are taken from the first
-    scenario; with a geometry sweep they describe the first structure of the sweep.
+    Variables without a ``scenario`` dimension (names and support flags, the same for every
+    scenario) are taken from the first scenario. Each scenario keeps its own coordinates
+    (``vertex_point``, ``block_centroid``); ``geometry`` and the ``assembly``/``assembly_<k>``
+    attrs give each its own blocks (:func:`geometries`).
     """
     order = [sc.name for sc in study.scenarios()]
     missing = [n for n in order if n not in parts]
@@ -658,6 +691,7 @@ def merge_scenarios(study: Study, parts: dict[str, xr.Dataset]) -> xr.Dataset:
             join="outer",
             combine_attrs="drop",
         )
+    ds["geometry"] = (("scenario",), np.asarray(geometries(study)[1], dtype=np.int64))
     ds.attrs = study_attrs(study, ds["model"].values.tolist())
     return _label(ds)
 

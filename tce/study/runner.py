@@ -52,12 +52,13 @@ from typing import Any, Literal
 import joblib
 import xarray as xr
 
-from ..analysis.loadpath import LoadPathResult, load_path
+from ..analysis.loadpath import DEFAULT_RTOL, LoadPathResult, load_path
 from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
 from ..analysis.assessment import adequacy_factor
 from ..analysis.critical import critical_position
+from . import keys
 from .jobs import choose_jobs
 from .positions import with_adequacy, with_critical
 from .results import (
@@ -99,7 +100,7 @@ Progress = Callable[[int, int, int], None]
 #: draws a written results dataset: (dataset, study folder, processes) -> files written
 Draw = Callable[[xr.Dataset, Path, int], Sequence[Path]]
 #: outcomes of a load path, in the order the run summary lists them
-OUTCOMES = ("limit", "no_limit", "unbounded", "infeasible", "numerical")
+OUTCOMES = ("limit", "capped", "no_limit", "unbounded", "infeasible", "numerical")
 
 
 class RunError(RuntimeError):
@@ -190,6 +191,7 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     (:func:`with_drawn_states`).
     """
     analysis = _cold(_analysis(sc, assembly))
+    tol = sc.loads["tolerance"]
     pattern, crit = sc.loads_pattern, None
     if sc.loads.get("critical_position"):
         crit = critical_position(analysis, pattern, start=sc.loads["positions"])
@@ -203,9 +205,13 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
         analysis,
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
-        atol=sc.loads["tolerance"],
+        # no tolerance given: relative to the limit, so the adequacy factor of a live load
+        # does not depend on its size (issue 21)
+        atol=0.0 if tol is None else tol,
+        rtol=DEFAULT_RTOL if tol is None else 0.0,
         lam_cap=sc.loads["lambda_cap"],
         loads=pattern,
+        bracket=keys.BRACKET,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     bracket = None

@@ -426,9 +426,9 @@ class LoadsSection(_Strict):
     fill: FillSection | None = None
     critical_position: bool = False
     positions: list[float] | None = None
-    lambda_step: Positive = 0.02
-    tolerance: Positive = 1e-6
-    lambda_cap: Positive = 100.0
+    lambda_step: Positive | None = None
+    tolerance: Positive | None = None
+    lambda_cap: Positive | None = None
 
     @property
     def alphas(self) -> list[float]:
@@ -447,7 +447,8 @@ class LoadsSection(_Strict):
         )
 
     def path_settings(self) -> dict[str, Any]:
-        """``lambda_step``, ``tolerance``, ``lambda_cap``: how the load path runs; with
+        """``lambda_step``, ``tolerance``, ``lambda_cap``: how the load path runs (None: anchored
+        on the direct limit, :func:`tce.analysis.loadpath.load_path`); with
         ``critical_position``, also ``critical_position`` and ``positions`` (the search's
         starting positions, m)."""
         out: dict[str, Any] = {"lambda_step": self.lambda_step, "tolerance": self.tolerance, "lambda_cap": self.lambda_cap}
@@ -476,6 +477,14 @@ class LoadsSection(_Strict):
 
     @model_validator(mode="after")
     def _path_ends(self) -> LoadsSection:
+        if self.lambda_step is None or self.lambda_cap is None:
+            return self
+        if self.lambda_step > self.lambda_cap:
+            raise ValueError(
+                f"lambda_step = {self.lambda_step!r} is larger than lambda_cap = {self.lambda_cap!r}: the path would "
+                "try no multiplier but 0; fix: use a lambda_step below lambda_cap, or leave either out (both are "
+                "then chosen from the direct limit)"
+            )
         if not self.lambda_cap / self.lambda_step <= MAX_INCREMENTS:
             raise ValueError(
                 f"lambda_cap / lambda_step = {self.lambda_cap / self.lambda_step:.3g} load increments, more than "
@@ -698,9 +707,11 @@ class Scenario:
     def key(self) -> str:
         """SHA-256 of everything that determines the answer (for resuming): the built
         assembly, the material, the support motions, the direction, the loads (when other
-        than the lateral pattern alone), the load-path settings and the versions of tce and
-        of the solver."""
+        than the lateral pattern alone), the load-path settings, the versions of tce and
+        of the solver, how the runner narrows the limit, the solver's settings and a digest
+        of the installed tce code (:mod:`tce.study.keys`)."""
         from ..core.solve import SOLVER_NAME
+        from .keys import BRACKET, code_digest, solver_settings
 
         what = {
             "assembly": self.assembly_digest,
@@ -710,6 +721,9 @@ class Scenario:
             "loads": self.loads,
             "tce": __version__,
             "solver": SOLVER_NAME,
+            "bracket": BRACKET,
+            "solver_settings": solver_settings(),
+            "code": code_digest(),
         }
         if not self.loads_pattern.default:
             what["pattern"] = self.pattern

@@ -97,8 +97,6 @@ def test_load_path_near_the_limit_is_decided():
 ARCH = {"type": "semicircular_arch", "voussoirs": 8}
 
 
-@pytest.mark.xfail(strict=True, reason="issue 21 item 2: limits not anchored on the direct limit (no_limit at the "
-                   "default cap), fixed on branch i21fix")
 def test_live_load_beyond_the_default_cap(tmp_path):
     """Issue 21, problem 2: a 4 N live load on the arch's extrados collapses at lambda =
     370.29 (direct limit); with the default step and cap the outcome is ``no_limit`` after
@@ -109,7 +107,6 @@ def test_live_load_beyond_the_default_cap(tmp_path):
     assert abs(float(ds["lambda_max"][0]) - float(ds["lambda_direct"][0])) <= 1e-6 * float(ds["lambda_direct"][0])
 
 
-@pytest.mark.xfail(strict=True, reason="issue 21 item 2: lambda_step > lambda_cap accepted, fixed on branch i21fix")
 def test_step_above_the_cap_is_refused(tmp_path):
     """Issue 21, problem 2: ``lambda_step = 2`` with ``lambda_cap = 1`` is accepted and gives
     ``no_limit`` for an arch whose limit is 0.25: a study error naming the key is expected."""
@@ -132,8 +129,6 @@ def test_moving_axles_keep_their_spacing(tmp_path):
     np.testing.assert_allclose(np.abs(x[:, 1] - x[:, 0]), 0.6, atol=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason="issue 21 item 3: uniqueness left unknown (NaN) with a settlement, fixed on "
-                   "branch i21fix")
 def test_uniqueness_is_decided(tmp_path):
     """Issue 21, problem 4: with a settlement on a rigid structure the dataset records the
     uniqueness of each state as unknown (NaN). Expected: 0 or 1 at every optimal step."""

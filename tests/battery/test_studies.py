@@ -58,7 +58,7 @@ def _common_steps(a: xr.Dataset, b: xr.Dataset, k: int) -> list[tuple[int, int]]
 
 def same_results(a: xr.Dataset, b: xr.Dataset, t: Similarity) -> None:
     """``b`` is ``a`` seen through ``t`` (tolerances: ``relations.py``)."""
-    size = float(np.linalg.norm(np.ptp(a["vertex_point"].values, axis=0))) * t.length
+    size = float(np.linalg.norm(np.ptp(a["vertex_point"].values.reshape(-1, 3), axis=0))) * t.length  # per scenario
     # stored geometry, moved by the map
     names = a["block"].values
     np.testing.assert_allclose(b["block_centroid"].sel(block=names).values, t.points(a["block_centroid"].values),

@@ -109,8 +109,6 @@ def test_alpha_list_against_one_direction_each(tmp_path):
         _same_scenario(sweep.isel(scenario=k), one.isel(scenario=0))
 
 
-@pytest.mark.xfail(strict=True, reason="issue 21 item 1: a geometry sweep stores the first scenario's geometry, "
-                   "fixed on branch i21fix")
 def test_geometry_sweep_stores_each_scenarios_geometry(tmp_path):
     """Issue 21, problem 1: with ``[sweep] thickness`` every scenario's stored vertices and
     centroids are those of a fresh build of its own structure (those of its single run)."""
@@ -118,7 +116,8 @@ def test_geometry_sweep_stores_each_scenarios_geometry(tmp_path):
     for k, one in enumerate(singles):
         mine = sweep.isel(scenario=k)
         for name in ("vertex_point", "block_centroid"):
-            np.testing.assert_allclose(mine[name].values, one[name].values, rtol=0, atol=1e-12, err_msg=name)
+            np.testing.assert_allclose(mine[name].values, one[name].values.reshape(mine[name].shape), rtol=0, atol=1e-12,
+                                       err_msg=name)
 
 
 # ---------------------------------------------------------------------- runners

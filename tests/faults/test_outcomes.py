@@ -83,7 +83,8 @@ class Scripted:
         return solve_at
 
     def limit(self, alpha=None, loads=None, mechanism=True):
-        return SimpleNamespace(lambda_max=self.direct)
+        status = "optimal" if math.isfinite(self.direct) else "unbounded" if self.direct == math.inf else "numerical"
+        return SimpleNamespace(lambda_max=self.direct, status=status)
 
 
 def test_bisection_below_float_spacing_ends_with_neighbouring_floats() -> None:
@@ -107,18 +108,35 @@ def test_bisection_below_float_spacing_ends_with_neighbouring_floats() -> None:
         (lambda lam: "infeasible", "infeasible"),
         (lambda lam: "numerical" if lam < 0.3 else "infeasible", "numerical"),
         (lambda lam: "optimal" if lam < 0.2 else "numerical", "numerical"),
-        (lambda lam: "optimal", "no_limit"),
+        # every step admissible although the direct limit is 0.25: not "no_limit" (issue 21)
+        (lambda lam: "optimal", "numerical"),
         (lambda lam: "optimal" if lam < 0.25 else "infeasible", "limit"),
         (lambda lam: "numerical" if lam == 0.0 else "optimal" if lam < 0.25 else "infeasible", "limit"),
         (lambda lam: "optimal" if lam <= 0.1 else "numerical" if lam < 0.3 else "infeasible", "numerical"),
     ],
-    ids=["infeasible at 0", "numerical before infeasible", "numerical to the cap", "no limit", "limit",
+    ids=["infeasible at 0", "numerical before infeasible", "numerical to the cap", "admissible beyond the direct limit", "limit",
          "one numerical step below the limit", "limit bracketed by undecided steps only"],
 )
 def test_outcome_logic(status, outcome: str) -> None:
     lp = load_path(Scripted(status, direct=0.25), step=0.1, atol=1e-3, lam_cap=1.0)
     assert lp.outcome == outcome
     assert math.isnan(lp.lambda_max) == (outcome != "limit")
+
+
+@pytest.mark.parametrize(
+    ("direct", "outcome"),
+    [(math.inf, "no_limit"), (0.25, "numerical"), (math.nan, "numerical"), (2.0, "capped")],
+    ids=["unbounded direct", "finite direct", "undecided direct", "cap below the direct limit"],
+)
+def test_no_limit_only_where_the_direct_limit_is_unbounded(direct: float, outcome: str) -> None:
+    """Issue 21: every step admissible up to the cap was ``no_limit`` whatever the direct
+    limit said; it is ``no_limit`` only when the direct limit is unbounded, ``capped`` when
+    the cap lies below a finite one."""
+    lp = load_path(Scripted(lambda lam: "optimal", direct=direct), step=0.1, atol=1e-3, lam_cap=1.0)
+    assert lp.outcome == outcome
+    assert math.isnan(lp.lambda_max)
+    if outcome == "capped":
+        assert lp.message == "capped at lambda = 1, below the collapse load lambda_direct = 2"
 
 
 HEYMAN = TINY.replace("[sweep]\nfriction = [0.8, 2.0]\n", "").replace(

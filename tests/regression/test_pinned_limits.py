@@ -98,7 +98,9 @@ def test_dome_radial_settlement_gives_equal_thrusts():
     w = res.support_wrenches
     h = np.hypot(w[:, 0], w[:, 1])
     assert h.max() - h.min() <= 1e-6 * h.max()
-    assert h.mean() == pytest.approx(31.23619602, rel=1e-7)  # kN, measured
+    # kN, measured (issue 21: the canonical state; the solver's own state, 31.23619602, lay
+    # 2.6e-7 above the minimum, which the canonical solve's energy bound does not allow)
+    assert h.mean() == pytest.approx(31.23618782, rel=1e-7)
     c = dome.centroids[list(dome.support_indices), :2]
     radial = (w[:, :2] * c).sum(axis=1) / np.linalg.norm(c, axis=1)
     assert np.all(radial < 0)  # the support pushes inward: the dome thrusts outward

@@ -1,0 +1,133 @@
+"""Canonical force states where the TCE optimum is not unique (issue 21).
+
+With rigid contacts the TCE is linear (``Pi_c = -U' B_sup F``), and its minimisers form a
+face of the admissible set: every admissible state when no support moves, often a segment
+or more with a settlement. An interior-point solver returns some point of that face (near
+its analytic centre), which depends on the solver's path: curves along a load path then
+zigzag between points of the face. tce reports one state chosen by a rule that does not
+depend on the solver:
+
+**The canonical state** is the optimal state of least complementary strain energy for a
+uniform unit stiffness: among the admissible states ``F`` with ``Pi_c(F) <= Pi_c* + eps``
+(the optimal face, ``eps`` relative to the optimum), the minimiser of
+
+    1/2 F' C F,    C = diag(1 / (s_k a_k))  (per force component; s the interface's
+                                               stiffness multiplier, a the tributary area)
+
+i.e. ``tce.core.model.Model.compliance(1, 1)``: the limit, as the stiffness grows without
+bound, of the compliant answer with equal normal and shear stiffness (the strictly convex
+term selects one point of the face). The objective is strictly convex, so the canonical
+state is unique; the planar model gives the spatial one (its contact force spread over the
+vertices in proportion to their areas is the least-energy spread). ``eps`` is
+:data:`FACE_SLACK` times the optimum (the solver's own accuracy is about 1e-10), so the
+quantities the energy fixes (the thrust under a spreading) move by at most that fraction.
+
+**Uniqueness is decided** by comparing the solver's answer with the canonical state: an
+interior-point answer lies in the relative interior of the optimal face, so when the face
+is more than a point the two differ (by more than :data:`SAME_STATE` of the total weight
+at some contact) and the state is flagged not unique (``unique = False``); when they agree,
+the optimum is unique (``unique = True``). The test is exact for a face of one point and
+fails only when the analytic centre of a larger face happens to be its least-energy point
+(a symmetric face), which the comparison then reports as unique.
+
+Cost: one more small conic problem per rigid optimal solve (the constraints of the TCE
+problem and one row bounding the energy), solved with a warm solver per support motion;
+``tce bench`` (section ``canonical``) reports the ratio.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+
+from .clarabel_solver import ClarabelSolver, SolverOptions
+from .problem import ConicProblem, Formulation, _cones
+
+__all__ = ["FACE_SLACK", "SAME_STATE", "Canonical", "CanonicalSolver", "canonical_b", "canonical_problem"]
+
+#: slack of the energy bound of the optimal face, relative to the optimum
+FACE_SLACK = 1e-10
+#: two states differ when a force component differs by more than this, relative to W
+SAME_STATE = 1e-6
+
+
+def canonical_b(f: Formulation, b: NDArray[np.float64], bound: float) -> NDArray[np.float64]:
+    """Right-hand side of :func:`canonical_problem` (what a warm solver updates)."""
+    m, nz, h = f.A_eq.shape[0], f.law.n_zero, f.law_h
+    return np.concatenate([b[:m], h[:nz], [bound], h[nz:]])
+
+
+def canonical_problem(f: Formulation, b: NDArray[np.float64], q: NDArray[np.float64], bound: float) -> ConicProblem:
+    """``min 1/2 x' C x  s.t.  A_eq x = b_eq,  law,  q' x <= bound`` on the scaled unknowns
+    ``x = F / W`` (the rows of :func:`tce.core.problem.tce_problem` plus one nonnegative row).
+
+    ``C`` is the unit-stiffness compliance (module docstring), normalised to a largest
+    entry of 1; without a motion (``q = 0``) the energy row is ``0 <= bound`` (every
+    admissible state is optimal).
+    """
+    law = f.law
+    m, n = f.A_eq.shape
+    c = f.model.compliance(1.0, 1.0)
+    P = sp.diags(c / c.max()).tocsc()
+    M = law.M.tocsr()
+    nz = law.n_zero
+    A = sp.vstack([f.A_eq, -M[:nz], sp.csr_matrix(q.reshape(1, -1)), -M[nz:]]).tocsc()
+    cones = _cones(("zero", m + nz), ("nonneg", law.n_nonneg + 1), n_soc=law.n_soc)
+    return ConicProblem("canonical", P, np.zeros(n), A, canonical_b(f, b, bound), cones)
+
+
+@dataclass(frozen=True)
+class Canonical:
+    """The canonical state of one solve.
+
+    Attributes
+    ----------
+    forces : (n,) ndarray or None
+        Physical forces (kN) of the canonical state; None when its solve failed (the
+        solver's answer is kept, uniqueness unknown).
+    unique : bool or None
+        Whether the optimum is unique (module docstring); None when undecided.
+    solve_time, setup_time : float
+        Time of the extra solve (s).
+    """
+
+    forces: NDArray[np.float64] | None
+    unique: bool | None
+    solve_time: float
+    setup_time: float
+
+
+class CanonicalSolver:
+    """Canonical states for one formulation; a warm Clarabel solver per support motion
+    (a load path changes only the right-hand side and the energy bound)."""
+
+    def __init__(self, f: Formulation, options: SolverOptions) -> None:
+        self.f = f
+        self.options = options
+        self._warm: ClarabelSolver | None = None
+        self._q: NDArray[np.float64] | None = None
+
+    def state(self, b: NDArray[np.float64], q: NDArray[np.float64], F: NDArray[np.float64]) -> Canonical:
+        """The canonical state of the optimal answer ``F`` (kN) of the TCE problem with scaled
+        right-hand side ``b`` (:func:`tce.core.problem.tce_b`) and scaled objective ``q``."""
+        f = self.f
+        W = f.scaling.force
+        x = F / W
+        value = float(q @ x)
+        # relative to the optimum itself (an absolute slack would move the quantities the
+        # energy fixes, e.g. a thrust, by slack / |value|), with a floor at the rounding of q x
+        bound = value + FACE_SLACK * abs(value) + 1e-15 * float(np.abs(q) @ np.abs(x))
+        if self._warm is None or self._q is not q:
+            self._warm = ClarabelSolver(canonical_problem(f, b, q, bound), self.options.settings(kkt=f.kkt))
+            self._q = q
+        else:
+            self._warm.update(b=canonical_b(f, b, bound))
+        sol = self._warm.solve()
+        if not sol.solved:
+            return Canonical(None, None, sol.solve_time, sol.setup_time)
+        Fc = f.forces(sol.x)
+        same = float(np.abs(sol.x - x).max(initial=0.0)) <= SAME_STATE
+        return Canonical(Fc, same, sol.solve_time, sol.setup_time)
