@@ -40,6 +40,7 @@ def _former(study, parts: dict[str, xr.Dataset]) -> xr.Dataset:
     n = max(parts[k].sizes["step"] for k in order)
     ds = xr.concat([R._pad(parts[k], n) for k in order], dim="scenario", data_vars="minimal", coords="minimal",
                    compat="override", join="outer", combine_attrs="drop")
+    ds["geometry"] = (("scenario",), np.asarray(R.geometries(study)[1], dtype=np.int64))  # each scenario's structure
     return R._label(ds)
 
 
