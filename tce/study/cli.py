@@ -227,7 +227,7 @@ def _out_folder(out: Path, option: str = "--out") -> Path:
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise UsageError(f"{option}: cannot create {out} ({exc.strerror}); fix: give another {option}") from None
+        raise UsageError(f"{option}: cannot write {out} ({exc.strerror}); fix: give another {option}") from None
     if not os.access(out, os.W_OK | os.X_OK):
         raise UsageError(f"{option}: cannot write {out} (read-only or not permitted); fix: give another {option}")
     free = shutil.disk_usage(out).free
