@@ -443,7 +443,9 @@ def _check(args: argparse.Namespace) -> int:
 def _bench(args: argparse.Namespace) -> int:
     from ..quality.bench import bench_command
 
-    return bench_command(args)
+    out = _out_folder(args.out)
+    with _writing(out):
+        return bench_command(args)
 
 
 def _without_dask() -> None:
