@@ -7,18 +7,22 @@ the subpackages follow it:
 ``tce.structures``  geometry, blocks, interfaces, supports; generators and file readers
 ``tce.core``        operators built once (model), conic problems, the Clarabel solves, limit analysis
 ``tce.analysis``    load path, minimum thickness, diagnosis
-``tce.study``       study files, the parallel runner, results datasets, the command line
-``tce.plot``        figures of a results dataset
-``tce.quality``     developer tools: benchmarks, the hard-case suite and its report
+``tce.study``       study files, the parallel runner, results datasets
+``tce.plot``        figures, interactive view and VTK export of a results dataset
+``tce.cli``         the ``tce`` command line: composes the layers above
+``tce.quality``     developer tools beside the command line: benchmarks, the hard-case suite
 
-The names most scripts need are importable from ``tce`` itself (loaded on first use), e.g.
-``from tce import semicircular_arch, Analysis, Material, load_path``. The module paths of
-tce 0.1 (``tce.arch``, ``tce.material``, ``tce.loadpath``, ...) still import: they are the
-modules of their new homes.
+The names most scripts need are importable from ``tce`` itself (loaded on first use, listed in
+``__all__`` and by ``dir(tce)``), e.g. ``from tce import semicircular_arch, Analysis, Material,
+load_path``. The command line (``tce run``, ``tce show``, ...) is :mod:`tce.cli`, on the top
+floor: it composes the study runner, the figures and the report.
 """
 
 from __future__ import annotations
 
+from importlib import import_module as _import_module
+from importlib.metadata import PackageNotFoundError as _PackageNotFoundError
+from importlib.metadata import version as _version
 import os as _os
 import sys as _sys
 
@@ -27,17 +31,9 @@ if _sys.argv and _os.path.basename(_sys.argv[0]) == "tce":  # the tce program: C
 
     _handle_signals(raising=False)
 
-import importlib
-import importlib.abc
-import importlib.util
-import sys
-from importlib.metadata import PackageNotFoundError, version
-from types import ModuleType
-from typing import Any
-
 try:
-    __version__ = version("tce")
-except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = _version("tce")
+except _PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+unknown"
 
 #: public name -> module that defines it
@@ -48,6 +44,11 @@ _PUBLIC = {
     "LoadPattern": "tce.core.loads",
     "PointLoad": "tce.core.loads",
     "DistributedLoad": "tce.core.loads",
+    "Vehicle": "tce.core.vehicles",
+    "Fill": "tce.core.fill",
+    "critical_position": "tce.analysis.critical",
+    "adequacy_factor": "tce.analysis.assessment",
+    "arch_bridge": "tce.structures.bridge",
     "build_model": "tce.core.model",
     "load_path": "tce.analysis.loadpath",
     "minimum_thickness": "tce.analysis.thickness",
@@ -55,6 +56,7 @@ _PUBLIC = {
     "diagnose": "tce.analysis.diagnose",
     "nonassociative_limit": "tce.analysis.nonassoc",
     "Assembly": "tce.structures.assembly",
+    "AssemblyError": "tce.structures.assembly",
     "Block": "tce.structures.assembly",
     "Interface": "tce.structures.assembly",
     "semicircular_arch": "tce.structures.arch",
@@ -65,56 +67,28 @@ _PUBLIC = {
     "groin_vault": "tce.structures.vault",
     "hemispherical_dome": "tce.structures.dome",
     "load_assembly": "tce.structures.io",
+    "save_assembly_json": "tce.structures.io",
+    "Study": "tce.study.schema",
+    "StudyError": "tce.study.schema",
     "load_study": "tce.study.schema",
     "run_study": "tce.study.runner",
 }
 
-#: module paths of tce 0.1 -> where the module lives now
-_MOVED = {
-    "tce.arch": "tce.structures.arch",
-    "tce.assembly": "tce.structures.assembly",
-    "tce.contacts": "tce.structures.contacts",
-    "tce.dome": "tce.structures.dome",
-    "tce.geometry": "tce.structures.geometry",
-    "tce.io": "tce.structures.io",
-    "tce.material": "tce.core.material",
-    "tce.model": "tce.core.model",
-    "tce.solve": "tce.core.solve",
-    "tce.limit": "tce.core.limit",
-    "tce.loadpath": "tce.analysis.loadpath",
-    "tce.thickness": "tce.analysis.thickness",
-    "tce.diagnose": "tce.analysis.diagnose",
-    "tce.runner": "tce.study.runner",
-    "tce.results": "tce.study.results",
-    "tce.cli": "tce.study.cli",
-}
-
 __all__ = ["__version__", *_PUBLIC]
 
+#: the subpackages (``dir(tce)`` lists them beside the public names)
+_SUBPACKAGES = ("analysis", "cli", "core", "plot", "quality", "structures", "study")
 
-def __getattr__(name: str) -> Any:
+
+def __getattr__(name: str) -> object:
     """Load a public name's module on first use (``import tce`` stays light)."""
     if name in _PUBLIC:
-        value = getattr(importlib.import_module(_PUBLIC[name]), name)
+        value = getattr(_import_module(_PUBLIC[name]), name)
         globals()[name] = value
         return value
     raise AttributeError(f"module 'tce' has no attribute {name!r}")
 
 
-class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
-    """Resolve a tce 0.1 module path to the module at its new home (the same module object)."""
-
-    def find_spec(self, fullname: str, path: Any = None, target: Any = None) -> Any:
-        if fullname in _MOVED:
-            return importlib.util.spec_from_loader(fullname, self)
-        return None
-
-    def create_module(self, spec: Any) -> ModuleType:
-        return importlib.import_module(_MOVED[spec.name])
-
-    def exec_module(self, module: ModuleType) -> None:
-        """Nothing to run: the module was executed at its new home."""
-
-
-if not any(isinstance(f, _MovedModules) for f in sys.meta_path):
-    sys.meta_path.append(_MovedModules())
+def __dir__() -> list[str]:
+    """The public names and the subpackages (not the module's own helpers)."""
+    return sorted({*__all__, *_SUBPACKAGES})

@@ -1,6 +1,6 @@
 """Signals of the ``tce`` program: SIGTERM and SIGHUP end it as Ctrl-C does.
 
-:func:`handle_signals` (called first thing by :func:`tce.study.cli.main`, before the heavy
+:func:`handle_signals` (called first thing by :func:`tce.cli.main`, before the heavy
 imports) makes SIGINT, SIGTERM and SIGHUP raise :class:`Interrupted` (a
 :class:`KeyboardInterrupt`) in the main thread, so that every command stops the same way
 whatever ends it: a run stops its workers, keeps every finished scenario and removes its

@@ -1,9 +1,14 @@
-"""Builders shared by the tests: a single block on a support (closed forms), arch centroid height."""
+"""Builders shared by the tests: a single block on a support (closed forms), two blocks side by side,
+an arch centroid height, a one-point-load pattern and the planar and spatial limits of a scene."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from tce.core.limit import LimitSolver
+from tce.core.loads import LoadPattern, PointLoad
+from tce.core.material import Material
+from tce.core.model import build_model
 from tce.structures.assembly import Assembly, Block, Interface
 from tce.structures.geometry import box
 
@@ -21,3 +26,36 @@ def arch_centroid_height(assembly: Assembly) -> float:
     free = list(assembly.free_indices)
     w = assembly.weights[free]
     return float((w * assembly.centroids[free, 2]).sum() / w.sum())
+
+
+def limits(assembly: Assembly, material: Material, alpha: float = 0.0) -> dict[str, float]:
+    """Direct lambda_max in the planar and the spatial model."""
+    return {kind: LimitSolver(build_model(assembly, kind), material).solve(alpha).lambda_max for kind in ("planar", "spatial")}
+
+
+def point(force, **kw) -> LoadPattern:
+    """A pattern whose only live load is one point load (lateral pattern off)."""
+    return LoadPattern(lateral=False, point=[PointLoad(force=force, **kw)])
+
+
+def equal_blocks_side_by_side(b: float = 0.5, h: float = 1.0, d: float = 0.5) -> Assembly:
+    """Two b x h blocks L (x in [0, b]) and R (x in [b, 2b]) on a support, in contact along x = b."""
+    def itf(x0: float, x1: float, z0: float, z1: float, vertical: bool) -> np.ndarray:
+        if vertical:
+            return np.array([[x0, -d / 2, z0], [x0, d / 2, z0], [x0, d / 2, z1], [x0, -d / 2, z1]])
+        return np.array([[x0, -d / 2, z0], [x1, -d / 2, z0], [x1, d / 2, z0], [x0, d / 2, z0]])
+
+    base = Block("base", box([-1, -d / 2, -0.2], [3 * b, d / 2, 0.0]), 20.0, support=True)
+    left = Block("L", box([0, -d / 2, 0], [b, d / 2, h]), 20.0)
+    right = Block("R", box([b, -d / 2, 0], [2 * b, d / 2, h]), 20.0)
+    return Assembly(
+        (base, left, right),
+        (Interface(0, 1, itf(0, b, 0, 0, False), [0, 0, 1]), Interface(0, 2, itf(b, 2 * b, 0, 0, False), [0, 0, 1]),
+         Interface(1, 2, itf(b, b, 0, h, True), [1, 0, 0])),
+    )
+
+
+def extrados_midpoint(k: int, ri=1.0, t=0.2, n=14) -> list[float]:
+    """Midpoint of the extrados chord of voussoir k (1-based) of a semicircular arch (m)."""
+    th = np.pi * (1 - np.array([k - 1, k]) / n)
+    return [(ri + t) * float(np.cos(th).mean()), 0.0, (ri + t) * float(np.sin(th).mean())]

@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 import tce
-from tce.study.cli import main
+from tce.cli import main
 
 STUDY = """
 [study]

@@ -69,7 +69,7 @@ def test_large_model_is_large_work_without_a_solve(fig8):
 def test_run_logs_its_choice(tmp_path, caplog):
     study = load_study(STUDIES / "fig7_8_inplane.toml")
     with caplog.at_level("INFO", logger="tce"):
-        run_study(study, tmp_path, plots=False)
+        run_study(study, tmp_path)
     assert any(r.message.startswith("running fig7_8_inplane: 4 scenarios; in-process: the study's work")
                for r in caplog.records)
 
@@ -79,7 +79,7 @@ def test_tce_program_does_not_import_dask(tmp_path, jobs):
     # the program, in-process or with workers (which inherit TCE_NO_DASK), runs without dask
     code = (
         "import sys\n"
-        "from tce.study.cli import main\n"
+        "from tce.cli import main\n"
         f"sys.argv = ['tce', 'run', {str(STUDIES / 'fig9_outofplane.toml')!r}, '--out', {str(tmp_path)!r}, '--no-plots', *{jobs!r}]\n"
         "rc = main()\n"
         "print(rc, sys.modules.get('dask', 'absent'))\n"

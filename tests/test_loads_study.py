@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from tce.study.cli import main
+from tce.cli import main
 from tce.study.schema import parse_study
 
 STUDY = """

@@ -18,7 +18,7 @@ from tce.core.limit import LimitSolver
 from tce.core.material import Material
 from tce.structures.assembly import Assembly, Block, Interface
 from tce.structures.geometry import box
-from tce.study.cli import main
+from tce.cli import main
 
 from helpers import block_on_support
 from test_io import DATA, _load_sample

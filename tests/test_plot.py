@@ -52,7 +52,7 @@ def run(tmp: Path, name: str, alpha: float = 0.0, material: str = "", extra: str
         tolerance: float = 1e-3) -> xr.Dataset:
     text = ARCH.format(name=name, alpha=alpha, material=material, extra=extra, step=step, tolerance=tolerance)
     study = parse_study(text, tmp / f"{name}.toml")
-    report = run_study(study, tmp, jobs=1, plots=False)
+    report = run_study(study, tmp, jobs=1)
     return xr.load_dataset(report.results)
 
 
@@ -288,7 +288,7 @@ tolerance = 1e-2
 [plots]
 steps = ["max"]
 """
-    report = run_study(parse_study(text, tmp_path / "d.toml"), tmp_path, jobs=1, plots=False)
+    report = run_study(parse_study(text, tmp_path / "d.toml"), tmp_path, jobs=1)
     ds = xr.load_dataset(report.results)
     fig = figures.states_figure(ds, [("none", "max")])
     (ax,) = fig.axes

@@ -18,7 +18,7 @@ from tce.plot import data
 from tce.plot.export import export_vtk
 from tce.plot.view import view_data, view_html
 from tce.structures.arch import semicircular_arch
-from tce.study.cli import main
+from tce.cli import main
 from tce.study.runner import run_study
 from tce.study.schema import StudyError, parse_study
 
@@ -46,7 +46,7 @@ steps = [0.0, 0.13, "max"]
 def results(tmp_path_factory: pytest.TempPathFactory) -> Path:
     tmp = tmp_path_factory.mktemp("tools")
     study = parse_study(STUDY.format(alpha=30.0), tmp / "tools.toml")
-    return run_study(study, tmp, jobs=1, plots=False).results
+    return run_study(study, tmp, jobs=1).results
 
 
 # ---------------------------------------------------------------------------- [plots]
@@ -225,7 +225,7 @@ def test_notes_for_outcomes_other_than_limit(tmp_path: Path) -> None:
     """A Heyman arch cannot follow a transversal support motion: unbounded, said on the figures."""
     text = STUDY.format(alpha=0.0).replace("friction = 0.8", "").replace(
         "right = [0.001, 0, 0, 0, 0, 0]", "right = [0, 0.001, 0, 0, 0, 0]")
-    ds = xr.load_dataset(run_study(parse_study(text, tmp_path / "s.toml"), tmp_path, jobs=1, plots=False).results)
+    ds = xr.load_dataset(run_study(parse_study(text, tmp_path / "s.toml"), tmp_path, jobs=1).results)
     assert str(ds.outcome.sel(scenario="outward").values) == "unbounded"
     note = data.outcome_note(ds, "outward")
     assert note.startswith("unbounded")

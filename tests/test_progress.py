@@ -41,7 +41,7 @@ def _run_on_pty(args: list[str]) -> str:
 
 
 def test_run_shows_a_bar_on_a_terminal(tmp_path):
-    out = _run_on_pty([sys.executable, "-m", "tce.study.cli", "run", str(STUDY), "--out", str(tmp_path), "--no-plots"])
+    out = _run_on_pty([sys.executable, "-m", "tce.cli", "run", str(STUDY), "--out", str(tmp_path), "--no-plots"])
     # tqdm's bar: description, done/total, the unit and the rate, redrawn with carriage returns
     assert "fig9_outofplane" in out and "/3 [" in out and "scenario/s" in out and "\r" in out
     assert "3/3" in out and "load steps" in out
@@ -49,7 +49,7 @@ def test_run_shows_a_bar_on_a_terminal(tmp_path):
 
 def test_run_logs_plain_progress_when_not_a_terminal(tmp_path):
     out = subprocess.run(
-        [sys.executable, "-m", "tce.study.cli", "run", str(STUDY), "--out", str(tmp_path), "--no-plots"],
+        [sys.executable, "-m", "tce.cli", "run", str(STUDY), "--out", str(tmp_path), "--no-plots"],
         capture_output=True, text=True, check=True,
     )
     assert re.search(r"fig9_outofplane: 3/3 scenarios \(\d+ load steps\), \d+ s", out.stderr)
@@ -83,6 +83,6 @@ def test_callback_form_updates_the_total(caplog):
 
 
 def test_drawing_shows_a_bar_naming_the_file_on_a_terminal(tmp_path):
-    out = _run_on_pty([sys.executable, "-m", "tce.study.cli", "run", str(STUDY), "--out", str(tmp_path)])
+    out = _run_on_pty([sys.executable, "-m", "tce.cli", "run", str(STUDY), "--out", str(tmp_path)])
     assert "figures:" in out and "/5 [" in out and "file/s" in out and "states.png]" in out
     assert "5/5" in out

@@ -55,7 +55,7 @@ def study():
 @pytest.fixture(scope="module")
 def reference(study, tmp_path_factory) -> xr.Dataset:
     out = tmp_path_factory.mktemp("jobs1")
-    report = runner.run_study(study, out, jobs=1, plots=False)
+    report = runner.run_study(study, out, jobs=1)
     assert len(report.solved) == 8 and not report.reused
     return answer(report.results)
 
@@ -82,7 +82,7 @@ def test_dataset_contract(study, reference: xr.Dataset) -> None:
 
 
 def test_same_numbers_with_two_jobs(study, reference, tmp_path) -> None:
-    report = runner.run_study(study, tmp_path, jobs=2, plots=False)
+    report = runner.run_study(study, tmp_path, jobs=2)
     xr.testing.assert_identical(answer(report.results), reference)
 
 
@@ -91,7 +91,7 @@ def test_same_numbers_on_dask(study, reference, tmp_path) -> None:
     with distributed.LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
     ) as cluster:
-        report = runner.run_study(study, tmp_path, backend="dask", scheduler=cluster.scheduler_address, plots=False)
+        report = runner.run_study(study, tmp_path, backend="dask", scheduler=cluster.scheduler_address)
     xr.testing.assert_identical(answer(report.results), reference)
 
 
@@ -105,7 +105,7 @@ def test_interrupted_sweep_resumes(study, reference, tmp_path, monkeypatch) -> N
             raise Stop
 
     with pytest.raises(Stop):
-        runner.run_study(study, tmp_path, jobs=1, progress=crash_after_three, plots=False)
+        runner.run_study(study, tmp_path, jobs=1, progress=crash_after_three)
     kept = sorted((tmp_path / "sweep" / "scenarios").glob("*.nc"))
     assert len(kept) == 3 and not (tmp_path / "sweep" / "results.nc").exists()
     assert not list((tmp_path / "sweep" / "scenarios").glob(".*"))  # no temporary left
@@ -113,12 +113,12 @@ def test_interrupted_sweep_resumes(study, reference, tmp_path, monkeypatch) -> N
     solved: list[str] = []
     solve = runner.solve_scenario
     monkeypatch.setattr(runner, "solve_scenario", lambda sc, asm: solved.append(sc.name) or solve(sc, asm))
-    report = runner.run_study(study, tmp_path, jobs=1, plots=False)
+    report = runner.run_study(study, tmp_path, jobs=1)
     assert len(report.reused) == 3 and len(report.solved) == 5 and sorted(solved) == sorted(report.solved)
     xr.testing.assert_identical(answer(report.results), reference)
 
     # a scenario whose definition changed is solved again, the others are reused
     changed = parse_study(SWEEP.replace("right = [0.001,", "right = [0.002,"), "sweep.toml")
     solved.clear()
-    report = runner.run_study(changed, tmp_path, jobs=1, plots=False)
+    report = runner.run_study(changed, tmp_path, jobs=1)
     assert len(solved) == 4 and all(name.startswith("outward") for name in solved)

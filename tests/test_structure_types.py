@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from tce.structures.bridge import arch_bridge
 from tce.structures.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
 from tce.structures.dome import hemispherical_dome
 from tce.structures.vault import barrel_vault, groin_vault
@@ -25,6 +26,8 @@ TYPES = {
                      ("left01", "left02", "left03", "right01", "right02", "right03")),
     "groin_vault": ("span_y = 3.0\nvoussoirs = 4", lambda: groin_vault(span_y=3.0, voussoirs=4), ("ne", "nw", "sw", "se")),
     "dome": ("sectors = 4\ncourses = 2", lambda: hemispherical_dome(sectors=4, courses=2), ("s01", "s02", "s03", "s04")),
+    "arch_bridge": ("spans = 2\nvoussoirs = 6", lambda: arch_bridge(spans=2, voussoirs=6),
+                    ("abutment_left", "abutment_right", "foundation1")),
 }
 
 

@@ -83,7 +83,7 @@ def test_view_in_chromium(browser, tmp_path: Path) -> None:
     from selenium.webdriver.common.by import By
     from selenium.webdriver.common.keys import Keys
 
-    report = run_study(parse_study(STUDY, tmp_path / "b.toml"), tmp_path, jobs=1, plots=False)
+    report = run_study(parse_study(STUDY, tmp_path / "b.toml"), tmp_path, jobs=1)
     ds = xr.load_dataset(report.results)
     page = tmp_path / "view.html"
     page.write_text(view_html(ds), encoding="utf-8")

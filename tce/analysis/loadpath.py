@@ -9,7 +9,7 @@ reported and stepped over: they are never taken as the limit). When that step is
 ``infeasible`` multiplier until ``hi - lo <= max(atol, rtol * hi)`` or until no float lies
 between them (so any tolerance ends); ``lambda_max`` is the last ``optimal`` multiplier (a
 safe lower bound). A path never takes more than :data:`MAX_INCREMENTS` increments. Every run
-also reports the direct lambda_max (:mod:`tce.limit`) and the gap, so the answer is checked
+also reports the direct lambda_max (:mod:`tce.core.limit`) and the gap, so the answer is checked
 each time.
 
 Narrowing (``bracket``): ``"direct"`` (default) first solves the two ends of a bracket

@@ -144,17 +144,19 @@ def arch_minimum_thickness(
     loads: LoadPattern | None = None,
     lam: float = 0.0,
     progress: Callable[[int, int], None] | None = None,
+    joints: str = "radial",
 ) -> ThicknessResult:
     """Minimum thickness of a semicircular arch with fixed centreline radius (m).
 
     The intrados radius is ``centre_radius - t/2``; ``ratio`` is ``t / centre_radius``;
-    ``loads``, ``lam`` and ``progress`` as in :func:`minimum_thickness`.
+    ``loads``, ``lam`` and ``progress`` as in :func:`minimum_thickness`; ``joints``
+    (``radial`` or ``vertical``) as in :func:`tce.structures.arch.semicircular_arch`.
     """
     check_positive(centre_radius=centre_radius, depth=depth)
     n = check_whole(voussoirs, "voussoirs")
 
     def build(t: float) -> Assembly:
-        return semicircular_arch(centre_radius - t / 2, t, depth, n)
+        return semicircular_arch(centre_radius - t / 2, t, depth, n, joints=joints)
 
     return minimum_thickness(
         build, 0.01 * centre_radius, 0.5 * centre_radius, material, tol, reference=centre_radius, loads=loads,

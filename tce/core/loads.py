@@ -34,6 +34,7 @@ declaration (``point[0].block``; a study adds ``loads.``) and the fix.
 
 from __future__ import annotations
 
+import logging
 import weakref
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
@@ -47,6 +48,10 @@ from numpy.typing import ArrayLike, NDArray
 from ..structures.assembly import Assembly
 from ..structures.params import did_you_mean
 from .model import EZ, Model, Plane, lateral_direction, motions_in_plane
+from .fill import Fill, fill_forces
+from .surface import LoadError, _on_top, _upward_faces, _vector, top_surface
+from .vehicles import Vehicle, wheel_loads
+
 
 __all__ = [
     "AppliedLoads",
@@ -62,35 +67,9 @@ __all__ = [
     "top_surface",
 ]
 
-#: a face is part of the top surface when its outward normal has a z component above this
-UPWARD = 1e-6
-#: relative tolerance (of the assembly's weight and size) of the in-plane test
+log = logging.getLogger(__name__)
+
 PLANE_TOL = 1e-9
-
-
-class LoadError(ValueError):
-    """A load declaration that cannot be applied: ``key`` names it (``point[0].force``)."""
-
-    def __init__(self, key: str, problem: str, fix: str) -> None:
-        self.key, self.problem, self.fix = key, problem, fix
-        super().__init__(f"{key}: {problem}; fix: {fix}" if key else f"{problem}; fix: {fix}")
-
-    def within(self, prefix: str) -> LoadError:
-        """The same error with its key under ``prefix`` (``point[0]`` + ``force``)."""
-        return LoadError(f"{prefix}.{self.key}" if self.key else prefix, self.problem, self.fix)
-
-
-def _vector(value: ArrayLike, n: int, key: str, unit: str) -> tuple[float, ...]:
-    """``value`` as a tuple of ``n`` finite floats (``LoadError`` naming ``key`` otherwise)."""
-    try:
-        v = np.asarray(value, dtype=float).ravel()
-    except (TypeError, ValueError):
-        raise LoadError(key, f"not a list of numbers ({value!r})", f"give {n} numbers ({unit})") from None
-    if v.shape != (n,):
-        raise LoadError(key, f"{len(v)} numbers given", f"give exactly {n} numbers ({unit})")
-    if not np.all(np.isfinite(v)):
-        raise LoadError(key, f"NaN or infinite entries ({value!r})", f"give finite numbers ({unit})")
-    return tuple(float(x) for x in v)
 
 
 def _range(value: ArrayLike, key: str) -> tuple[float, float]:
@@ -234,6 +213,12 @@ class LoadPattern:
         only the scaled loads (then at least one is needed).
     point : sequence of PointLoad (or dicts of its keys)
     distributed : sequence of DistributedLoad (or dicts of its keys)
+    vehicle : sequence of :class:`tce.core.vehicles.Vehicle` (or dicts of its keys)
+        Axle groups moving as one (:mod:`tce.core.vehicles`); wheels off the deck are
+        dropped with a note (:attr:`AppliedLoads.notes`).
+    fill : :class:`tce.core.fill.Fill` (or a dict of its keys), optional
+        Fill over the top surface: its weight and at-rest pressure (fixed loads), and the
+        dispersion of the vehicles' wheel loads through it (:mod:`tce.core.fill`).
 
     A pattern with only ``alpha`` (``lateral`` true, no loads) is the default pattern: the
     right-hand sides are exactly the model's ``b_dead`` and ``b_lateral(alpha)``. Patterns
@@ -244,54 +229,91 @@ class LoadPattern:
     lateral: bool = True
     point: tuple[PointLoad, ...] = ()
     distributed: tuple[DistributedLoad, ...] = ()
+    vehicle: tuple[Vehicle, ...] = ()
+    fill: Fill | None = None
 
     def __post_init__(self) -> None:
+        if self.fill is not None and not isinstance(self.fill, Fill):
+            try:
+                (fill,) = _items(Fill, [self.fill], "fill")
+            except LoadError as exc:  # one table: fill.depth, not fill[0].depth
+                raise LoadError(exc.key.replace("fill[0]", "fill", 1), exc.problem, exc.fix) from None
+            object.__setattr__(self, "fill", fill)
+
         (alpha,) = _vector([self.alpha], 1, "alpha", "degrees")
         object.__setattr__(self, "alpha", alpha)
         if not isinstance(self.lateral, bool):
             raise LoadError("lateral", f"not true or false ({self.lateral!r})", "write true or false")
         object.__setattr__(self, "point", _items(PointLoad, self.point, "point"))
         object.__setattr__(self, "distributed", _items(DistributedLoad, self.distributed, "distributed"))
-        if not self.lateral and not any(p.scaled for p in (*self.point, *self.distributed)):
+        object.__setattr__(self, "vehicle", _items(Vehicle, self.vehicle, "vehicle"))
+        if not self.lateral and not any(p.scaled for p in (*self.point, *self.distributed, *self.vehicle)):
             raise LoadError(
                 "lateral", "lateral = false and no scaled load: lambda would multiply nothing",
-                "add a point or distributed load with scaled = true, or set lateral = true",
+                "add a point or distributed load or a vehicle with scaled = true, or set lateral = true",
             )
 
     @property
     def default(self) -> bool:
         """True for the paper's pattern alone (self-weight and the lateral pattern)."""
-        return self.lateral and not self.point and not self.distributed
+        return self.lateral and not self.point and not self.distributed and not self.vehicle and self.fill is None
 
     @property
     def direction(self) -> float:
         """``alpha`` when the lateral pattern is part of the live load, else NaN."""
         return self.alpha if self.lateral else float("nan")
 
+    @property
+    def reference_x(self) -> float:
+        """Plan abscissa (m) of the moving group's reference: the first scaled vehicle's
+        reference point, else the first scaled ``on_top`` point load (NaN: nothing moves)."""
+        for v in self.vehicle:
+            if v.scaled:
+                return v.x
+        for p in self.point:
+            if p.scaled and p.on_top is not None:
+                return p.on_top[0]
+        return float("nan")
+
     def moved(self, x: float) -> LoadPattern:
-        """The pattern with every scaled ``on_top`` point load moved to plan abscissa ``x`` (m).
+        """The pattern with its moving loads (the scaled vehicles and the scaled ``on_top``
+        point loads) moved as one rigid group, its reference (:attr:`reference_x`) to plan
+        abscissa ``x`` (m): every moving load keeps its offset from the reference, so
+        loads declared at different positions never merge.
 
         Raises
         ------
         LoadError
-            No scaled ``on_top`` point load to move.
+            Nothing to move.
         """
-        if not any(p.scaled and p.on_top is not None for p in self.point):
-            raise LoadError("point", "no scaled point load with on_top to move", "give one with on_top = [x, y] and scaled = true")
+        ref = self.reference_x
+        if ref != ref:
+            raise LoadError(
+                "point", "no scaled point load with on_top and no scaled vehicle to move",
+                "give a point load with on_top = [x, y] and scaled = true, or a vehicle",
+            )
         (x,) = _vector([x], 1, "load_x", "m")
+        dx = x - ref
         point = tuple(
-            replace(p, on_top=(x, p.on_top[1])) if p.scaled and p.on_top is not None else p for p in self.point
+            replace(p, on_top=(p.on_top[0] + dx, p.on_top[1])) if p.scaled and p.on_top is not None else p
+            for p in self.point
         )
-        return replace(self, point=point)
+        vehicle = tuple(v.at(v.x + dx) if v.scaled else v for v in self.vehicle)
+        return replace(self, point=point, vehicle=vehicle)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data (JSON-ready), the keys of a study's ``[loads]`` table."""
-        return {
+        out = {
             "alpha": self.alpha,
             "lateral": self.lateral,
             "point": [p.to_dict() for p in self.point],
             "distributed": [d.to_dict() for d in self.distributed],
         }
+        if self.vehicle:  # absent otherwise: the patterns of earlier versions read the same
+            out["vehicle"] = [v.to_dict() for v in self.vehicle]
+        if self.fill is not None:
+            out["fill"] = self.fill.to_dict()
+        return out
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> LoadPattern:
@@ -329,91 +351,6 @@ def as_pattern(alpha: float | None = None, loads: LoadPattern | None = None) -> 
     return loads
 
 
-# ---------------------------------------------------------------------------- top surface
-@dataclass(frozen=True, eq=False)
-class _Faces:
-    """Upward-facing faces of an assembly: owner block, plan polygon and plane."""
-
-    block: NDArray[np.int64]
-    plan: NDArray[np.object_]  # shapely Polygons, the faces projected on the x-y plane
-    point: NDArray[np.float64]  # (k, 3) a point of each face
-    normal: NDArray[np.float64]  # (k, 3) outward unit normals, n_z > UPWARD
-
-    def z(self, k: int | NDArray[np.int64], x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
-        """Height (m) of face(s) ``k``'s plane above plan point(s) ``(x, y)``."""
-        p, n = self.point[k], self.normal[k]
-        return p[..., 2] - (n[..., 0] * (np.asarray(x) - p[..., 0]) + n[..., 1] * (np.asarray(y) - p[..., 1])) / n[..., 2]
-
-
-@lru_cache(maxsize=16)
-def _upward_faces(assembly: Assembly) -> _Faces:
-    block, plan, point, normal = [], [], [], []
-    for i, b in enumerate(assembly.blocks):
-        for k, n in enumerate(b.shape.face_normals):
-            if n[2] > UPWARD:
-                pts = b.shape.face_points(k)
-                block.append(i)
-                plan.append(shapely.Polygon(pts[:, :2]))
-                point.append(pts.mean(axis=0))
-                normal.append(n)
-    return _Faces(np.array(block, dtype=np.int64), np.array(plan, dtype=object),
-                  np.array(point).reshape(-1, 3), np.array(normal).reshape(-1, 3))
-
-
-@lru_cache(maxsize=16)
-def top_surface(assembly: Assembly) -> tuple[tuple[int, int, shapely.Polygon], ...]:
-    """The exposed top surface of an assembly, in plan: ``(block, face, polygon)`` parts.
-
-    An upward-facing face (outward normal with ``n_z > UPWARD``) is exposed where no other
-    upward-facing face lies above it: for each plan point, only the highest face counts
-    (the extrados of an arch, not the joints under the next voussoir). Two faces whose plan
-    projections overlap are ordered by their heights at a point of the overlap (blocks do
-    not interpenetrate, so one lies above the other over all of it). ``face`` indexes the
-    assembly's upward faces; each polygon is one connected exposed piece (m, plan).
-    """
-    faces = _upward_faces(assembly)
-    tree = shapely.STRtree(faces.plan)
-    eps = (1e-9 * assembly.size) ** 2
-    out = []
-    for i, poly in enumerate(faces.plan):
-        exposed = poly
-        for j in tree.query(poly, predicate="intersects"):
-            if j == i:
-                continue
-            overlap = poly.intersection(faces.plan[j])
-            if overlap.area <= eps:
-                continue
-            q = overlap.representative_point()
-            if faces.z(j, q.x, q.y) > faces.z(i, q.x, q.y):
-                exposed = exposed.difference(faces.plan[j])
-        for piece in getattr(exposed, "geoms", [exposed]):
-            if isinstance(piece, shapely.Polygon) and piece.area > eps:
-                out.append((int(faces.block[i]), i, piece))
-    return tuple(out)
-
-
-def _on_top(assembly: Assembly, xy: tuple[float, float]) -> tuple[int, NDArray[np.float64]]:
-    """Block and point of the highest top surface above plan point ``xy`` (a downward ray
-    through the upward-facing faces); ties go to a free block. Raises ``LoadError``."""
-    faces = _upward_faces(assembly)
-    x, y = xy
-    hit = np.flatnonzero(shapely.intersects_xy(faces.plan, x, y))
-    if hit.size == 0:
-        lo = np.min([b.shape.vertices.min(axis=0) for b in assembly.blocks], axis=0)
-        hi = np.max([b.shape.vertices.max(axis=0) for b in assembly.blocks], axis=0)
-        raise LoadError(
-            "on_top", f"[{x:g}, {y:g}] is outside the plan of the structure: no block lies under it (the plan spans "
-            f"x from {lo[0]:.4g} to {hi[0]:.4g} m, y from {lo[1]:.4g} to {hi[1]:.4g} m)",
-            "give a plan point above a block",
-        )
-    z = faces.z(hit, x, y)
-    top = z.max()
-    support = np.array([assembly.blocks[b].support for b in faces.block[hit]])
-    best = hit[(z >= top - 1e-9 * assembly.size) & ~support]
-    k = int(best[0]) if best.size else int(hit[np.argmax(z)])
-    return int(faces.block[k]), np.array([x, y, float(faces.z(k, x, y))])
-
-
 # ---------------------------------------------------------------------------- resolution
 @dataclass(frozen=True, eq=False)
 class AppliedLoads:
@@ -434,7 +371,11 @@ class AppliedLoads:
     scaled : (k,) bool
         True for the live loads.
     sources : tuple of str
-        The declaration each force comes from (``point[0]``, ``distributed[1]``).
+        The declaration each force comes from (``point[0]``, ``distributed[1]``,
+        ``vehicle[0].axle[1].wheel[0]``).
+    notes : tuple of str
+        One line per load dropped because it lies off the deck (a vehicle's wheel, or part
+        of its contact patch, :func:`tce.core.vehicles.wheel_loads`).
     """
 
     pattern: LoadPattern
@@ -444,6 +385,7 @@ class AppliedLoads:
     forces: NDArray[np.float64] = field(repr=False)
     scaled: NDArray[np.bool_] = field(repr=False)
     sources: tuple[str, ...] = field(repr=False)
+    notes: tuple[str, ...] = field(default=(), repr=False)
 
     @cached_property
     def wrenches(self) -> NDArray[np.float64]:
@@ -616,9 +558,30 @@ def resolve(pattern: LoadPattern, assembly: Assembly) -> AppliedLoads:
             forces.append((0.0, 0.0, -load.pressure * area))
             scaled.append(load.scaled)
             sources.append(f"distributed[{k}]")
+    notes: list[str] = []
+    if pattern.fill is not None:
+        for k, (i, p, f) in enumerate(fill_forces(assembly, pattern.fill)):
+            blocks.append(i)
+            points.append(p)
+            forces.append(f)
+            scaled.append(False)
+            sources.append(f"fill[{k}]")
+    if pattern.vehicle:
+        for k, vehicle in enumerate(pattern.vehicle):
+            wheels, dropped = wheel_loads(vehicle, assembly, f"vehicle[{k}]", pattern.fill)
+            notes += dropped
+            for wheel in wheels:
+                for i, p, fz in wheel.parts:
+                    blocks.append(i)
+                    points.append(p)
+                    forces.append((0.0, 0.0, fz))
+                    scaled.append(vehicle.scaled)
+                    sources.append(wheel.source)
+        for note in notes:
+            log.info("%s", note)
     return AppliedLoads(
         pattern, assembly, np.array(blocks, dtype=np.int64), np.array(points, dtype=float).reshape(-1, 3),
-        np.array(forces, dtype=float).reshape(-1, 3), np.array(scaled, dtype=bool), tuple(sources),
+        np.array(forces, dtype=float).reshape(-1, 3), np.array(scaled, dtype=bool), tuple(sources), tuple(notes),
     )
 
 

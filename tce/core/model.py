@@ -268,7 +268,7 @@ class Model:
 
         ``D = 1 / (k * s * A_trib)`` per component: ``k`` is ``normal_stiffness`` for fn and
         ``shear_stiffness`` for the tangential components, ``s`` the interface's own
-        stiffness multiplier (:attr:`tce.assembly.Interface.stiffness`).
+        stiffness multiplier (:attr:`tce.structures.assembly.Interface.stiffness`).
         """
         factor = self.assembly.interface_table.stiffness[self.contact_interface]
         area = np.maximum(self.contact_area * factor, np.finfo(float).tiny)

@@ -12,6 +12,7 @@ mechanism and the states at the critical positions are the other figures of the 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
@@ -21,69 +22,113 @@ from matplotlib.lines import Line2D
 from ..study.positions import critical_positions
 from .figures import COLOURS, LINESTYLES, MARKERS
 
-__all__ = ["critical_scenarios", "influence_line"]
+__all__ = ["influence_line"]
 
 
-def critical_scenarios(ds: xr.Dataset) -> list[str]:
-    """The critical scenario of every group of a load-position sweep, in dataset order (the
-    scenarios the per-scenario figures of :func:`tce.plot.figures.write_figures` show; a
-    group without a finite lambda_max shows its first position)."""
-    chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}
-    return [str(s) for s in ds["scenario"].values if str(s) in chosen]
+@dataclass(frozen=True)
+class _Curve:
+    """One capacity curve: positions, lambda_max, where it is carried at any multiplier,
+    its critical position (NaN: none) and tied positions."""
+
+    group: str
+    x: np.ndarray
+    lam: np.ndarray
+    free: np.ndarray
+    critical_x: float
+    critical_lambda: float
+    ties: tuple[float, ...] = ()
+
+
+def _sweep_curves(ds: xr.Dataset) -> list[_Curve]:
+    """The influence lines of a ``load_x`` sweep, one per group."""
+    x_all = {str(s): float(v) for s, v in zip(ds["scenario"].values, ds["load_x"].values)}
+    lam_all = {str(s): float(v) for s, v in zip(ds["scenario"].values, ds["lambda_max"].values)}
+    outcome = {str(s): str(v) for s, v in zip(ds["scenario"].values, ds["outcome"].values)}
+    return [
+        _Curve(c.group, np.array([x_all[s] for s in c.scenarios]), np.array([lam_all[s] for s in c.scenarios]),
+               np.array([outcome[s] == "no_limit" for s in c.scenarios]), c.load_x, c.lambda_max, c.ties)
+        for c in critical_positions(ds)
+    ]
+
+
+def _search_curves(ds: xr.Dataset) -> list[_Curve]:
+    """The scans of a critical-position search, one per scenario."""
+    out = []
+    for k, name in enumerate(ds["scenario"].values):
+        x, lam = ds["scan_x"].values[k], ds["scan_lambda"].values[k]
+        keep = np.isfinite(x)
+        x, lam = x[keep], lam[keep]
+        ties = str(ds["critical_ties"].values[k])
+        out.append(_Curve(
+            str(name), x, np.where(np.isinf(lam), np.nan, lam), np.isinf(lam),
+            float(ds["critical_x"].values[k]), float(ds["critical_lambda"].values[k]),
+            tuple(float(t) for t in ties.split(",")) if ties else (),
+        ))
+    return out
 
 
 def influence_line(ds: xr.Dataset) -> Figure:
-    """lambda_max against the position of the moving load, and the mechanism at the critical one.
+    """lambda_max against the position of the moving loads, the critical position marked.
 
     Parameters
     ----------
     ds : xarray.Dataset
-        Results of a load-position sweep (a ``load_x`` coordinate along ``scenario``).
+        Results of a load-position sweep (a ``load_x`` coordinate along ``scenario``: one
+        line per group of the other coordinates) or of a critical-position search
+        (``scan_x``, ``scan_lambda``: one line per scenario, the positions the search
+        evaluated).
 
     Returns
     -------
     Figure
         One axes: one line per group (gid ``"capacity:<group>"``), its critical position a
-        star (gid ``"critical:<group>"``), positions where the load path found no limit a
-        triangle at the top (gid ``"no_limit:<group>"``).
+        star (gid ``"critical:<group>"``), tied positions hollow stars (gid
+        ``"tie:<group>"``), positions carried at any multiplier a triangle at the top (gid
+        ``"no_limit:<group>"``). The critical positions are written beside the axes,
+        clear of the data.
     """
-    crit = critical_positions(ds)
-    fig = Figure(figsize=(7.0, 5.0))
-    ax = fig.add_axes((0.11, 0.24, 0.85, 0.68))
+    search = "scan_x" in ds
+    curves = _search_curves(ds) if search else _sweep_curves(ds)
+    fig = Figure(figsize=(9.0, 5.0))
+    ax = fig.add_axes((0.08, 0.22, 0.60, 0.70))
     ax.ticklabel_format(useOffset=False)
-    x_all = {str(s): float(v) for s, v in zip(ds["scenario"].values, ds["load_x"].values)}
-    lam_all = {str(s): float(v) for s, v in zip(ds["scenario"].values, ds["lambda_max"].values)}
-    outcome = {str(s): str(v) for s, v in zip(ds["scenario"].values, ds["outcome"].values)}
     handles, lines = [], []
-    for i, c in enumerate(crit):
+    for i, c in enumerate(curves):
         colour, style, marker = COLOURS[i % len(COLOURS)], LINESTYLES[i % len(LINESTYLES)], MARKERS[i % len(MARKERS)]
-        name = c.group or "λmax"
-        x = np.array([x_all[s] for s in c.scenarios])
-        lam = np.array([lam_all[s] for s in c.scenarios])
-        ax.plot(x, lam, color=colour, linestyle=style, marker=marker, markersize=4, linewidth=1.4,
+        size = 0 if search else 4  # a search evaluates many positions: a line, no markers
+        ax.plot(c.x, c.lam, color=colour, linestyle=style, marker=marker, markersize=size, linewidth=1.2,
                 gid=f"capacity:{c.group}")
-        handles.append(Line2D([], [], color=colour, linestyle=style, marker=marker, markersize=4, label=name))
-        free = np.array([outcome[s] == "no_limit" for s in c.scenarios])
-        if free.any():
-            ax.plot(x[free], np.full(free.sum(), 0.97), transform=ax.get_xaxis_transform(), linestyle="none",
+        handles.append(Line2D([], [], color=colour, linestyle=style, marker=marker, markersize=size,
+                              label=c.group or "λmax"))
+        if c.free.any():
+            ax.plot(c.x[c.free], np.full(c.free.sum(), 0.97), transform=ax.get_xaxis_transform(), linestyle="none",
                     marker="^", color=colour, markerfacecolor="white", gid=f"no_limit:{c.group}")
-        if c.scenario:
-            ax.plot([c.load_x], [c.lambda_max], linestyle="none", marker="*", markersize=15, color=colour,
+        if math.isfinite(c.critical_x):
+            ax.plot([c.critical_x], [c.critical_lambda], linestyle="none", marker="*", markersize=15, color=colour,
                     markeredgecolor="black", zorder=5, gid=f"critical:{c.group}")
-            lines.append(f"{c.group + ': ' if c.group else ''}x = {c.load_x:.4g} m, λmax = {c.lambda_max:.4g}")
-    if any(outcome[s] == "no_limit" for c in crit for s in c.scenarios):
+            text = f"x = {c.critical_x:.4g} m, λmax = {c.critical_lambda:.4g}"
+            if c.ties:
+                ax.plot(list(c.ties), [c.critical_lambda] * len(c.ties), linestyle="none", marker="*", markersize=13,
+                        markerfacecolor="white", markeredgecolor=colour, zorder=5, gid=f"tie:{c.group}")
+                text += f"\n  tied at x = {', '.join(f'{t:.4g}' for t in c.ties)} m"
+            lines.append(f"{c.group}:\n  {text}" if c.group else text)
+    if any(c.free.any() for c in curves):
         handles.append(Line2D([], [], linestyle="none", marker="^", color="black", markerfacecolor="white",
                               label="no limit (carried at any λ)"))
     handles.append(Line2D([], [], linestyle="none", marker="*", markersize=12, color="grey", markeredgecolor="black",
-                          label="critical position (smallest λmax)"))
-    if lines:
-        ax.text(0.5, 0.96, "critical position\n" + "\n".join(lines), transform=ax.transAxes, ha="center", va="top",
-                fontsize=8, bbox=dict(boxstyle="round", facecolor="white", edgecolor="#9a9a9a", alpha=0.9))
-    finite = [v for v in lam_all.values() if math.isfinite(v)]
+                          label="critical position (" + ("found by the search" if search else "smallest λmax") + ")"))
+    if any(c.ties for c in curves):
+        handles.append(Line2D([], [], linestyle="none", marker="*", markersize=11, markerfacecolor="white",
+                              markeredgecolor="grey", label="tied position (same λmax)"))
+    title = "critical position" + (" (searched)" if search else " (of the positions run)")
+    fig.text(0.70, 0.92, title + "\n" + ("\n".join(lines) if lines else "none (no finite λmax)"), ha="left", va="top",
+             fontsize=8, bbox=dict(boxstyle="round", facecolor="white", edgecolor="#9a9a9a"))
+    finite = [v for c in curves for v in c.lam if math.isfinite(v)]
     ax.set_ylim(0.0, 1.15 * max(finite) if finite else 1.0)
-    ax.set_xlabel("position x of the moving live load (m)")
+    ax.set_xlabel("position x of the moving live load" + ("s' reference" if search else "") + " (m)")
     ax.set_ylabel("λmax: live-load multiplier at collapse (–)")
-    ax.set_title("capacity against load position (influence line)", fontsize=10)
+    ax.set_title("capacity against load position" + (" (direct limit at each position)" if search else " (influence line)"),
+                 fontsize=10)
     ax.grid(True, linewidth=0.3, alpha=0.6)
     fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 0.0), ncols=min(len(handles), 3), fontsize=8,
                frameon=False)

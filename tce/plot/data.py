@@ -35,6 +35,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
+from ..study.positions import critical_positions
 from ..study.runner import same_lambda
 from ..study.schema import PLOT_KINDS, PlotsSection
 
@@ -175,6 +176,14 @@ class PlotSpec:
     kinds: tuple[str, ...]
 
 
+def critical_scenarios(ds: xr.Dataset) -> list[str]:
+    """The critical scenario of every group of a load-position sweep, in dataset order (the
+    scenarios the per-scenario figures show by default, :func:`plot_spec`; a group without a
+    finite lambda_max shows its first position)."""
+    chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}
+    return [str(s) for s in ds["scenario"].values if str(s) in chosen]
+
+
 def plot_spec(
     ds: xr.Dataset,
     steps: Sequence[Target] | None = None,
@@ -219,8 +228,6 @@ def plot_spec(
                             f"{' ...' if len(names) > 8 else ''}")
     drawn = section.select(names)
     if section.scenarios is None and "load_x" in ds.coords:  # a load-position sweep: its critical positions
-        from .capacity import critical_scenarios
-
         drawn = critical_scenarios(ds)
     return PlotSpec(
         steps=tuple(section.steps),

@@ -76,10 +76,10 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
                 skipped.append("summary (nothing swept)")
             continue
         if kind == "capacity":
-            if "load_x" in ds.coords:
+            if "load_x" in ds.coords or "scan_x" in ds:
                 tasks.append(Task(name("capacity"), kind, ()))
             else:
-                skipped.append("capacity (no load-position sweep)")
+                skipped.append("capacity (no load-position sweep or search)")
             continue
         if kind == "bracket":
             from .materials import SWEPT

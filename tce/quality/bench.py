@@ -4,9 +4,9 @@
 reference (the Clarabel-direct solve at tight tolerance, or a closed form):
 
 ``per_solve``
-    One TCE solve of the paper's arch (:func:`tce.arch.semicircular_arch`, friction 0.8,
+    One TCE solve of the paper's arch (:func:`tce.structures.arch.semicircular_arch`, friction 0.8,
     rigid, an in-plane scene: ``lam`` cycling over a few values in ``[0, 0.2]`` with the
-    right support spreading 1 mm) by the Clarabel-direct path (:class:`tce.solve.TCESolver`,
+    right support spreading 1 mm) by the Clarabel-direct path (:class:`tce.core.solve.TCESolver`,
     data built once, vectors updated per solve), by a cvxpy problem built per solve and by
     a parametrised cvxpy problem re-solved (:class:`tce.cvx.CvxTCE`), with every solver
     cvxpy offers for the class (CLARABEL, ECOS, SCS; HIGHS for the planar LP); for the 3D
@@ -39,8 +39,8 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     (rigid) save, each with its effect on the answer.
 ``plotting``
     For each shipped paper study, in a fresh process as ``tce run --jobs 2`` runs it: the
-    wall time of solving and writing (``run_study(plots=False)``, worker start included)
-    and of drawing every figure and the view (``write_plots``, matplotlib's import
+    wall time of solving and writing (``run_study``, worker start included)
+    and of drawing every figure and the view (``write_figures``, matplotlib's import
     included), with their CPU times in ``note`` (``--quick``: one run, the workers' CPU
     counted with the solving); the full run repeats both in the same process (imports
     warm) and adds a 300-scenario sweep of the paper's arch (10 frictions x 5 settlement
@@ -456,12 +456,12 @@ PAPER_STUDIES = ("fig3_4_settlements", "fig5_6_transversal", "fig7_8_inplane", "
 
 def _tce_run(study: Path, out: Path, args: Sequence[str], program: bool = True) -> float:
     """Wall time (s) of ``tce run STUDY --fresh ARGS`` in a fresh process. ``program=False``
-    calls :func:`tce.study.cli.main` with explicit arguments, which leaves dask importable
+    calls :func:`tce.cli.main` with explicit arguments, which leaves dask importable
     (what every run did before the program kept it out)."""
     if program:
-        cmd = [sys.executable, "-m", "tce.study.cli"]
+        cmd = [sys.executable, "-m", "tce.cli"]
     else:
-        cmd = [sys.executable, "-c", "import sys; from tce.study.cli import main; sys.exit(main(sys.argv[1:]))"]
+        cmd = [sys.executable, "-c", "import sys; from tce.cli import main; sys.exit(main(sys.argv[1:]))"]
     t0 = time.perf_counter()
     subprocess.run(cmd + ["-q", "run", str(study), "--out", str(out), "--fresh", *args], check=True,
                    capture_output=True, text=True)
@@ -557,18 +557,19 @@ _PLOT_RUN = """
 import json, resource, shutil, sys, tempfile, time
 from pathlib import Path
 from tce.study.schema import load_study
-from tce.study.runner import run_study, write_plots
+from tce.plot import write_figures
+from tce.study.runner import run_study
 import xarray as xr
 study, jobs, repeats = load_study(sys.argv[1]), int(sys.argv[2]), int(sys.argv[3])
 out = Path(tempfile.mkdtemp())
 rows = []
 for k in range(repeats):
     t, c = time.perf_counter(), time.process_time()
-    report = run_study(study, out / str(k), jobs=jobs, plots=False)
+    report = run_study(study, out / str(k), jobs=jobs)
     solve, solve_cpu = time.perf_counter() - t, time.process_time() - c
     ds = xr.load_dataset(report.results)
     t, c = time.perf_counter(), time.process_time()
-    files = write_plots(ds, out / str(k) / study.name, jobs=jobs)
+    files = write_figures(ds, out / str(k) / study.name, jobs=jobs)
     rows.append(dict(solve=solve, plot=time.perf_counter() - t, solve_cpu=solve_cpu, plot_cpu=time.process_time() - c,
                      files=len(files), n_solves=int(ds.n_solves.sum()), scenarios=int(ds.sizes["scenario"])))
 from joblib.externals.loky import get_reusable_executor

@@ -10,7 +10,7 @@ import pandas as pd
 from ..study.progress import track
 from .hard import CASES, HardCase, run_case
 
-__all__ = ["check_command", "format_table", "run_checks"]
+__all__ = ["check_command", "format_table", "run_checks", "validation_command"]
 
 COLUMNS = ["case", "expected", "status", "residual", "retry", "solves", "time_s", "ok", "errors"]
 
@@ -66,13 +66,32 @@ def format_table(table: pd.DataFrame) -> str:
 def check_command(args: argparse.Namespace | None = None) -> int:
     """Run the hard cases, print the table, and return 0 if every case passed (1 otherwise).
 
-    ``args.select`` (optional) restricts the run to the cases whose name contains it.
+    ``args.select`` (optional) restricts the run to the cases whose name contains it;
+    ``args.validation`` runs the validation atlas (:mod:`tce.quality.validation`) instead.
     """
     select = getattr(args, "select", None) if args is not None else None
+    if getattr(args, "validation", False):
+        return validation_command(select)
     table = run_checks(select=select)
     print(format_table(table.drop(columns="errors")))
     failed = table[~table["ok"]]
     for _, row in failed.iterrows():
         print(f"FAILED {row['case']}: {row['errors']}")
     print(f"{len(table) - len(failed)}/{len(table)} cases passed in {table['time_s'].sum():.1f} s")
+    return 0 if failed.empty else 1
+
+
+def validation_command(select: str | None = None) -> int:
+    """Compute the validation cases (those whose name contains ``select``), print the table
+    and return 0 if every case is within its tolerance (1 otherwise)."""
+    from .validation import format_validation, run_validation
+
+    table = run_validation(select=select)
+    print(format_validation(table))
+    failed = table[~table["ok"]]
+    for _, row in failed.iterrows():
+        print(f"FAILED {row['case']}: tce {row['tce']:.6g} against {row['published']:.6g} ({row['source']}, "
+              f"{row['where']}), tolerance {row['tolerance']:.0e}")
+    print(f"{len(table) - len(failed)}/{len(table)} cases within tolerance in {table['time_s'].sum():.1f} s "
+          "(sources and convergence: docs/validation.md)")
     return 0 if failed.empty else 1

@@ -4,7 +4,7 @@ Each :class:`HardCase` has a name, a runner that makes one or more solves and ch
 invariants of the case (identical dimensionless answers across units, monotone thrust, ...),
 the status(es) every solve may end with, and the bound on the residuals of ``optimal``
 answers (relative equilibrium residual and contact-law violation, see
-:class:`tce.solve.TCEResult`). :func:`run_case` runs one and never raises: an exception is
+:class:`tce.core.solve.TCEResult`). :func:`run_case` runs one and never raises: an exception is
 reported as a failure.
 
 Reference scene: the paper's semicircular arch (inner radius 1 m, thickness 0.2 m, depth

@@ -113,6 +113,7 @@ def semicircular_arch(
     voussoirs: int = 14,
     unit_weight: float = 20.0,
     support_height: float | None = None,
+    joints: str = "radial",
 ) -> Assembly:
     """The paper's semicircular arch on two support blocks.
 
@@ -131,16 +132,33 @@ def semicircular_arch(
     support_height : float, optional
         Height of the support boxes (m); default: the thickness (the paper's supports:
         as wide as the thickness, as deep as the arch, as high as the thickness).
+    joints : {"radial", "vertical"}
+        Direction of the joints between voussoirs (the stereotomy). ``radial`` (default):
+        every joint lies on a radius, at equal angles. ``vertical``: the springing joints
+        stay horizontal (the ring's base on the supports) and the ``voussoirs - 1`` joints
+        between voussoirs are vertical cuts from the intrados to the extrados, their lower
+        ends at equal angles on the intrados (as the radial joints' lower ends), so that
+        ``v01`` and the last voussoir hold the ring beyond the intrados' width, bounded by
+        the extrados arc (drawn as a polygon of chords about ``pi / voussoirs`` apart).
+        Makris and Alexakis (2013, *The effect of stereotomy on the shape of the
+        thrust-line and the minimum thickness of semicircular masonry arches*, Archive of
+        Applied Mechanics 83, 1511-1533) give the minimum thickness ``t/R = 0.1095`` with
+        vertical cuts against Milankovitch's 0.1075 with radial ones (docs/validation.md).
 
     Returns
     -------
     Assembly
-        See :func:`arch_from_joints`.
+        See :func:`arch_from_joints`; ``meta["joints"]`` records the stereotomy.
     """
     check_positive(inner_radius=inner_radius, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs")
     check_blocks(n + 2, f"voussoirs + 2 supports = {n} + 2")
+    if joints not in JOINTS:
+        raise ValueError(f"joints must be one of {', '.join(JOINTS)}, got {joints!r}")
     height = thickness if support_height is None else support_height
+    if joints == "vertical":
+        return _vertical_joint_arch(float(inner_radius), float(thickness), float(depth), n, float(unit_weight),
+                                    float(height))
     ji, je = semicircle_joints(inner_radius, inner_radius + thickness, np.linspace(np.pi, 0.0, n + 1))
     meta = dict(
         generator="semicircular_arch",
@@ -152,6 +170,52 @@ def semicircular_arch(
         support_height=float(height),
     )
     return arch_from_joints(ji, je, depth, unit_weight, height, meta)
+
+
+#: joint directions of :func:`semicircular_arch`
+JOINTS = ("radial", "vertical")
+
+
+def _vertical_joint_arch(ri: float, t: float, depth: float, n: int, unit_weight: float, height: float) -> Assembly:
+    """The semicircular ring cut by vertical joints (``semicircular_arch(..., joints="vertical")``).
+
+    Joint ``k`` (``0 < k < n``) is the vertical segment at ``x_k = ri cos(pi (1 - k / n))``
+    from the intrados up to the extrados; joints 0 and ``n`` are the horizontal springing
+    joints. Voussoirs 2 .. n-1 have chord intrados and extrados faces (as the radial ones);
+    the two end voussoirs follow the extrados arc down to the springing line.
+    """
+    if n < 2:
+        raise ValueError(f"vertical joints need voussoirs >= 2, got {n}")
+    re = ri + t
+    ji, _ = semicircle_joints(ri, ri, np.linspace(np.pi, 0.0, n + 1))
+    x = ji[:, 0]
+    je = np.column_stack([x, np.sqrt(np.maximum(re**2 - x**2, 0.0))])
+    je[0], je[-1] = [-re, 0.0], [re, 0.0]
+    # exact mirror images (the crown joint, for even n, on x = 0)
+    ji, je = _mirror_joints(ji[: n // 2 + 1], n), _mirror_joints(je[: n // 2 + 1], n)
+    meta = dict(
+        generator="semicircular_arch",
+        inner_radius=ri,
+        thickness=t,
+        depth=depth,
+        voussoirs=n,
+        unit_weight=unit_weight,
+        support_height=height,
+        joints="vertical",
+    )
+    asm = arch_from_joints(ji, je, depth, unit_weight, height, meta)
+    # the end voussoirs: base, the short intrados chord, the vertical joint, the extrados arc
+    top = math.atan2(je[1, 1], -je[1, 0])  # extrados angle of joint 1, measured from -x
+    m = max(1, math.ceil(top / (math.pi / n)))
+    arc = np.linspace(top, 0.0, m + 1)[1:-1]
+    left = np.vstack([ji[0], ji[1], je[1], np.column_stack([-re * np.cos(arc), re * np.sin(arc)]), je[0]])
+    right = left[::-1] * np.array([-1.0, 1.0])
+    d = depth / 2.0
+    ends = prisms(np.stack([_at_depth(left, -d), _at_depth(right, -d)]), np.stack([_at_depth(left, d), _at_depth(right, d)]))
+    blocks = list(asm.blocks)
+    for k, shape in zip((1, n), ends):
+        blocks[k] = Block(blocks[k].name, shape, unit_weight, False)
+    return Assembly(tuple(blocks), asm.interfaces, asm.meta)
 
 
 def semicircle_joints(inner_radius: float, outer_radius: float, theta: ArrayLike) -> tuple[np.ndarray, np.ndarray]:

@@ -2,7 +2,7 @@
 
 Conventions (docs/conventions.md): an interface is the planar contact polygon shared by blocks A and
 B; its unit normal ``n`` points from A into B, and its frame is ``(n, t1, t2)`` (rows of
-``Interface.frame``, see :func:`tce.geometry.frame_from_normal`). Support blocks have a
+``Interface.frame``, see :func:`tce.structures.geometry.frame_from_normal`). Support blocks have a
 prescribed rigid motion about their own centroid; their equilibrium is not enforced.
 Lengths in m, unit weights in kN/m^3, weights in kN.
 """

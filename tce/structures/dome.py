@@ -37,7 +37,7 @@ by sector. Each support is the prism under its sector's base joint (a trapezoid 
 ``k`` -> course ``k+1`` in each sector (normal up the meridian, away from the base); and
 between neighbouring sectors of a course. Every interface has ``a < b`` (block indices)
 and its normal points from A into B. Supports do not get interfaces between each other
-(they would carry no unknowns anyway, see :mod:`tce.model`).
+(they would carry no unknowns anyway, see :mod:`tce.core.model`).
 """
 
 from __future__ import annotations
@@ -231,7 +231,7 @@ def radial_settlement(
     -------
     dict
         ``{support_name: [ux, uy, 0, 0, 0, 0]}`` (m, rad), ready for
-        :meth:`tce.solve.TCESolver.solve`.
+        :meth:`tce.core.solve.TCESolver.solve`.
 
     Raises
     ------

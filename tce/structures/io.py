@@ -72,8 +72,8 @@ must be a regular file (not a folder, a device or a pipe).
 
 Units are SI (m, kN) after loading. Every loaded block is checked (closed, consistently
 oriented, planar faces, positive volume), blocks must not overlap
-(:func:`tce.contacts.check_overlaps`), interfaces are read and checked or detected
-(:func:`tce.contacts.detect_interfaces`) and the assembly is validated (a support, no
+(:func:`tce.structures.contacts.check_overlaps`), interfaces are read and checked or detected
+(:func:`tce.structures.contacts.detect_interfaces`) and the assembly is validated (a support, no
 loose block). Errors name the file and the block or interface.
 """
 
@@ -719,10 +719,10 @@ def load_assembly(
         file's default, then 20 kN/m^3.
     tol : float
         Relative geometric tolerance of the contact and overlap checks, see
-        :func:`tce.contacts.detect_interfaces`. Faces must be planar within
+        :func:`tce.structures.contacts.detect_interfaces`. Faces must be planar within
         ``min(tol, 1e-6)`` times the block size (what :meth:`Assembly.validate` requires).
     min_area, angle_tol : float, optional
-        Passed to :func:`tce.contacts.detect_interfaces`.
+        Passed to :func:`tce.structures.contacts.detect_interfaces`.
     nonplanar : {"error", "triangulate"}, optional
         What to do with a face that is not planar: report it, or split it into triangles
         (for curved surfaces given as quad meshes). Default: ``"triangulate"`` for COMPAS
@@ -731,7 +731,7 @@ def load_assembly(
         needs a looser ``tol`` and ``angle_tol``, and ``check_overlap=False`` if the
         facetted blocks interpenetrate; a file that stores its interfaces needs neither.
     check_overlap : bool
-        Run :func:`tce.contacts.check_overlaps` (at ``max(tol, interface_tol)`` when the
+        Run :func:`tce.structures.contacts.check_overlaps` (at ``max(tol, interface_tol)`` when the
         file's interfaces are used).
     detect : bool, optional
         Detect the interfaces from the geometry; by default only when the file stores none

@@ -1,5 +1,5 @@
-"""Studies: TOML files (``schema``), the parallel runner (``runner``), results datasets (``results``)
-and the ``tce`` command line (``cli``).
+"""Studies: TOML files (``schema``), the parallel runner (``runner``) and results datasets
+(``results``). Nothing here draws: the command line (:mod:`tce.cli`) composes running and drawing.
 
 The schema's public names are re-exported here, imported on first use (so that the ``tce``
 program handles Ctrl-C before numpy, pydantic and the rest are imported; the runner, which

@@ -23,10 +23,7 @@ import re
 import stat
 from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from .schema import StudyFile
+from typing import Any
 
 __all__ = [
     "MAX_DRAWN_STATES",
@@ -53,9 +50,12 @@ MAX_SOLVES = 20_000_000
 MAX_DRAWN_STATES = 200
 
 
-def _error(msg: str) -> Exception:
-    from .schema import StudyError
+class StudyError(ValueError):
+    """A study file that cannot be run; the message says where and how to fix it (raised by
+    these guards and by :mod:`tce.study.schema`, which exports it)."""
 
+
+def _error(msg: str) -> Exception:
     return StudyError(msg)
 
 
@@ -153,10 +153,12 @@ def _control(text: str) -> bool:
     return any(ord(c) < 32 or ord(c) == 127 for c in text)
 
 
-def check_work(path: Path, spec: StudyFile, drawn_scenarios: int | None = None) -> None:
+def check_work(path: Path, spec: Any, drawn_scenarios: int | None = None) -> None:
     """Refuse a study that asks for more than :data:`MAX_SCENARIOS` scenarios or
     :data:`MAX_SOLVES` worst-case solves (checked before the scenarios are expanded), or,
-    given the number of scenarios drawn, more than :data:`MAX_DRAWN_STATES` drawn states."""
+    given the number of scenarios drawn, more than :data:`MAX_DRAWN_STATES` drawn states.
+    ``spec`` is the parsed file (a :class:`tce.study.schema.StudyFile`; not imported here, the
+    schema imports these guards)."""
     cases = len(spec.scenarios)
     alphas = len(spec.loads.alphas)
     sweeps = spec.sweep.items()

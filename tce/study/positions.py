@@ -5,17 +5,26 @@ A study with ``[sweep] load_x`` runs one scenario per position of its moving (sc
 any other swept parameter) split the scenarios into groups, one influence line each. The
 critical position of a group is the one with the smallest ``lambda_max`` (positions
 whose load path found no limit are left out: the load is carried at any multiplier there).
+
+A study with ``[loads] critical_position = true`` searches the position instead
+(:func:`tce.analysis.critical.critical_position`) and runs each scenario's load path there;
+:func:`with_critical` stores the search's answer and scan in the scenario's dataset.
 """
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
 
-__all__ = ["CriticalPosition", "critical_positions", "position_groups"]
+from ..analysis.critical import CriticalResult
+from ..core.limit import LimitResult
+from ..core.loads import LoadPattern
+
+__all__ = ["CriticalPosition", "critical_positions", "position_groups", "with_adequacy", "with_critical"]
 
 
 @dataclass(frozen=True)
@@ -34,6 +43,10 @@ class CriticalPosition:
         Its position (m; NaN when none).
     lambda_max : float
         Its ``lambda_max`` (NaN when none).
+    ties : tuple of float
+        The other positions of the group whose ``lambda_max`` is the same (within the load
+        path's tolerance, :func:`critical_positions`), e.g. mirror positions; the critical
+        position is the leftmost of the tied ones.
     """
 
     group: str
@@ -41,6 +54,7 @@ class CriticalPosition:
     scenario: str
     load_x: float
     lambda_max: float
+    ties: tuple[float, ...] = ()
 
 
 def position_groups(ds: xr.Dataset) -> dict[str, list[str]]:
@@ -63,14 +77,60 @@ def position_groups(ds: xr.Dataset) -> dict[str, list[str]]:
 
 def critical_positions(ds: xr.Dataset) -> list[CriticalPosition]:
     """The critical position (smallest finite ``lambda_max``) of every group of a
-    ``load_x`` sweep (:func:`position_groups`)."""
+    ``load_x`` sweep (:func:`position_groups`).
+
+    Positions whose ``lambda_max`` exceeds the smallest by no more than twice the load
+    path's tolerance (``[loads] tolerance`` of the study, the width of the bisection
+    bracket; 1e-6 relative at least) are tied: the leftmost is the critical position, the
+    others are :attr:`CriticalPosition.ties`. The rule does not depend on the order of the
+    scenarios (a symmetric structure's mirror positions give one answer on any machine).
+    """
     lam = {str(s): float(v) for s, v in zip(ds["scenario"].values, ds["lambda_max"].values)}
     x = {str(s): float(v) for s, v in zip(ds["scenario"].values, ds["load_x"].values)}
+    atol = 2.0 * float(json.loads(ds.attrs.get("loads", "{}")).get("tolerance", 0.0))
     out = []
     for group, scen in position_groups(ds).items():
         finite = [s for s in scen if math.isfinite(lam[s])]
-        best = min(finite, key=lam.__getitem__) if finite else ""
-        out.append(CriticalPosition(
-            group, tuple(scen), best, x[best] if best else float("nan"), lam[best] if best else float("nan")
-        ))
+        if not finite:
+            out.append(CriticalPosition(group, tuple(scen), "", float("nan"), float("nan")))
+            continue
+        least = min(lam[s] for s in finite)
+        tied = [s for s in finite if lam[s] - least <= max(atol, 1e-6 * abs(least))]  # sorted by load_x
+        best = tied[0]
+        out.append(CriticalPosition(group, tuple(scen), best, x[best], lam[best], tuple(x[s] for s in tied[1:])))
     return out
+
+
+def with_critical(ds: xr.Dataset, crit: CriticalResult) -> xr.Dataset:
+    """A one-scenario dataset with the critical-position search's answer and its scan
+    (``critical_*`` and ``scan_x``/``scan_lambda`` along ``scan``, ``docs/results.md``)."""
+    one = ("scenario",)
+    return ds.assign(
+        critical_x=(one, [crit.critical_x]),
+        critical_lambda=(one, [crit.lambda_max]),
+        critical_status=(one, np.asarray([crit.status], dtype=object)),
+        critical_ties=(one, np.asarray([", ".join(f"{t:.6g}" for t in crit.ties)], dtype=object)),
+        critical_solves=(one, [crit.n_solves]),
+        critical_xtol=(one, [crit.xtol]),
+        scan_x=(("scenario", "scan"), crit.x[None]),
+        scan_lambda=(("scenario", "scan"), crit.lam[None]),
+    ).assign_coords(scan=np.arange(len(crit.x)))
+
+
+def with_adequacy(
+    ds: xr.Dataset, limit: LimitResult, pattern: LoadPattern, dead_factor: float, live_factor: float
+) -> xr.Dataset:
+    """A one-scenario dataset with the adequacy factor (``[assessment]``): the factored
+    direct limit's ``lambda_max`` (NaN unless optimal, inf when unbounded) and status, the
+    partial factors, and the vehicles' names and total loads (kN) for the assessment's
+    wording."""
+    one = ("scenario",)
+    vehicles = "; ".join(f"{v.label} ({v.total:g} kN)" for v in pattern.vehicle if v.scaled)
+    value = limit.lambda_max if limit.status in ("optimal", "unbounded") else float("nan")
+    return ds.assign(
+        adequacy_factor=(one, [value]),
+        adequacy_status=(one, np.asarray([limit.status], dtype=object)),
+        assessed_vehicles=(one, np.asarray([vehicles], dtype=object)),
+        dead_factor=(one, [float(dead_factor)]),
+        live_factor=(one, [float(live_factor)]),
+    )

@@ -138,7 +138,24 @@ META: dict[str, tuple[str, str]] = {
     "thickness": ("m", "thickness"),
     "depth": ("m", "depth"),
     "radius": ("m", "mid-surface radius"),
-    "load_x": ("m", "plan abscissa of the moving (scaled, on_top) point loads"),
+    "load_x": ("m", "plan abscissa of the reference of the moving loads (vehicles, scaled on_top point loads)"),
+    "load_notes": ("-", "loads dropped because they lie off the deck, one line each (empty: none)"),
+    # critical position search ([loads] critical_position; tce.analysis.critical)
+    "critical_x": ("m", "reference position of the moving loads of least direct lambda_max (the load path runs there)"),
+    "critical_lambda": ("1", "least direct lambda_max over the positions (at critical_x)"),
+    "critical_status": ("-", "status of the critical-position search (optimal, unbounded, infeasible, numerical)"),
+    "critical_ties": ("-", "other positions with the same least lambda_max (m, comma-separated; empty: none)"),
+    "critical_solves": ("-", "direct limit solves made by the critical-position search"),
+    "critical_xtol": ("m", "tolerance of the critical-position search on the position"),
+    "scan": ("-", "position evaluated by the critical-position search"),
+    "scan_x": ("m", "reference position evaluated by the critical-position search"),
+    "scan_lambda": ("1", "direct lambda_max at scan_x (inf: carried at any multiplier)"),
+    # assessment ([assessment]; tce.analysis.assessment)
+    "adequacy_factor": ("1", "multiplier of the factored live load at collapse under the factored dead load (>= 1: adequate)"),
+    "adequacy_status": ("-", "status of the factored direct limit (optimal, unbounded, infeasible, numerical)"),
+    "assessed_vehicles": ("-", "the live vehicles assessed, with their total loads"),
+    "dead_factor": ("1", "partial factor on every fixed load (self-weight included) of the assessment"),
+    "live_factor": ("1", "partial factor on the live loads of the assessment"),
     "cohesion": ("kN/m^2", "cohesion of the joints"),
     "tensile_strength": ("kN/m^2", "tensile strength of the joints"),
     "compressive_strength": ("kN/m^2", "compressive strength of the joints (per contact vertex)"),
@@ -267,6 +284,8 @@ def _load_vars(lp: LoadPathResult, analysis: Analysis) -> tuple[dict[str, tuple]
         "load_force": (("scenario", "load", "xyz"), applied.forces[None]),
         "load_scaled": (("scenario", "load"), applied.scaled.astype(float)[None]),
     }
+    if lp.loads is not None and lp.loads.vehicle:
+        data["load_notes"] = (("scenario",), _text(["\n".join(applied.notes)]))
     return data, {"load": (("load",), np.arange(len(applied.blocks)))}
 
 

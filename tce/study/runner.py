@@ -1,4 +1,4 @@
-"""Run a study: solve its missing scenarios in parallel, keep each as it finishes, merge, plot.
+"""Run a study: solve its missing scenarios in parallel, keep each as it finishes, merge.
 
 :func:`run_study` expands a :class:`tce.study.Study` into scenarios, skips those already
 written under ``<out>/<study name>/scenarios/`` that can be trusted
@@ -55,7 +55,10 @@ from ..analysis.loadpath import LoadPathResult, load_path
 from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
+from ..analysis.assessment import adequacy_factor
+from ..analysis.critical import critical_position
 from .jobs import choose_jobs
+from .positions import with_adequacy, with_critical
 from .results import (
     FolderLocked,
     StorageError,
@@ -82,7 +85,6 @@ __all__ = [
     "same_lambda",
     "solve_scenario",
     "with_drawn_states",
-    "write_plots",
 ]
 
 log = logging.getLogger(__name__)
@@ -92,6 +94,8 @@ Backend = Literal["loky", "dask"]
 LAMBDA_TOL = 1e-9
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
+#: draws a written results dataset: (dataset, study folder, processes) -> files written
+Draw = Callable[[xr.Dataset, Path, int], Sequence[Path]]
 #: outcomes of a load path, in the order the run summary lists them
 OUTCOMES = ("limit", "no_limit", "unbounded", "infeasible", "numerical")
 
@@ -184,19 +188,29 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     (:func:`with_drawn_states`).
     """
     analysis = _cold(_analysis(sc, assembly))
+    pattern, crit = sc.loads_pattern, None
+    if sc.loads.get("critical_position"):
+        crit = critical_position(analysis, pattern, start=sc.loads["positions"])
+        log.debug("scenario %r: critical position %s", sc.name, crit.message)
+        if crit.ok:
+            pattern = crit.pattern
     lp = load_path(
         analysis,
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
         atol=sc.loads["tolerance"],
         lam_cap=sc.loads["lambda_cap"],
-        loads=sc.loads_pattern,
+        loads=pattern,
     )
     log.debug("scenario %r: %s, lambda_max = %s", sc.name, lp.outcome, lp.lambda_max)
     bracket = None
     if analysis.material.flow == "non-associative":
-        bracket = nonassociative_limit(analysis, loads=sc.loads_pattern)
-    return scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+        bracket = nonassociative_limit(analysis, loads=pattern)
+    ds = scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+    if "dead_factor" in sc.loads:
+        factors = sc.loads["dead_factor"], sc.loads["live_factor"]
+        ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
+    return ds if crit is None else with_critical(ds, crit)
 
 
 def same_lambda(a: float, b: float) -> bool:
@@ -340,14 +354,6 @@ def _grouped(scenarios: list[Scenario]) -> list[Scenario]:
     for k, sc in enumerate(scenarios):
         first.setdefault(sc.group, k)
     return sorted(scenarios, key=lambda sc: first[sc.group])
-
-
-def write_plots(ds: xr.Dataset, outdir: Path, jobs: int = 1) -> list[Path]:
-    """Figures and interactive view of a results dataset (:func:`tce.plot.write_figures`,
-    ``[plots]`` of the study), drawn by up to ``jobs`` processes; imported only when drawn."""
-    from .. import plot
-
-    return list(plot.write_figures(ds, Path(outdir), jobs=jobs))
 
 
 class _Tally:
@@ -538,10 +544,11 @@ def run_study(
     backend: Backend = "loky",
     scheduler: str | None = None,
     progress: Progress | None = None,
-    plots: bool = True,
+    plots: Draw | None = None,
     fresh: bool = False,
 ) -> RunReport:
-    """Solve every scenario of ``study`` not solved yet and write ``results.nc`` (and figures).
+    """Solve every scenario of ``study`` not solved yet and write ``results.nc`` (and, given
+    ``plots``, its figures).
 
     Parameters
     ----------
@@ -562,8 +569,12 @@ def run_study(
     progress : callable, optional
         ``progress(done, total, steps)`` before the first scenario (``done = 0``) and after
         each scenario solved.
-    plots : bool
-        Write the figures after the results.
+    plots : callable, optional
+        ``plots(ds, folder, jobs) -> list of Path``: draws the written results dataset into the
+        study's folder (still under its lock) with up to ``jobs`` processes; the files it
+        returns are :attr:`RunReport.figures`. The command line passes
+        :func:`tce.plot.write_figures` (the runner does not import :mod:`tce.plot`); default:
+        no figures.
     fresh : bool
         Delete the scenario files of earlier runs first (under the folder's lock).
 
@@ -639,7 +650,7 @@ def run_study(
         log.info("wrote %s", report.results)
         if plots:
             try:
-                report.figures = write_plots(ds, directory, jobs=jobs)
+                report.figures = list(plots(ds, directory, jobs))
             except OSError as exc:  # a full or unwritable disk: results.nc is written
                 report.faults.append(str(storage_error(Path(exc.filename or directory), exc)))
                 raise FigureFault(report) from None

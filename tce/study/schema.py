@@ -32,16 +32,28 @@ from functools import cached_property
 from pathlib import Path
 from typing import Annotated, Any, Literal, get_args
 
-from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, field_validator, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    TypeAdapter,
+    ValidationError,
+    ValidationInfo,
+    field_validator,
+    model_validator,
+)
 
 from .. import __version__
 from ..analysis.loadpath import MAX_INCREMENTS
 from ..core.loads import LoadError, LoadPattern, resolve
 from ..core.material import Material
+from ..core.fill import DISPERSION_2_TO_1
+from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.assembly import Assembly
 from ..structures.io import MAX_BLOCKS, InputLimitError
 from ..structures.params import did_you_mean
 from . import guards
+from .guards import StudyError
 
 __all__ = [
     "MAX_BLOCKS",
@@ -66,10 +78,6 @@ MATERIAL_SWEEPS = ("friction", "cohesion", "tensile_strength", "compressive_stre
 RESERVED_NAMES = frozenset(
     ["CON", "PRN", "AUX", "NUL"] + [f"{p}{k}" for p in ("COM", "LPT") for k in range(1, 10)]
 )
-
-
-class StudyError(ValueError):
-    """A study file that cannot be run; the message says where and how to fix it."""
 
 
 class _Strict(BaseModel):
@@ -103,7 +111,7 @@ class StudySection(_Strict):
 
 
 class ArchStructure(_Strict):
-    """``[structure] type = "semicircular_arch"``: :func:`tce.arch.semicircular_arch`."""
+    """``[structure] type = "semicircular_arch"``: :func:`tce.structures.arch.semicircular_arch`."""
 
     type: Literal["semicircular_arch"]
     inner_radius: Positive = 1.0
@@ -112,6 +120,7 @@ class ArchStructure(_Strict):
     voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
     unit_weight: Positive = 20.0
     support_height: Positive | None = None
+    joints: Literal["radial", "vertical"] = "radial"
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
@@ -177,6 +186,37 @@ class ArchOnPiersStructure(_Strict):
         return semicircular_arch_on_piers(**self.model_dump(exclude={"type"}))
 
 
+class ArchBridgeStructure(_Strict):
+    """``[structure] type = "arch_bridge"``: :func:`tce.structures.bridge.arch_bridge`."""
+
+    type: Literal["arch_bridge"]
+    spans: Annotated[int, Field(ge=1)] = 1
+    span: Positive = 6.0
+    rise: Positive = 1.5
+    thickness: Positive = 0.4
+    depth: Positive = 3.0
+    voussoirs: Annotated[int, Field(ge=1)] = 12
+    unit_weight: Positive = 20.0
+    pier_width: Positive = 1.0
+    pier_height: Positive = 3.0
+    piers: Literal["free", "fixed"] = "free"
+
+    @model_validator(mode="after")
+    def _not_too_many_blocks(self) -> ArchBridgeStructure:
+        if self.spans * (self.voussoirs + 2) + 1 > MAX_BLOCKS:
+            raise ValueError(
+                f"spans x (voussoirs + 2) + 1 = {self.spans * (self.voussoirs + 2) + 1} blocks, more than "
+                f"MAX_BLOCKS = {MAX_BLOCKS}; fix: use fewer spans or voussoirs"
+            )
+        return self
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        from ..structures.bridge import arch_bridge
+
+        return arch_bridge(**self.model_dump(exclude={"type"}))
+
+
 class BarrelVaultStructure(_Strict):
     """``[structure] type = "barrel_vault"``: :func:`tce.structures.vault.barrel_vault`."""
 
@@ -218,7 +258,7 @@ class GroinVaultStructure(_Strict):
 
 
 class DomeStructure(_Strict):
-    """``[structure] type = "dome"``: :func:`tce.dome.hemispherical_dome`."""
+    """``[structure] type = "dome"``: :func:`tce.structures.dome.hemispherical_dome`."""
 
     type: Literal["dome"]
     radius: Positive = 5.0
@@ -246,7 +286,7 @@ class DomeStructure(_Strict):
 
 
 class FileStructure(_Strict):
-    """``[structure] type = "file"``: blocks read by :func:`tce.io.load_assembly`.
+    """``[structure] type = "file"``: blocks read by :func:`tce.structures.io.load_assembly`.
 
     ``path`` is relative to the study file (made absolute when the study is read);
     ``supports`` names the support blocks (default: the flags in the file).
@@ -273,6 +313,7 @@ _STRUCTURES = (
     GroinVaultStructure,
     DomeStructure,
     FileStructure,
+    ArchBridgeStructure,
 )
 #: the ``[structure] type`` values, in the order docs/studies.md lists them
 STRUCTURE_TYPES = tuple(cls.model_fields["type"].annotation.__args__[0] for cls in _STRUCTURES)
@@ -284,7 +325,8 @@ Structure = Annotated[
     | BarrelVaultStructure
     | GroinVaultStructure
     | DomeStructure
-    | FileStructure,
+    | FileStructure
+    | ArchBridgeStructure,
     Field(discriminator="type"),
 ]
 
@@ -302,7 +344,7 @@ class MaterialSection(_Strict):
     flow: Literal["associative", "non-associative"] = "associative"
 
     def build(self) -> Material:
-        """The :class:`tce.material.Material` of this section."""
+        """The :class:`tce.core.material.Material` of this section."""
         return Material(**self.model_dump())
 
 
@@ -327,14 +369,63 @@ class DistributedLoadSection(_Strict):
     scaled: bool = True
 
 
+class VehicleSection(_Strict):
+    """``[[loads.vehicle]]``: axles (``[offset (m), load (kN)]``) moving as one, on wheels
+    (transverse offsets, m) with optional contact patches, or a ``standard`` vehicle of
+    :data:`tce.core.vehicles.STANDARD` (its keys given here replace the standard's);
+    :class:`tce.core.vehicles.Vehicle`."""
+
+    standard: Literal[tuple(STANDARD)] | None = None  # type: ignore[valid-type]
+    axles: list[Vector2] | None = None
+    wheels: list[float] | None = None
+    patch: Vector2 | None = None
+    x: float | None = None
+    y: float | None = None
+    name: str | None = None
+    scaled: bool | None = None
+
+    @model_validator(mode="after")
+    def _axles_or_standard(self) -> VehicleSection:
+        if (self.standard is None) == (self.axles is None):
+            raise ValueError(
+                "give either axles or standard; fix: axles = [[0.0, 100.0], [1.2, 100.0]] "
+                f"([offset (m), load (kN)]) or standard = one of {list(STANDARD)}"
+            )
+        return self
+
+    def declaration(self) -> dict[str, Any]:
+        """The keys of a :class:`tce.core.vehicles.Vehicle` (the standard's, replaced by those given)."""
+        given = self.model_dump(exclude_none=True, exclude={"standard"})
+        return dict(standard_vehicle(self.standard).to_dict(), **given) if self.standard else given
+
+
+class FillSection(_Strict):
+    """``[loads.fill]``: fill over the top surface (depth over the crown in m, unit weight in
+    kN/m^3, its weight on or off, the wheel loads' spread angle in degrees from the vertical,
+    the coefficient at rest ``k0``); :class:`tce.core.fill.Fill`."""
+
+    depth: NonNegative
+    unit_weight: Positive
+    weight: bool = True
+    dispersion: Annotated[float, Field(ge=0, le=60)] = DISPERSION_2_TO_1
+    k0: Annotated[float, Field(ge=0, lt=1)] = 0.0
+
+
 class LoadsSection(_Strict):
     """``[loads]``: the load pattern (lateral directions in degrees, whether lambda multiplies
-    the lateral pattern, point and distributed loads), load-path step and bisection tolerance."""
+    the lateral pattern, point and distributed loads, vehicles), load-path step and bisection
+    tolerance; ``critical_position`` searches the position of the moving loads of least
+    lambda_max (:func:`tce.analysis.critical.critical_position`), from the positions
+    ``positions`` (m) besides its own."""
 
     alpha: float | list[float] = 0.0
     lateral: bool = True
     point: list[PointLoadSection] = Field(default_factory=list)
     distributed: list[DistributedLoadSection] = Field(default_factory=list)
+    vehicle: list[VehicleSection] = Field(default_factory=list)
+    fill: FillSection | None = None
+    critical_position: bool = False
+    positions: list[float] | None = None
     lambda_step: Positive = 0.02
     tolerance: Positive = 1e-6
     lambda_cap: Positive = 100.0
@@ -351,11 +442,18 @@ class LoadsSection(_Strict):
             lateral=self.lateral,
             point=[p.model_dump(exclude_none=True) for p in self.point],
             distributed=[d.model_dump(exclude_none=True) for d in self.distributed],
+            vehicle=[v.declaration() for v in self.vehicle],
+            fill=None if self.fill is None else self.fill.model_dump(),
         )
 
-    def path_settings(self) -> dict[str, float]:
-        """``lambda_step``, ``tolerance``, ``lambda_cap``: how the load path runs."""
-        return {"lambda_step": self.lambda_step, "tolerance": self.tolerance, "lambda_cap": self.lambda_cap}
+    def path_settings(self) -> dict[str, Any]:
+        """``lambda_step``, ``tolerance``, ``lambda_cap``: how the load path runs; with
+        ``critical_position``, also ``critical_position`` and ``positions`` (the search's
+        starting positions, m)."""
+        out: dict[str, Any] = {"lambda_step": self.lambda_step, "tolerance": self.tolerance, "lambda_cap": self.lambda_cap}
+        if self.critical_position:
+            out.update(critical_position=True, positions=list(self.positions or []))
+        return out
 
     @field_validator("alpha")
     @classmethod
@@ -364,6 +462,16 @@ class LoadsSection(_Strict):
             if not v:
                 raise ValueError("an empty list; fix: give at least one direction")
             _distinct("alpha", v)
+        return v
+
+    @field_validator("positions")
+    @classmethod
+    def _positions_need_the_search(cls, v: list[float] | None, info: ValidationInfo) -> list[float] | None:
+        if v is not None and not info.data.get("critical_position"):
+            raise ValueError(
+                "positions are the critical-position search's starting grid; fix: set critical_position = true "
+                "or sweep the positions with [sweep] load_x"
+            )
         return v
 
     @model_validator(mode="after")
@@ -471,6 +579,15 @@ class PlotsSection(_Strict):
         return [n for n in names if any(fnmatch.fnmatchcase(n, p) for p in self.scenarios)]
 
 
+class AssessmentSection(_Strict):
+    """``[assessment]``: partial factors on the dead (every fixed load, self-weight
+    included) and live loads; the results carry the adequacy factor
+    (:func:`tce.analysis.assessment.adequacy_factor`) and ``tce show`` reads as an assessment."""
+
+    dead_factor: Positive = 1.0
+    live_factor: Positive = 1.0
+
+
 class StudyFile(_Strict):
     """The whole study file."""
 
@@ -483,6 +600,7 @@ class StudyFile(_Strict):
         dict[Annotated[str, Field(min_length=1, max_length=100)], dict[str, Vector6]], Field(min_length=1)
     ] = Field(default_factory=lambda: {"none": {}})
     plots: PlotsSection = PlotsSection()
+    assessment: AssessmentSection | None = None
 
     @field_validator("sweep")
     @classmethod
@@ -517,7 +635,8 @@ class Scenario:
     structure, material : dict
         Validated ``[structure]`` and ``[material]`` sections with the swept values applied.
     loads : dict
-        ``lambda_step``, ``tolerance``, ``lambda_cap``.
+        ``lambda_step``, ``tolerance``, ``lambda_cap`` (and ``critical_position``,
+        ``positions`` when the study searches the critical position).
     assembly_digest : str
         SHA-256 of the built assembly (:func:`assembly_digest`): what the structure is,
         whatever file or generator it came from.
@@ -535,7 +654,7 @@ class Scenario:
     params: dict[str, float]
     structure: dict[str, Any]
     material: dict[str, Any]
-    loads: dict[str, float]
+    loads: dict[str, Any]
     assembly_digest: str
     draw: tuple[float, ...] = ()
 
@@ -631,6 +750,8 @@ class Study:
         axes = [("alpha", spec.loads.alphas)] + spec.sweep.items()
         names = [k for k, _ in axes]
         loads = spec.loads.path_settings()
+        if spec.assessment is not None:
+            loads.update(spec.assessment.model_dump())
         for case, motions in spec.scenarios.items():
             for values in itertools.product(*(v for _, v in axes)):
                 p = dict(zip(names, (float(v) for v in values), strict=True))
@@ -814,6 +935,17 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
             base.moved(0.0)
         except LoadError as exc:
             raise StudyError(f"{path}: sweep.load_x: {exc.problem} in [loads]; fix: {exc.fix}") from None
+    if spec.loads.critical_position:
+        if spec.sweep.load_x is not None:
+            raise StudyError(
+                f"{path}: loads.critical_position: the search finds the position itself, a load_x sweep samples it; "
+                "fix: remove [sweep] load_x (give a starting grid as [loads] positions) or set critical_position = false"
+            )
+        if base.reference_x != base.reference_x:
+            raise StudyError(
+                f"{path}: loads.critical_position: nothing moves; fix: add a [[loads.vehicle]] or a [[loads.point]] "
+                "with on_top and scaled = true"
+            )
     study = Study(path, text, spec)
     _check_scenarios(study)
     guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])))
@@ -903,6 +1035,8 @@ def _check_loads(study: Study, sc: Scenario, assembly: Assembly) -> None:
     pattern = sc.loads_pattern
     try:
         resolve(pattern, assembly)
+        if sc.loads.get("critical_position"):
+            _check_positions(study, sc, assembly)
     except LoadError as exc:
         # name load_x only for a load it moved
         moved = [f"point[{k}]." for k, p in enumerate(pattern.point) if p.scaled and p.on_top is not None]
@@ -911,6 +1045,19 @@ def _check_loads(study: Study, sc: Scenario, assembly: Assembly) -> None:
         where = f" (with {', '.join(f'sweep.{k} = {v:g}' for k, v in swept.items())})" if swept else ""
         err = exc.within("loads")
         raise StudyError(f"{study.path}: {err.key}: {err.problem}{where}; fix: {err.fix}") from None
+
+
+def _check_positions(study: Study, sc: Scenario, assembly: Assembly) -> None:
+    """The starting positions of a critical-position search lie in its range."""
+    from ..analysis.critical import search_bounds
+
+    lo, hi = search_bounds(sc.loads_pattern, assembly)
+    for k, x in enumerate(sc.loads["positions"]):
+        if not lo <= x <= hi:
+            raise StudyError(
+                f"{study.path}: loads.positions[{k}]: {x:g} m is outside [{lo:.6g}, {hi:.6g}] m, the positions where a "
+                "moving load is on the deck; fix: give positions inside it"
+            )
 
 
 def _build_fix(section: BaseModel, exc: Exception, swept: dict[str, float]) -> str:

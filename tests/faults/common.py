@@ -59,7 +59,7 @@ def tce_run(study: Path, out: Path, *args: str, fault: str | None = None, timeou
     if fault:
         env["TCE_FAULT"] = fault
         env["PYTHONPATH"] = os.pathsep.join([str(HOOK), *filter(None, [env.get("PYTHONPATH")])])
-    cmd = [sys.executable, "-m", "tce.study.cli", "run", str(study), "--out", str(out), "--no-plots", *args]
+    cmd = [sys.executable, "-m", "tce.cli", "run", str(study), "--out", str(out), "--no-plots", *args]
     return subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=timeout, start_new_session=True)
 
 

@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 from tce.structures.assembly import AssemblyError
 from tce.structures.geometry import GeometryError
 from tce.structures.io import load_assembly
-from tce.study.cli import main
+from tce.cli import main
 
 from .common import clean, errors, write
 from .test_hostile_input import FILE_STUDY, cube

@@ -11,7 +11,7 @@ import pytest
 import xarray as xr
 
 from tce.study import runner
-from tce.study.cli import main
+from tce.cli import main
 from tce.study.schema import parse_study
 from tce.structures import io
 
@@ -140,7 +140,7 @@ def test_colliding_sweep_values_are_two_scenarios(tmp_path: Path) -> None:
     study = parse_study(TINY.replace("friction = [0.8, 2.0]", "friction = [0.8000001, 0.8000002]"), "s.toml")
     names = [sc.name for sc in study.scenarios()]
     assert names[:2] == ["none/friction=0.8000001", "none/friction=0.8000002"]
-    report = runner.run_study(study, tmp_path, jobs=1, plots=False)
+    report = runner.run_study(study, tmp_path, jobs=1)
     assert len(report.solved) == 4
     ds = xr.load_dataset(report.results)
     assert ds["friction"].values.tolist() == [0.8000001, 0.8000002] * 2
@@ -152,13 +152,13 @@ def test_block_file_edited_between_runs(tmp_path: Path) -> None:
     (tmp_path / "blocks.json").write_text(json.dumps({"blocks": blocks}))
     text = FILE_STUDY.format(path="blocks.json", supports="") + "\n[material]\nfriction = 0.6\n[loads]\nalpha = [0, 90]\nlambda_step = 0.1\ntolerance = 1e-3\n"
     study = write(tmp_path, text)
-    first = runner.run_study(parse_study(study.read_text(), study), tmp_path / "out", jobs=1, plots=False)
+    first = runner.run_study(parse_study(study.read_text(), study), tmp_path / "out", jobs=1)
     assert len(first.solved) == 2
     before = answer(first.results)
     blocks[2]["vertices"] = [[x * 0.5, y, z] for x, y, z in blocks[2]["vertices"]]  # a slimmer top block
     (tmp_path / "blocks.json").write_text(json.dumps({"blocks": blocks}))
-    second = runner.run_study(parse_study(study.read_text(), study), tmp_path / "out", jobs=1, plots=False)
+    second = runner.run_study(parse_study(study.read_text(), study), tmp_path / "out", jobs=1)
     assert len(second.solved) == 2 and not second.reused
-    fresh = runner.run_study(parse_study(study.read_text(), study), tmp_path / "fresh", jobs=1, plots=False)
+    fresh = runner.run_study(parse_study(study.read_text(), study), tmp_path / "fresh", jobs=1)
     xr.testing.assert_identical(answer(second.results), answer(fresh.results))
     assert (before["lambda_max"] != answer(second.results)["lambda_max"]).any()  # the old answer was not reused

@@ -14,7 +14,7 @@ from tce.analysis.loadpath import MAX_INCREMENTS, load_path
 from tce.core.analysis import Analysis
 from tce.core.material import Material
 from tce.structures.arch import semicircular_arch
-from tce.study.cli import main
+from tce.cli import main
 
 from .common import TINY, clean, write
 

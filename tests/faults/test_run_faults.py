@@ -17,7 +17,7 @@ import pytest
 import xarray as xr
 
 from tce.study import runner
-from tce.study.cli import main
+from tce.cli import main
 from tce.study.results import LOCK_NAME, content_digest, folder_lock, scenario_path
 from tce.study.schema import parse_study
 
@@ -32,7 +32,7 @@ def study():
 @pytest.fixture(scope="module")
 def reference(study, tmp_path_factory) -> xr.Dataset:
     """The uninterrupted run every resumed one must equal."""
-    report = runner.run_study(study, tmp_path_factory.mktemp("reference"), jobs=1, plots=False)
+    report = runner.run_study(study, tmp_path_factory.mktemp("reference"), jobs=1)
     return answer(report.results)
 
 
@@ -155,7 +155,7 @@ def test_a_file_where_the_folder_should_be(tmp_path, capsys) -> None:
 
 def test_damaged_scenario_files_are_solved_again(study, reference, tmp_path, caplog) -> None:
     out = tmp_path / "out"
-    runner.run_study(study, out, jobs=1, plots=False)
+    runner.run_study(study, out, jobs=1)
     folder = out / "tiny" / "scenarios"
     by_name = {sc.name: scenario_path(folder, sc) for sc in study.scenarios()}
     truncated = by_name[NAMES[0]]
@@ -175,7 +175,7 @@ def test_two_runs_on_one_folder(study, reference, tmp_path) -> None:
     out = tmp_path / "out"
     release = tmp_path / "release"
     first = subprocess.Popen(
-        [sys.executable, "-m", "tce.study.cli", "run", str(write(tmp_path)), "--out", str(out), "--no-plots", "--jobs", "1"],
+        [sys.executable, "-m", "tce.cli", "run", str(write(tmp_path)), "--out", str(out), "--no-plots", "--jobs", "1"],
         env=dict(os.environ, TCE_FAULT=f"hold:{NAMES[0]}:{release}", PYTHONPATH=str(Path(__file__).parent / "hook")),
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
     )
@@ -200,7 +200,7 @@ def test_a_stale_lock_is_taken_over(study, tmp_path) -> None:
     folder = tmp_path / "out" / "tiny"
     folder.mkdir(parents=True)
     (folder / LOCK_NAME).write_text("pid 999999 on elsewhere since 2020-01-01T00:00:00")  # its holder is gone
-    report = runner.run_study(study, tmp_path / "out", jobs=1, plots=False)
+    report = runner.run_study(study, tmp_path / "out", jobs=1)
     assert len(report.solved) == 4 and not (folder / LOCK_NAME).exists()
 
 
@@ -209,7 +209,7 @@ def test_a_held_lock_refuses_in_process(study, tmp_path) -> None:
     folder.mkdir(parents=True)
     with folder_lock(folder):
         with pytest.raises(runner.RunError, match="another run is writing this folder"):
-            runner.run_study(study, tmp_path / "out", jobs=1, plots=False)
+            runner.run_study(study, tmp_path / "out", jobs=1)
     assert not list(folder.glob("scenarios/*.nc"))
 
 
@@ -218,17 +218,17 @@ def test_a_study_folder_that_links_outside_out(study, tmp_path) -> None:
     (tmp_path / "elsewhere").mkdir()
     (tmp_path / "out" / "tiny").symlink_to(tmp_path / "elsewhere")
     with pytest.raises(runner.RunError, match="outside"):
-        runner.run_study(study, tmp_path / "out", jobs=1, plots=False)
+        runner.run_study(study, tmp_path / "out", jobs=1)
     assert not any((tmp_path / "elsewhere").iterdir())
 
 
 def test_fresh_deletes_only_its_own_scenarios(study, reference, tmp_path) -> None:
     out = tmp_path / "out"
-    runner.run_study(study, out, jobs=1, plots=False)
+    runner.run_study(study, out, jobs=1)
     other = out / "other" / "scenarios"
     other.mkdir(parents=True)
     (other / "keep.nc").write_text("x")
-    report = runner.run_study(study, out, jobs=1, plots=False, fresh=True)
+    report = runner.run_study(study, out, jobs=1, fresh=True)
     assert len(report.solved) == 4 and (other / "keep.nc").exists()
     xr.testing.assert_identical(answer(report.results), reference)
     assert np.isfinite(reference["lambda_max"]).all()

@@ -20,7 +20,7 @@ import pytest
 import xarray as xr
 
 from tce.study import results, runner
-from tce.study.cli import main
+from tce.cli import main
 from tce.study.schema import parse_study
 
 from .common import NAMES, TINY, answer, clean, errors, leftovers, tce_run, write
@@ -54,7 +54,7 @@ def _wait_for(predicate, timeout: float = 120.0) -> None:
 def _started(study: Path, out: Path, *args: str, fault: str) -> subprocess.Popen:
     env = dict(os.environ, MPLBACKEND="Agg", TCE_FAULT=fault)
     env["PYTHONPATH"] = os.pathsep.join([str(Path(__file__).parent / "hook"), *filter(None, [env.get("PYTHONPATH")])])
-    cmd = [sys.executable, "-m", "tce.study.cli", "run", str(study), "--out", str(out), "--no-plots", *args]
+    cmd = [sys.executable, "-m", "tce.cli", "run", str(study), "--out", str(out), "--no-plots", *args]
     return subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
 
 
@@ -110,7 +110,7 @@ def test_a_closed_output_pipe_ends_quietly(finished: Path) -> None:
     read, write_end = os.pipe()
     os.close(read)
     try:
-        run = subprocess.run([sys.executable, "-m", "tce.study.cli", "show", str(finished)], stdout=write_end,
+        run = subprocess.run([sys.executable, "-m", "tce.cli", "show", str(finished)], stdout=write_end,
                              stderr=subprocess.PIPE, text=True, timeout=120)
     finally:
         os.close(write_end)
@@ -163,7 +163,7 @@ def test_read_only_results(finished: Path, tmpfs: Path) -> None:  # noqa: F811
     (tmpfs / "results.nc").write_bytes(finished.read_bytes())
     subprocess.run(["mount", "-o", "remount,ro", str(tmpfs)], check=True)
     for command in (["plot"], ["view"], ["export", "--vtk"]):
-        run = subprocess.run([sys.executable, "-m", "tce.study.cli", command[0], str(tmpfs / "results.nc"), *command[1:]],
+        run = subprocess.run([sys.executable, "-m", "tce.cli", command[0], str(tmpfs / "results.nc"), *command[1:]],
                              capture_output=True, text=True, timeout=300, env=dict(os.environ, MPLBACKEND="Agg"))
         assert run.returncode == 2, run.stderr
         clean(run.stderr)

@@ -16,7 +16,7 @@ PAPER_LAMBDA_0 = 0.2428243  # tests/validation/test_limits.py: the 4-hinge mecha
 
 
 def _run(name, tmp_path):
-    report = run_study(load_study(STUDIES / f"{name}.toml"), out=tmp_path, jobs=1, plots=False)
+    report = run_study(load_study(STUDIES / f"{name}.toml"), out=tmp_path, jobs=1)
     return xr.load_dataset(report.results)
 
 

@@ -27,14 +27,16 @@ from __future__ import annotations
 import argparse
 import contextlib
 import logging
+import math
 import sys
 from collections import Counter
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
-from .. import __version__
-from .guards import check_path
-from ..signals import exit_code, handle_signals
+from . import __version__
+from .signals import exit_code, handle_signals
+from .study.guards import check_path
+from .study.schema import PLOT_KINDS
 
 __all__ = ["main"]
 
@@ -73,7 +75,6 @@ def _target(text: str) -> float | str:
 
 
 def _parser() -> argparse.ArgumentParser:
-    from .schema import PLOT_KINDS
 
     p = argparse.ArgumentParser(
         prog="tce",
@@ -160,6 +161,8 @@ def _parser() -> argparse.ArgumentParser:
         "status, residual, retry used and time. Exit code 1 if a case fails.",
     )
     check.add_argument("--select", metavar="TEXT", default=None, help="only the cases whose name contains TEXT")
+    check.add_argument("--validation", action="store_true",
+                       help="instead, the validation atlas: tce against published values (docs/validation.md)")
 
     bench = sub.add_parser(
         "bench",
@@ -220,7 +223,7 @@ def _out_folder(out: Path, option: str = "--out") -> Path:
     import os
     import shutil
 
-    from .runner import MIN_FREE
+    from .study.runner import MIN_FREE
 
     if out.exists() and not out.is_dir():
         raise UsageError(f"{option}: {out} is a file, not a folder; fix: give a folder (or remove the file)")
@@ -240,7 +243,7 @@ def _out_folder(out: Path, option: str = "--out") -> Path:
 def _writing(where: Path) -> Iterator[None]:
     """An :class:`OSError` while the block writes under ``where`` (a disk that fills) is a
     :class:`WriteFault` naming the path."""
-    from .results import storage_error
+    from .study.results import storage_error
 
     try:
         yield
@@ -257,7 +260,7 @@ class _Bar:
         self.bar = None
 
     def __call__(self, done: int, total: int, steps: int) -> None:
-        from .progress import Progress
+        from .study.progress import Progress
 
         if self.bar is None:
             self.bar = Progress(total, self.desc, unit="scenario")
@@ -276,9 +279,16 @@ class _Bar:
 EXIT_FAULT, EXIT_STRICT = 3, 4
 
 
+def _draw(ds, folder: Path, jobs: int) -> list[Path]:
+    """The figures and view of a finished run (the study's ``[plots]``), drawn into its folder."""
+    from . import plot
+
+    return plot.write_figures(ds, folder, jobs=jobs)
+
+
 def _run(args: argparse.Namespace) -> int:
-    from .runner import OUTCOMES, FigureFault, RunError, RunFault, run_study
-    from .schema import StudyError, load_study
+    from .study.runner import OUTCOMES, FigureFault, RunError, RunFault, run_study
+    from .study.schema import StudyError, load_study
 
     if args.scheduler and args.backend != "dask":
         raise UsageError("--scheduler needs --backend dask")
@@ -291,7 +301,7 @@ def _run(args: argparse.Namespace) -> int:
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,
-            progress=bar, plots=not args.no_plots, fresh=args.fresh,
+            progress=bar, plots=None if args.no_plots else _draw, fresh=args.fresh,
         )
     except RunError as exc:
         raise UsageError(str(exc)) from None
@@ -344,18 +354,73 @@ def _show(args: argparse.Namespace) -> int:
                 print(f"{name}: no_limit: {why}")
     if "load_x" in ds.coords:
         _show_critical(ds)
+    if "critical_x" in ds:
+        _show_search(ds)
+    if "load_notes" in ds:
+        _show_notes(ds)
+    if "adequacy_factor" in ds:
+        _show_assessment(ds)
     return 0
+
+
+def _show_assessment(ds) -> None:
+    """The assessment of each scenario (``[assessment]``): the live load, where it is worst,
+    the collapse load, the partial factors and the adequacy factor."""
+    print("assessment (adequacy factor: multiplier of the factored live load at collapse under the factored "
+          "dead load; >= 1: adequate):")
+    for k, name in enumerate(ds["scenario"].values):
+        what = str(ds["assessed_vehicles"].values[k]) or "the live loads"
+        where = ""
+        if "critical_x" in ds and math.isfinite(ds["critical_x"].values[k]):
+            where = f" at its critical position x = {float(ds['critical_x'].values[k]):.4g} m"
+        lam = float(ds["lambda_max"].values[k])
+        collapse = f"collapses at {lam:.4g} x the declared live load" if math.isfinite(lam) else \
+            f"load path outcome {ds['outcome'].values[k]}"
+        gd, gl = float(ds["dead_factor"].values[k]), float(ds["live_factor"].values[k])
+        af, status = float(ds["adequacy_factor"].values[k]), str(ds["adequacy_status"].values[k])
+        if status == "optimal":
+            verdict = f"adequacy factor {af:.4g}: {'adequate' if af >= 1.0 else 'NOT adequate'}"
+        elif status == "unbounded":
+            verdict = "adequacy factor unbounded (carried at any multiplier): adequate"
+        else:
+            verdict = f"no adequacy factor ({status})"
+        print(f"  {name}: {what}{where}: {collapse} (unfactored); partial factors dead {gd:g}, live {gl:g}: {verdict}")
+
+
+def _show_search(ds) -> None:
+    """The critical position each scenario's search found (``[loads] critical_position``)."""
+    print("critical position of the moving loads (searched; the load path runs there):")
+    for k, name in enumerate(ds["scenario"].values):
+        status = str(ds["critical_status"].values[k])
+        if status != "optimal":
+            print(f"  {name}: {status}: no critical position"
+                  + (" (carried at any multiplier at every position)" if status == "unbounded" else ""))
+            continue
+        ties = str(ds["critical_ties"].values[k])
+        print(f"  {name}: x = {float(ds['critical_x'].values[k]):.6g} m (to {float(ds['critical_xtol'].values[k]):.2g} m), "
+              f"direct lambda_max = {float(ds['critical_lambda'].values[k]):.6g}, "
+              f"{int(ds['critical_solves'].values[k])} limit solves"
+              + (f"; tied (same lambda_max) at x = {ties} m, the leftmost reported" if ties else ""))
+
+
+def _show_notes(ds) -> None:
+    """Loads dropped because they lie off the deck, per scenario."""
+    for name, notes in zip(ds["scenario"].values, ds["load_notes"].values):
+        for line in str(notes).splitlines():
+            print(f"{name}: note: {line}")
 
 
 def _show_critical(ds) -> None:
     """The critical position of a load-position sweep, per group of the other coordinates."""
-    from .positions import critical_positions
+    from .study.positions import critical_positions
 
     print("critical load position (smallest lambda_max over load_x):")
     for c in critical_positions(ds):
         where = f"{c.group}: " if c.group else ""
         if c.scenario:
-            print(f"  {where}load_x = {c.load_x:.6g} m, lambda_max = {c.lambda_max:.6g} (scenario {c.scenario})")
+            print(f"  {where}load_x = {c.load_x:.6g} m, lambda_max = {c.lambda_max:.6g} (scenario {c.scenario})"
+                  + (f"; tied (same lambda_max within the tolerance) at load_x = {', '.join(f'{t:.6g}' for t in c.ties)} m"
+                     if c.ties else ""))
         else:
             print(f"  {where}no position has a finite lambda_max")
 
@@ -366,7 +431,7 @@ _OPTIONS = {"scenarios": "--scenario", "steps": "--step", "kinds": "--kind"}
 def _spec(ds, **given):
     """The plotting spec of ``ds`` with the command line's replacements; a bad one is a usage
     error naming the option (or the ``[plots]`` key of the study stored in the file)."""
-    from ..plot.data import PlotSpecError, plot_spec
+    from .plot.data import PlotSpecError, plot_spec
 
     try:
         return plot_spec(ds, **given)
@@ -377,8 +442,8 @@ def _spec(ds, **given):
 
 
 def _plot(args: argparse.Namespace) -> int:
-    from ..plot.data import slug
-    from ..plot.output import write_figures
+    from .plot.data import slug
+    from .plot.output import write_figures
 
     ds = _open_results(args.results)
     on_demand = args.scenario is not None or args.step is not None
@@ -397,7 +462,7 @@ def _plot(args: argparse.Namespace) -> int:
 
 
 def _view(args: argparse.Namespace) -> int:
-    from ..plot.view import view_html
+    from .plot.view import view_html
 
     ds = _open_results(args.results)
     spec = _spec(ds, scenarios_=args.scenario)
@@ -421,7 +486,7 @@ def _view(args: argparse.Namespace) -> int:
 
 
 def _export(args: argparse.Namespace) -> int:
-    from ..plot.export import export_vtk
+    from .plot.export import export_vtk
 
     ds = _open_results(args.results, (*RESULTS_VARS, "vertex_force", "vertex_point", "vertex_interface"))
     names = None
@@ -435,13 +500,13 @@ def _export(args: argparse.Namespace) -> int:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from ..quality.check import check_command
+    from .quality.check import check_command
 
     return check_command(args)
 
 
 def _bench(args: argparse.Namespace) -> int:
-    from ..quality.bench import bench_command
+    from .quality.bench import bench_command
 
     out = _out_folder(args.out)
     with _writing(out):
@@ -452,7 +517,7 @@ def _without_dask() -> None:
     """Keep xarray from importing dask in this program and its workers (:mod:`tce.study.jobs`)."""
     import os
 
-    from .jobs import NO_DASK, block_dask_import
+    from .study.jobs import NO_DASK, block_dask_import
 
     os.environ[NO_DASK] = "1"
     block_dask_import()

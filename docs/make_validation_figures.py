@@ -1,0 +1,151 @@
+"""Draw the convergence figures of the validation atlas (docs/validation.md) into docs/img/.
+
+Run from the repository root: ``python docs/make_validation_figures.py`` (a few minutes on one
+core). It runs the fine discretisations that the suite and ``tce check --validation`` leave
+out, prints every value it draws (the tables of docs/validation.md are copied from this
+output), and compares with the published values of tce.quality.validation.CASES and with the
+independent LP of the continuous ring (tests/reference/continuous_arch.py).
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+
+from reference import continuous_arch as ref  # noqa: E402
+
+from tce import Analysis, Material, semicircular_arch  # noqa: E402
+from tce.quality.validation import CASES, crown_thrust, friction_bound, min_ratio, stress_block_column  # noqa: E402
+
+IMG = ROOT / "docs" / "img"
+PUBLISHED = {c.name: c.published for c in CASES}
+
+
+def _save(fig, name: str) -> None:
+    IMG.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(IMG / name, dpi=110)
+    plt.close(fig)
+    print(f"wrote docs/img/{name}")
+
+
+def thickness_convergence() -> None:
+    """t/R against the number of voussoirs, radial and vertical joints (Heyman material)."""
+    ns = [10, 20, 40, 80, 160, 320, 640]
+    radial = [min_ratio(n, None, "radial", 1e-7) for n in ns]
+    vertical = [min_ratio(n, None, "vertical", 1e-7) for n in ns]
+    cont_r = ref.minimum_thickness("radial", m=2000, tol=1e-8)
+    cont_v = ref.minimum_thickness("vertical", m=2000, tol=1e-8)
+    print("voussoirs", ns)
+    print("radial   ", [f"{v:.6f}" for v in radial], "continuous", f"{cont_r:.7f}")
+    print("vertical ", [f"{v:.6f}" for v in vertical], "continuous", f"{cont_v:.7f}")
+    fig, ax = plt.subplots(figsize=(7.5, 4.6))
+    ax.semilogx(ns, radial, "o-", color="C0", label="tce, radial joints")
+    ax.semilogx(ns, vertical, "s-", color="C1", label="tce, vertical joints")
+    ax.axhline(cont_r, color="C0", ls=":", label=f"continuous ring LP, radial ({cont_r:.6f})")
+    ax.axhline(cont_v, color="C1", ls=":", label=f"continuous ring LP, vertical ({cont_v:.6f})")
+    ax.axhline(PUBLISHED["ma_radial"], color="C0", ls="--", lw=0.8, label="Makris & Alexakis 2013 / Milankovitch: 0.1075")
+    ax.axhline(PUBLISHED["ma_vertical"], color="C1", ls="--", lw=0.8, label="Makris & Alexakis 2013, vertical: 0.1095")
+    ax.axhline(PUBLISHED["cr_eta_rotational"], color="k", ls="-.", lw=0.8, label="Cocchetti & Rizzi 2020: 0.107426")
+    ax.set_xlabel("voussoirs")
+    ax.set_ylabel("least thickness t/R")
+    ax.set_title("Semicircular arch under self-weight: least thickness against the discretisation")
+    ax.legend(fontsize=7.5, loc="lower right")
+    ax.grid(alpha=0.3)
+    _save(fig, "validation_thickness.png")
+
+
+def friction_curve() -> None:
+    """t/R against mu (Cocchetti & Rizzi 2020, Fig. 7) and the convergence of mu_rm, mu_ms."""
+    mus = [0.3095, 0.31, 0.315, 0.32, 0.33, 0.34, 0.35, 0.36, 0.37, 0.38, 0.39, 0.40, 0.45]
+    curves = {n: [min_ratio(n, mu, "radial", 1e-6) for mu in mus] for n in (20, 160)}
+    cont = [ref.minimum_thickness("radial", mu=mu, m=1000, tol=1e-7) for mu in mus]
+    print("mu        ", mus)
+    for n, vals in curves.items():
+        print(f"tce n={n:<4}", [f"{v:.5f}" for v in vals])
+    print("continuous", [f"{v:.5f}" for v in cont])
+    ns = [20, 40, 80, 160, 320, 640]
+    mu_rm = [friction_bound(min_ratio(n, None, "radial", 1e-7) * (1 + 1e-5), n, 0.3, 0.5) for n in ns]
+    mu_ms = [friction_bound(0.25, n, 0.29, 0.33) for n in ns]
+    print("voussoirs", ns)
+    print("mu_rm", [f"{v:.6f}" for v in mu_rm])
+    print("mu_ms", [f"{v:.6f}" for v in mu_ms])
+    print("h_r at 160", f"{crown_thrust(min_ratio(160) * (1 + 1e-6)):.6f}", "continuous",
+          ref.thrust_range(ref.minimum_thickness("radial", m=2000, tol=1e-8) * (1 + 1e-6)))
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.4))
+    for n, vals in curves.items():
+        a.plot(mus, vals, "o-", ms=3, label=f"tce, {n} voussoirs")
+    a.plot(mus, cont, "k:", label="continuous ring LP")
+    a.axhline(PUBLISHED["cr_eta_rotational"], color="grey", lw=0.8, ls="--", label="CR2020 eta_r = 0.107426")
+    a.axvline(PUBLISHED["cr_mu_rotational"], color="C3", lw=0.8, ls="--", label="CR2020 mu_rm = 0.395832")
+    a.axvline(PUBLISHED["cr_mu_sliding"], color="C4", lw=0.8, ls="--", label="CR2020 mu_ms = 0.309215")
+    a.plot([PUBLISHED["cr_mu_sliding"]], [PUBLISHED["cr_eta_sliding"]], "r*", ms=10, label="CR2020 (mu_ms, 0.200637)")
+    a.set_xlabel("friction coefficient mu")
+    a.set_ylabel("least thickness t/R")
+    a.set_title("Least thickness against friction (CR2020 Fig. 7)")
+    a.legend(fontsize=7)
+    a.grid(alpha=0.3)
+    b.semilogx(ns, mu_rm, "o-", color="C3", label="tce mu_rm")
+    b.axhline(PUBLISHED["cr_mu_rotational"], color="C3", ls="--", lw=0.8, label="CR2020 mu_rm")
+    b.semilogx(ns, mu_ms, "s-", color="C4", label="tce mu_ms")
+    b.axhline(PUBLISHED["cr_mu_sliding"], color="C4", ls="--", lw=0.8, label="CR2020 mu_ms")
+    b.set_xlabel("voussoirs")
+    b.set_ylabel("friction coefficient")
+    b.set_title("Transition frictions against the discretisation")
+    b.legend(fontsize=7)
+    b.grid(alpha=0.3)
+    _save(fig, "validation_friction.png")
+
+
+def paper_cases() -> None:
+    """lambda_0max and lambda_90max of the paper's arch against the number of voussoirs."""
+    ns = [6, 8, 10, 14, 20, 28, 40]
+    lam0 = [Analysis(semicircular_arch(voussoirs=n), Material(friction=0.8)).limit(0.0).lambda_max for n in ns]
+    lam90 = [Analysis(semicircular_arch(voussoirs=n), Material(friction=0.8)).limit(90.0).lambda_max for n in ns]
+    print("voussoirs", ns)
+    print("lambda_0 ", [f"{v:.6f}" for v in lam0])
+    print("lambda_90", [f"{v:.6f}" for v in lam90])
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    ax.plot(ns, lam0, "o-", label="tce lambda_0max (in plane)")
+    ax.plot(ns, lam90, "s-", label="tce lambda_90max (out of plane)")
+    ax.plot([14], [PUBLISHED["paper_in_plane"]], "C0*", ms=12, label="the paper, Fig. 8: 0.243")
+    ax.plot([14], [PUBLISHED["paper_out_of_plane"]], "C1*", ms=12, label="the paper, Fig. 9: 0.178")
+    ax.set_xlabel("voussoirs (the paper: 14)")
+    ax.set_ylabel("lambda_max")
+    ax.set_title("The paper's arch (t = 0.2 m, mu = 0.8): limit against the discretisation")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    _save(fig, "validation_paper.png")
+
+
+def stress_block() -> None:
+    """One block with fc: lambda against the number of strips of its base joint."""
+    strips = [1, 2, 3, 4, 5, 7, 10, 13, 20, 27, 40, 80]
+    lam = [stress_block_column(s) for s in strips]
+    print("strips", strips)
+    print("lambda", [f"{v:.6f}" for v in lam])
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    ax.semilogx(strips, lam, "o-", label="tce, base joint in strips")
+    ax.axhline(PUBLISHED["stress_block"], color="k", ls="--", label="stress block (b - W/(fc d))/h = 0.2")
+    ax.axhline(0.4, color="grey", ls=":", label="rigid (no fc): b/h = 0.4")
+    ax.set_xlabel("strips across the base joint")
+    ax.set_ylabel("lambda_max")
+    ax.set_title("Crushing: one block 0.4 x 0.3 x 1 m, fc = 40 kN/m^2")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    _save(fig, "validation_stress_block.png")
+
+
+if __name__ == "__main__":
+    np.set_printoptions(linewidth=160)
+    for step in (thickness_convergence, friction_curve, paper_cases, stress_block):
+        step()

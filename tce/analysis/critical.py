@@ -1,0 +1,263 @@
+"""The critical position of a moving load: the position of least collapse multiplier, searched.
+
+The moving loads of a :class:`tce.core.loads.LoadPattern` (its scaled vehicles and scaled
+``on_top`` point loads) move as one rigid group with one coordinate, the plan abscissa of
+its reference (:meth:`~tce.core.loads.LoadPattern.moved`). :func:`critical_position`
+finds the reference position ``x`` of least ``lambda_max(x)``, the direct limit
+(:meth:`tce.core.analysis.Analysis.limit`), to a tolerance, whatever grid the caller gives.
+
+Why the search can be exact for point loads (wheels without a contact patch): while every
+wheel stays on one planar top face of one block, the live load vector is affine in ``x``,
+``b_live(x) = b0 + x b1``. The set ``C`` of ``(mu, nu)`` with ``b_fixed + mu b0 + nu b1``
+equilibrated by an admissible force state is convex and holds the origin when the fixed
+loads stand, and ``lambda_max(x) = max {mu : (mu, mu x) in C} = 1 / g(1, x)`` with ``g`` the
+gauge of ``C``, convex. So ``1 / lambda_max`` is convex on each such piece and
+``lambda_max`` takes its least value on a piece at one of its ends: where a wheel crosses
+an edge of the top surface (a joint's extrados, :func:`tce.core.vehicles.deck_edges`), or
+at an end of the range. The search evaluates every such breakpoint on both sides (a wheel
+``DELTA`` of the range before and after the edge), the midpoints between them (the scan at
+the scale of the joints), the caller's positions, and then refines the best local minima by
+bounded Brent search (:func:`scipy.optimize.minimize_scalar`) to ``xtol``: exact for point
+loads by the argument above, and to ``xtol`` for contact patches (whose load is not affine
+in ``x``: pieces of a patch change area as it moves) when the least value lies inside a
+piece.
+
+Mirror ties: positions (farther apart than the tolerance) whose ``lambda_max`` equals the
+least within :data:`TIE_RTOL` are reported in :attr:`CriticalResult.ties`; the critical
+position reported is the leftmost of them (least x), a rule that does not depend on the
+order of evaluation.
+
+The direct limit does not depend on support motions (the admissible force states do not:
+the static theorem), so the search holds for every settlement scenario of a rigid material;
+with a non-associative material it is the associative critical position.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import minimize_scalar
+
+from ..core.analysis import Analysis
+from ..core.loads import LoadError, LoadPattern
+from ..core.result import Result
+from ..core.vehicles import deck_edges, deck_range
+from ..structures.assembly import Assembly
+
+__all__ = ["DELTA", "TIE_RTOL", "CriticalResult", "critical_position", "moving_offsets", "search_bounds"]
+
+#: a breakpoint is evaluated this fraction of the range before and after it
+DELTA = 1e-7
+#: two positions whose lambda_max agree within this relative tolerance are tied
+TIE_RTOL = 1e-6
+#: local minima of the scan refined by Brent's method
+REFINED = 4
+
+
+@dataclass(frozen=True, eq=False, kw_only=True)
+class CriticalResult(Result):
+    """The critical position of a moving load group.
+
+    Attributes
+    ----------
+    status : str
+        ``optimal`` (a finite least lambda_max), ``unbounded`` (the load is carried at any
+        multiplier at every position), ``infeasible`` (the fixed loads cannot be carried),
+        ``numerical`` (a limit solve failed: no answer is given).
+    critical_x : float
+        Reference position of least lambda_max (m; NaN unless optimal); the leftmost of
+        tied positions.
+    lambda_max : float
+        lambda_max there (NaN unless optimal).
+    ties : tuple of float
+        Other positions with the same lambda_max within :data:`TIE_RTOL` (m), e.g. the
+        mirror position of a symmetric structure and load.
+    bounds : (float, float)
+        The range searched (m): positions where a moving load is on the deck.
+    xtol : float
+        Tolerance on the position (m).
+    x, lam : (k,) ndarray
+        Every position evaluated (sorted, m) and its lambda_max (inf: carried at any
+        multiplier; NaN: the solve failed).
+    n_solves : int
+        Limit solves made.
+    pattern : LoadPattern or None
+        The pattern at the critical position.
+    """
+
+    critical_x: float = float("nan")
+    lambda_max: float = float("nan")
+    ties: tuple[float, ...] = ()
+    bounds: tuple[float, float] = (float("nan"), float("nan"))
+    xtol: float = float("nan")
+    x: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0), repr=False)
+    lam: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0), repr=False)
+    n_solves: int = 0
+    pattern: LoadPattern | None = field(default=None, repr=False)
+
+
+def moving_offsets(pattern: LoadPattern) -> list[tuple[float, float]]:
+    """``(offset, half length)`` along x of every moving load from the group's reference
+    (:attr:`~tce.core.loads.LoadPattern.reference_x`): each axle of a scaled vehicle (half
+    its patch length, 0 without a patch) and each scaled ``on_top`` point load (0)."""
+    ref = pattern.reference_x
+    out = [(v.x - ref + dx, 0.0 if v.patch is None else v.patch[0] / 2.0)
+           for v in pattern.vehicle if v.scaled for dx, _ in v.axles]
+    out += [(p.on_top[0] - ref, 0.0) for p in pattern.point if p.scaled and p.on_top is not None]
+    return out
+
+
+def search_bounds(pattern: LoadPattern, assembly: Assembly) -> tuple[float, float]:
+    """Reference positions (m) with a moving load on the deck (:func:`tce.core.vehicles.deck_range`):
+    some axle of a vehicle, and every moving point load (a point load off the deck is an
+    error, not a dropped wheel).
+
+    Raises
+    ------
+    LoadError
+        Moving point loads farther apart than the deck is long.
+    """
+    d0, d1 = deck_range(assembly)
+    ref = pattern.reference_x
+    veh = [v.x - ref + dx for v in pattern.vehicle if v.scaled for dx, _ in v.axles]
+    pts = [p.on_top[0] - ref for p in pattern.point if p.scaled and p.on_top is not None]
+    lo, hi = -math.inf, math.inf
+    if veh:
+        lo, hi = d0 - max(veh), d1 - min(veh)
+    if pts:
+        lo, hi = max(lo, d0 - min(pts)), min(hi, d1 - max(pts))
+    if not lo < hi:
+        raise LoadError("point", "the moving point loads are farther apart than the deck is long",
+                        "move them closer together")
+    return lo, hi
+
+
+def critical_position(
+    analysis: Analysis,
+    loads: LoadPattern,
+    start: ArrayLike | None = None,
+    xtol: float | None = None,
+    bounds: tuple[float, float] | None = None,
+) -> CriticalResult:
+    """The reference position of least direct ``lambda_max`` of the moving loads of ``loads``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+        The structure and material.
+    loads : LoadPattern
+        A pattern with moving loads (scaled vehicles or scaled ``on_top`` point loads).
+    start : array_like, optional
+        Positions of the reference to evaluate besides the search's own (m): the caller's
+        grid. The answer does not depend on it (up to ``xtol``); positions outside
+        ``bounds`` are an error.
+    xtol : float, optional
+        Tolerance on the position (m); default 1e-4 of the deck's length.
+    bounds : (float, float), optional
+        Range of the reference (m); default: every position with a moving load on the deck.
+
+    Returns
+    -------
+    CriticalResult
+
+    Raises
+    ------
+    LoadError
+        Nothing moves, a start position outside the bounds, or bounds that are empty.
+    """
+    t0 = time.perf_counter()
+    if loads.reference_x != loads.reference_x:
+        loads.moved(0.0)  # raises the LoadError naming what is missing
+    deck = deck_range(analysis.assembly)
+    length = deck[1] - deck[0]
+    xtol = 1e-4 * length if xtol is None else float(xtol)
+    if not (math.isfinite(xtol) and xtol > 0):
+        raise LoadError("xtol", f"{xtol!r}", "give a positive tolerance (m)")
+    lo, hi = search_bounds(loads, analysis.assembly) if bounds is None else (float(bounds[0]), float(bounds[1]))
+    if not lo < hi:
+        raise LoadError("bounds", f"[{lo:g}, {hi:g}] is empty", "give [from, to] with from < to (m)")
+    delta = DELTA * (hi - lo)
+    lo_in, hi_in = lo + delta, hi - delta
+    given = np.zeros(0) if start is None else np.asarray(start, dtype=float).ravel()
+    outside = given[(given < lo) | (given > hi) | ~np.isfinite(given)]
+    if outside.size:
+        raise LoadError("start", f"position {outside[0]:g} m is outside the range [{lo:.6g}, {hi:.6g}] m "
+                        "where a moving load is on the deck", "give positions inside it")
+
+    values: dict[float, float] = {}
+    failed: list[str] = []
+
+    def lam(x: float) -> float:
+        x = float(min(max(x, lo_in), hi_in))
+        if x not in values:
+            res = analysis.limit(loads=loads.moved(x))
+            if res.status == "infeasible":
+                raise _Infeasible(res.message)
+            values[x] = {"optimal": res.lambda_max, "unbounded": math.inf}.get(res.status, math.nan)
+            if res.status not in ("optimal", "unbounded"):
+                failed.append(f"x = {x:.6g} m: {res.status} ({res.message})")
+        return values[x]
+
+    edges = deck_edges(analysis.assembly)
+    breaks = np.array([e - off + s * half for off, half in moving_offsets(loads) for e in edges for s in (-1.0, 1.0)])
+    breaks = np.unique(np.round(breaks[(breaks > lo) & (breaks < hi)], 12))
+    scan = np.unique(np.concatenate([breaks - delta, breaks + delta, [lo_in, hi_in], np.clip(given, lo_in, hi_in)]))
+    scan = np.unique(np.concatenate([scan, (scan[1:] + scan[:-1]) / 2.0]))
+    try:
+        for x in scan:
+            lam(x)
+        _refine(lam, values, xtol)
+    except _Infeasible as exc:
+        return CriticalResult(status="infeasible", message=f"the fixed loads cannot be carried: {exc}",
+                              bounds=(lo, hi), xtol=xtol, n_solves=len(values) + 1,
+                              wall_time=time.perf_counter() - t0)
+    x = np.array(sorted(values))
+    y = np.array([values[v] for v in x])
+    common = dict(bounds=(lo, hi), xtol=xtol, x=x, lam=y, n_solves=len(values), wall_time=time.perf_counter() - t0)
+    if failed:
+        return CriticalResult(status="numerical", message=f"{len(failed)} limit solve(s) failed: {failed[0]}", **common)
+    if not np.isfinite(y).any():
+        return CriticalResult(status="unbounded", lambda_max=math.inf,
+                              message="carried at any multiplier at every position", **common)
+    best = float(np.nanmin(y))
+    tied = _tied(x, y, best, 2.0 * xtol + 2.0 * delta)
+    crit = float(tied[0])
+    msg = f"{len(values)} limit solves over [{lo:.6g}, {hi:.6g}] m"
+    if len(tied) > 1:
+        msg += f"; tied positions (lambda_max within {TIE_RTOL:g}): {', '.join(f'{t:.6g}' for t in tied)} m"
+    return CriticalResult(status="optimal", critical_x=crit, lambda_max=values[crit], ties=tuple(float(t) for t in tied[1:]),
+                          pattern=loads.moved(crit), message=msg, **common)
+
+
+class _Infeasible(Exception):
+    """The fixed loads alone cannot be carried (at any position)."""
+
+
+def _refine(lam, values: dict[float, float], xtol: float) -> None:
+    """Bounded Brent search between the neighbours of the best local minima of the values."""
+    x = np.array(sorted(values))
+    y = np.array([values[v] for v in x])
+    y = np.where(np.isnan(y), np.inf, y)
+    mins = [k for k in range(len(x)) if y[k] < math.inf
+            and (k == 0 or y[k] <= y[k - 1]) and (k == len(x) - 1 or y[k] <= y[k + 1])]
+    for k in sorted(mins, key=lambda k: y[k])[:REFINED]:
+        a, b = x[max(k - 1, 0)], x[min(k + 1, len(x) - 1)]
+        if b - a > xtol:
+            minimize_scalar(lam, bounds=(a, b), method="bounded", options=dict(xatol=xtol / 4.0))
+
+
+def _tied(x: NDArray[np.float64], y: NDArray[np.float64], best: float, apart: float) -> list[float]:
+    """The positions of least value within :data:`TIE_RTOL`, grouped in clusters of
+    positions closer than ``apart``: the position of least value of each cluster, sorted."""
+    near = np.flatnonzero(np.abs(y - best) <= TIE_RTOL * abs(best))
+    clusters: list[list[int]] = []
+    for k in near:
+        if clusters and x[k] - x[clusters[-1][-1]] <= apart:
+            clusters[-1].append(int(k))
+        else:
+            clusters.append([int(k)])
+    return [float(x[min(c, key=lambda k: y[k])]) for c in clusters]

@@ -1,0 +1,153 @@
+"""Fill over an arch: its weight on each block, live loads dispersed through it, its at-rest
+horizontal pressure. Each part can be switched off.
+
+The fill is a soil layer whose surface (the road) lies ``depth`` above the highest point of
+the free blocks' exposed top surface (the crown's extrados); it bears on that top surface
+(:func:`tce.core.surface.top_surface`). It is a load, not blocks: its weight and pressure are
+fixed loads (part of ``b_fixed``), and it adds no strength of its own.
+
+- **Weight** (``weight = true``): each exposed top-surface piece of a free block carries the
+  fill column above it, ``W = gamma * integral over the piece's plan of (road - z) dA``
+  (kN), vertical, at the column's plan centroid on the face. Pieces of support blocks carry
+  theirs into the ground (left out).
+- **Dispersion** (``dispersion`` > 0, degrees from the vertical): a vehicle's wheel at road
+  level (a point, or its contact patch ``l x w``) spreads through the fill to the extrados
+  as a rectangle ``(l + 2 h tan(theta)) x (w + 2 h tan(theta))`` under a uniform pressure,
+  ``h`` the fill thickness under the wheel's centre. The default, 26.57 degrees (a slope of
+  1 horizontal to 2 vertical), is the "2:1 method" of soil mechanics (e.g. Holtz & Kovacs,
+  *An Introduction to Geotechnical Engineering*, 1981, stress distribution under a loaded
+  area); 0 switches it off (the wheel load is applied at the extrados as declared).
+  Boussinesq's elastic distribution is not implemented.
+- **Horizontal pressure at rest** (``k0`` > 0): the fill presses on each exposed piece with
+  the vertical stress ``sigma_v = gamma (road - z)`` and the horizontal stress ``k0 sigma_v``
+  (at rest; Jaky 1944: ``k0 = 1 - sin(phi)`` for a normally consolidated soil of friction
+  angle ``phi``). On a plane face of outward normal ``n`` the horizontal traction per unit
+  plan area is ``-k0 sigma_v (n_x, n_y) / n_z``; it is proportional to the column's weight
+  density, so its resultant ``-k0 (n_x, n_y) / n_z * W`` acts at the same point as the
+  weight, exactly. It pushes each haunch towards the crown.
+- **Passive restraint** (the extra resistance the fill offers to a haunch moving into it,
+  up to ``k_p sigma_v``) is not modelled: it depends on the mechanism's direction, which a
+  fixed load cannot follow. Leaving it out is on the safe side.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import shapely
+
+from ..structures.assembly import Assembly
+from .surface import LoadError, _upward_faces, _vector, top_surface
+
+__all__ = ["DISPERSION_2_TO_1", "Fill", "fill_forces", "road_level"]
+
+#: the 2:1 method's spread angle from the vertical (degrees): atan(1/2)
+DISPERSION_2_TO_1 = math.degrees(math.atan(0.5))
+
+
+@dataclass(frozen=True)
+class Fill:
+    """Fill over the top surface (see module docstring).
+
+    Parameters
+    ----------
+    depth : float
+        Depth of fill over the crown (m, >= 0): the road lies this far above the highest
+        point of the free blocks' top surface.
+    unit_weight : float
+        Unit weight of the fill (kN/m^3, > 0).
+    weight : bool
+        Apply the weight of the fill columns (default true).
+    dispersion : float
+        Spread angle of wheel loads through the fill, degrees from the vertical, in
+        ``[0, 60]``; default :data:`DISPERSION_2_TO_1`; 0: no dispersion.
+    k0 : float
+        Coefficient of horizontal pressure at rest (>= 0, < 1 as soils have it); 0
+        (default): no horizontal pressure.
+    """
+
+    depth: float
+    unit_weight: float
+    weight: bool = True
+    dispersion: float = DISPERSION_2_TO_1
+    k0: float = 0.0
+
+    def __post_init__(self) -> None:
+        (depth,) = _vector([self.depth], 1, "depth", "m")
+        (gamma,) = _vector([self.unit_weight], 1, "unit_weight", "kN/m^3")
+        (angle,) = _vector([self.dispersion], 1, "dispersion", "degrees from the vertical")
+        (k0,) = _vector([self.k0], 1, "k0", "-")
+        if depth < 0:
+            raise LoadError("depth", f"{depth:g} m", "give a depth of fill over the crown >= 0 (m)")
+        if not gamma > 0:
+            raise LoadError("unit_weight", f"{gamma:g} kN/m^3", "give a positive unit weight (kN/m^3)")
+        if not 0 <= angle <= 60:
+            raise LoadError("dispersion", f"{angle:g} degrees", "give a spread angle from 0 to 60 degrees from the vertical")
+        if not 0 <= k0 < 1:
+            raise LoadError("k0", f"{k0:g}", "give a coefficient at rest from 0 to below 1 (Jaky: 1 - sin(phi))")
+        for key in ("weight",):
+            if not isinstance(getattr(self, key), bool):
+                raise LoadError(key, f"not true or false ({getattr(self, key)!r})", "write true or false")
+        for key, v in (("depth", depth), ("unit_weight", gamma), ("dispersion", angle), ("k0", k0)):
+            object.__setattr__(self, key, v)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data, the keys of a ``[loads.fill]`` table."""
+        return {"depth": self.depth, "unit_weight": self.unit_weight, "weight": self.weight,
+                "dispersion": self.dispersion, "k0": self.k0}
+
+    def spread(self, h: float) -> float:
+        """How far a load spreads on each side through ``h`` m of fill (m)."""
+        return max(h, 0.0) * math.tan(math.radians(self.dispersion))
+
+
+def road_level(assembly: Assembly, fill: Fill) -> float:
+    """Height of the road (m): ``fill.depth`` above the highest point of the free blocks'
+    exposed top surface."""
+    faces = _upward_faces(assembly)
+    top = max(
+        float(np.max(faces.z(face, *np.asarray(poly.exterior.coords).T)))
+        for block, face, poly in top_surface(assembly) if not assembly.blocks[block].support
+    )
+    return top + fill.depth
+
+
+def _triangles(poly: shapely.Polygon) -> list[np.ndarray]:
+    """Triangles ``(3, 2)`` covering a plan polygon."""
+    tris = shapely.constrained_delaunay_triangles(poly)
+    return [np.asarray(t.exterior.coords)[:3] for t in getattr(tris, "geoms", [tris])]
+
+
+def fill_forces(assembly: Assembly, fill: Fill) -> list[tuple[int, np.ndarray, np.ndarray]]:
+    """``(block, point, force)`` of the fill's weight and at-rest pressure on every exposed
+    top-surface piece of a free block (kN, m); empty when both are switched off.
+
+    The column integrals are exact for plane faces: edge-midpoint quadrature on a
+    triangulation of each piece (exact for the quadratic ``x (road - z)``).
+    """
+    if not fill.weight and fill.k0 == 0.0:
+        return []
+    faces = _upward_faces(assembly)
+    road = road_level(assembly, fill)
+    out = []
+    for block, face, poly in top_surface(assembly):
+        if assembly.blocks[block].support:
+            continue
+        vol, moment = 0.0, np.zeros(2)
+        for t in _triangles(poly):
+            area = 0.5 * abs((t[1, 0] - t[0, 0]) * (t[2, 1] - t[0, 1]) - (t[2, 0] - t[0, 0]) * (t[1, 1] - t[0, 1]))
+            mid = (t + np.roll(t, -1, axis=0)) / 2.0
+            h = road - faces.z(face, mid[:, 0], mid[:, 1])
+            vol += area * h.mean()
+            moment += area * (mid * h[:, None]).mean(axis=0)
+        if vol <= 0.0:
+            continue
+        c = moment / vol
+        W = fill.unit_weight * vol
+        n = faces.normal[face]
+        force = np.array([-fill.k0 * n[0] / n[2] * W, -fill.k0 * n[1] / n[2] * W, -W if fill.weight else 0.0])
+        out.append((block, np.array([c[0], c[1], float(faces.z(face, c[0], c[1]))]), force))
+    return out

@@ -1,0 +1,154 @@
+"""Arch bridges: segmental rings of several spans on piers between two abutments.
+
+Axes as for arches (``docs/conventions.md``): the bridge spans along x and is centred on
+x = 0, its width (``depth``) runs along y from ``-depth/2`` to ``+depth/2``, z is up, the
+intrados springings at z = 0. Every span is the segmental ring of
+:func:`tce.structures.arch.segmental_arch` (same span, rise, thickness and number of
+voussoirs); its voussoirs are named ``s1v01``, ``s1v02``, ... for span 1 (from the left).
+A pier is the prism under the two springing joints it carries, ``pier_width`` wide between
+the intrados springings, its base ``pier_height`` below the springings; an abutment is the
+prism under its springing joint (a skewback), its base at the same level. The supports are
+the blocks whose motion is prescribed (settlement scenarios may move any of them):
+``abutment_left``, ``abutment_right`` and, with ``piers = "free"`` (the default), a
+foundation block ``foundation1`` ... under each pier, the piers ``pier1`` ... being free
+blocks standing on them (a pier may rock or slide: the spans act together); with
+``piers = "fixed"`` the piers themselves are the supports (the spans act alone).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .arch import _at_depth, segmental_arch
+from .assembly import Assembly, Block, Interface
+from .geometry import prisms
+from .params import check_blocks, check_positive, check_whole
+
+__all__ = ["arch_bridge"]
+
+
+def arch_bridge(
+    spans: int = 1,
+    span: float = 6.0,
+    rise: float = 1.5,
+    thickness: float = 0.4,
+    depth: float = 3.0,
+    voussoirs: int = 12,
+    unit_weight: float = 20.0,
+    pier_width: float = 1.0,
+    pier_height: float = 3.0,
+    piers: str = "free",
+) -> Assembly:
+    """A bridge of ``spans`` equal segmental spans on piers between two abutments.
+
+    Parameters
+    ----------
+    spans : int
+        Number of spans (>= 1).
+    span, rise, thickness : float
+        Clear span, intrados rise and ring thickness of every span (m);
+        ``rise <= span / 2``.
+    depth : float
+        Width of the bridge along y (m).
+    voussoirs : int
+        Voussoirs per span (>= 1).
+    unit_weight : float
+        Unit weight of the masonry (kN/m^3).
+    pier_width : float
+        Clear distance between the intrados springings of two adjacent spans (m); at least
+        the two skewbacks' horizontal extent, so that the pier's top is a plane between them.
+    pier_height : float
+        Height of piers and abutments below the springings (m).
+    piers : {"free", "fixed"}
+        Free piers on support foundations (as wide as the pier, ``pier_width`` tall, as deep
+        as the bridge), or piers that are supports.
+
+    Returns
+    -------
+    Assembly
+        Blocks ``abutment_left, s1v01 .. s1vN, pier1, s2v01, ..., abutment_right`` (then
+        ``foundation1, ...`` with free piers);
+        ``meta["generator"] == "arch_bridge"``.
+
+    Raises
+    ------
+    ValueError
+        A non-positive size, ``rise > span / 2``, or piers narrower than their skewbacks.
+    """
+    check_positive(span=span, rise=rise, thickness=thickness, depth=depth, unit_weight=unit_weight,
+                   pier_width=pier_width, pier_height=pier_height)
+    n_spans = check_whole(spans, "spans")
+    check_blocks(n_spans * (check_whole(voussoirs, "voussoirs") + 2) + 1,
+                 f"spans x (voussoirs + 2) + 1 = {n_spans} x ({voussoirs} + 2) + 1")
+    if piers not in ("free", "fixed"):
+        raise ValueError(f"piers must be 'free' or 'fixed', got {piers!r}")
+    ring = segmental_arch(span, rise, thickness, depth, voussoirs, unit_weight)
+    n = ring.meta["voussoirs"]
+    # joint ends (x, z) of one ring, centred on x = 0, from its interfaces' front vertices
+    ji = np.array([itf.points[0, [0, 2]] for itf in ring.interfaces])
+    je = np.array([itf.points[1, [0, 2]] for itf in ring.interfaces])
+    skew = float(je[-1, 0] - ji[-1, 0])  # horizontal extent of a skewback
+    if n_spans > 1 and pier_width < 2.0 * skew * (1.0 - 1e-12):
+        raise ValueError(f"pier_width must be >= {2.0 * skew:.6g} m (the two skewbacks it carries), got {pier_width!r}")
+    pitch = float(span) + float(pier_width)
+    centres = (np.arange(n_spans) - (n_spans - 1) / 2.0) * pitch
+    d = float(depth) / 2.0
+    base = -float(pier_height)
+
+    loops, names, support = [], [], []
+
+    def add(loop: np.ndarray, name: str, is_support: bool) -> None:
+        loops.append(_at_depth(loop, -d))
+        names.append(name)
+        support.append(is_support)
+
+    width = len(str(n)) if n >= 10 else 2
+    first = ji[0] + [centres[0], 0.0], je[0] + [centres[0], 0.0]
+    add(np.array([first[0], first[1], [first[1][0], base], [first[0][0], base]]), "abutment_left", True)
+    joints = []  # (intrados, extrados) of every joint, left to right, and its two blocks
+    for s, cx in enumerate(centres):
+        off = np.array([cx, 0.0])
+        a, e = ji + off, je + off
+        start = len(names) - 1  # the support on the left of this span
+        for k in range(n):
+            add(np.array([a[k], a[k + 1], e[k + 1], e[k]]), f"s{s + 1}v{k + 1:0{width}d}", False)
+        for k in range(n + 1):
+            joints.append((a[k], e[k], start + k))
+        if s < n_spans - 1:
+            nxt = ji + [centres[s + 1], 0.0], je + [centres[s + 1], 0.0]
+            add(np.array([a[-1], e[-1], nxt[1][0], nxt[0][0], [nxt[0][0][0], base], [a[-1][0], base]]), f"pier{s + 1}",
+                piers == "fixed")
+    last = ji[-1] + [centres[-1], 0.0], je[-1] + [centres[-1], 0.0]
+    add(np.array([last[0], last[1], [last[1][0], base], [last[0][0], base]]), "abutment_right", True)
+
+    feet = []  # (pier, foundation) of every free pier
+    if piers == "free":
+        for k, name in enumerate(list(names)):
+            if name.startswith("pier"):
+                x0, x1 = loops[k][0, 0], loops[k][3, 0]
+                feet.append((k, len(names)))
+                add(np.array([[x0, base], [x1, base], [x1, base - pier_width], [x0, base - pier_width]]),
+                    f"foundation{name[4:]}", True)
+    shapes = []
+    for loop in loops:
+        back = loop.copy()
+        back[:, 1] = d
+        shapes.extend(prisms(loop[None], back[None]))
+    blocks = tuple(Block(name, shape, float(unit_weight), sup) for name, shape, sup in zip(names, shapes, support))
+    interfaces = []
+    for a, e, left in joints:
+        pts = np.array([_at_depth(a[None], -d)[0], _at_depth(e[None], -d)[0], _at_depth(e[None], d)[0], _at_depth(a[None], d)[0]])
+        t = e - a
+        normal = np.array([t[1], 0.0, -t[0]])
+        normal /= np.linalg.norm(normal)
+        if normal @ (shapes[left + 1].centroid - shapes[left].centroid) < 0:
+            normal = -normal
+        interfaces.append(Interface(left, left + 1, pts, normal))
+    for pier, foot in feet:
+        x0, x1 = loops[pier][0, 0], loops[pier][3, 0]
+        pts = np.array([[x0, -d, base], [x1, -d, base], [x1, d, base], [x0, d, base]])
+        interfaces.append(Interface(pier, foot, pts, np.array([0.0, 0.0, -1.0])))
+    meta = dict(generator="arch_bridge", spans=n_spans, span=float(span), rise=float(rise), thickness=float(thickness),
+                depth=float(depth), voussoirs=n, unit_weight=float(unit_weight), pier_width=float(pier_width),
+                pier_height=float(pier_height), piers=piers)
+    return Assembly(blocks, tuple(interfaces), meta)
