@@ -20,7 +20,7 @@ from tce.study import guards
 from tce.cli import main
 from tce.study.schema import STRUCTURE_TYPES, StudyError, parse_study
 
-from .common import clean, errors
+from .common import clean, errors, replaced
 
 HOSTILE: list[Any] = [
     "no", "false", "", "1", "heavy", "a\x00b", 1.5, True, False, {"a": 1}, [], [1, 2, 3], -1, 0, 5,
@@ -99,13 +99,8 @@ SLOTS = [
 ]
 
 
-def replaced(place: tuple, value: Any) -> dict:
-    doc = copy.deepcopy(VALID)
-    node = doc
-    for key in place[:-1]:
-        node = node[key]
-    node[place[-1]] = value
-    return doc
+def study_with(place: tuple, value: Any) -> dict:
+    return replaced(VALID, place, value)
 
 
 def test_the_valid_study_parses() -> None:
@@ -117,7 +112,7 @@ def test_every_value_of_a_study(place: tuple, kind: str, key: str) -> None:
     """The generator: every place x every hostile value; only StudyError may come out."""
     for value in HOSTILE:
         try:
-            parse_study(toml(replaced(place, value)), "s.toml")
+            parse_study(toml(study_with(place, value)), "s.toml")
         except StudyError as exc:
             assert str(exc).startswith("s.toml: "), exc
             assert RIGHT[kind](value) or key in str(exc), (key, value, str(exc))
@@ -234,7 +229,7 @@ WORK = {
 @pytest.mark.parametrize("case", sorted(WORK))
 def test_unbounded_work_is_refused_with_its_estimate(case: str, tmp_path: Path, capsys) -> None:
     place, value, words = WORK[case]
-    doc = replaced(place, value)
+    doc = study_with(place, value)
     if case.startswith("5,000 scenarios"):
         doc["sweep"].pop("lambda_step")
         doc["loads"]["lambda_step"] = 0.02  # lambda_cap 100: 5001 steps each, 5000 scenarios
