@@ -9,12 +9,13 @@ the subpackages follow it:
 ``tce.analysis``    load path, minimum thickness, diagnosis
 ``tce.study``       study files, the parallel runner, results datasets
 ``tce.plot``        figures, interactive view and VTK export of a results dataset
+``tce.report``      the calculation report (HTML and its PDF) of a results dataset
 ``tce.cli``         the ``tce`` command line: composes the layers above
 ``tce.quality``     developer tools beside the command line: benchmarks, the hard-case suite
 
 The names most scripts need are importable from ``tce`` itself (loaded on first use, listed in
 ``__all__`` and by ``dir(tce)``), e.g. ``from tce import semicircular_arch, Analysis, Material,
-load_path``. The command line (``tce run``, ``tce show``, ...) is :mod:`tce.cli`, on the top
+load_path``. The command line (``tce run``, ``tce report``, ...) is :mod:`tce.cli`, on the top
 floor: it composes the study runner, the figures and the report.
 """
 
@@ -77,7 +78,7 @@ _PUBLIC = {
 __all__ = ["__version__", *_PUBLIC]
 
 #: the subpackages (``dir(tce)`` lists them beside the public names)
-_SUBPACKAGES = ("analysis", "cli", "core", "plot", "quality", "structures", "study")
+_SUBPACKAGES = ("analysis", "cli", "core", "plot", "quality", "report", "structures", "study")
 
 
 def __getattr__(name: str) -> object:

@@ -6,6 +6,8 @@
                          critical position of a load-position sweep).
 ``tce plot RESULTS.nc``  the figures of a results file (``--scenario S --step 0.1``: one on demand).
 ``tce view RESULTS.nc``  the interactive 3D view (one offline HTML file).
+``tce report RESULTS.nc``  the calculation report: one self-contained HTML file and its PDF
+                         (also written by ``tce run`` unless ``--no-report``).
 ``tce export RESULTS.nc --vtk``  ParaView files: blocks, vertex forces, resultants per step.
 
 Exit codes (``tce run``): 0 success; 2 bad input or a run that cannot start (a bad study,
@@ -28,6 +30,7 @@ import argparse
 import contextlib
 import logging
 import math
+import os
 import sys
 from collections import Counter
 from collections.abc import Iterator, Sequence
@@ -110,7 +113,8 @@ def _parser() -> argparse.ArgumentParser:
         "--strict", action="store_true",
         help="exit with code 4 unless every scenario ends at a limit (for scripted pipelines)",
     )
-    run.add_argument("--no-plots", action="store_true", help="write the results only")
+    run.add_argument("--no-plots", action="store_true", help="write the results only (no figures, no report)")
+    run.add_argument("--no-report", action="store_true", help="no calculation report (report.html, report.pdf)")
 
     show = sub.add_parser("show", help="summarise a results file", description="One line per scenario of RESULTS.nc.")
     show.add_argument("results", type=Path, metavar="RESULTS.nc")
@@ -152,6 +156,16 @@ def _parser() -> argparse.ArgumentParser:
     export.add_argument("--out", type=Path, default=None, metavar="DIR", help="folder (default: vtk/ beside RESULTS.nc)")
     export.add_argument("--scenario", action="append", default=None, metavar="NAME",
                         help="scenario to export (name or shell pattern; repeatable; default: all)")
+
+    report = sub.add_parser(
+        "report", help="write the calculation report of a results file",
+        description="Write report.html (one self-contained file: structure, material, loads, scenarios, method and "
+        "references, results tables, every figure, warnings, provenance) and report.pdf printed from it by headless "
+        "Chromium (skipped, with the reason, when no chromium is found).",
+    )
+    report.add_argument("results", type=Path, metavar="RESULTS.nc")
+    report.add_argument("--out", type=Path, default=None, metavar="DIR", help="folder (default: beside RESULTS.nc)")
+    report.add_argument("--no-pdf", action="store_true", help="the HTML only")
 
     check = sub.add_parser(
         "check",
@@ -277,6 +291,8 @@ class _Bar:
 
 #: exit codes of ``tce run`` (module docstring)
 EXIT_FAULT, EXIT_STRICT = 3, 4
+#: exit code when the standard output is closed early (a shell's 128 + SIGPIPE)
+EXIT_PIPE = 141
 
 
 def _draw(ds, folder: Path, jobs: int) -> list[Path]:
@@ -336,6 +352,8 @@ def _run(args: argparse.Namespace) -> int:
     what = f"{len(report.solved)} solved" + (f", {len(report.reused)} reused" if report.reused else "")
     tally = ", ".join(f"{n} {o}" for o, n in counts.items() if n)
     print(f"{report.results}: {len(report.outcomes)} scenarios ({what}): {tally}; {len(report.figures)} figures")
+    if not (args.no_plots or args.no_report):
+        _report_lines(_write_report(report.results, figures=report.figures))
     odd = {name: o for name, o in report.outcomes.items() if o != "limit"}
     for name, outcome in odd.items():
         print(f"  {outcome}: {name}")
@@ -499,6 +517,26 @@ def _export(args: argparse.Namespace) -> int:
     return 0
 
 
+def _write_report(results: Path, out: Path | None = None, figures: list[Path] | None = None, pdf: bool = True):
+    """The calculation report (:func:`tce.report.write_report`); a results file it cannot read is a usage error."""
+    from .report import write_report
+
+    try:
+        return write_report(results, out, figures=figures, pdf=pdf)
+    except (KeyError, ValueError) as exc:
+        raise UsageError(f"{results}: cannot write its report: not a complete tce results file ({exc})") from None
+
+
+def _report_lines(files) -> None:
+    print(f"report: {files.html}" + (f", {files.pdf}" if files.pdf else f" (PDF skipped: {files.skipped})"))
+
+
+def _report(args: argparse.Namespace) -> int:
+    _open_results(args.results).close()  # a missing or unreadable file: one message, exit 2
+    _report_lines(_write_report(args.results, args.out, pdf=not args.no_pdf))
+    return 0
+
+
 def _check(args: argparse.Namespace) -> int:
     from .quality.check import check_command
 
@@ -515,8 +553,6 @@ def _bench(args: argparse.Namespace) -> int:
 
 def _without_dask() -> None:
     """Keep xarray from importing dask in this program and its workers (:mod:`tce.study.jobs`)."""
-    import os
-
     from .study.jobs import NO_DASK, block_dask_import
 
     os.environ[NO_DASK] = "1"
@@ -538,8 +574,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         _setup_logging(args.verbose, args.quiet)
         if argv is None and getattr(args, "backend", None) != "dask":
             _without_dask()
-        commands = {"run": _run, "show": _show, "plot": _plot, "view": _view, "export": _export, "check": _check,
-                    "bench": _bench}
+        commands = {"run": _run, "show": _show, "plot": _plot, "view": _view, "export": _export, "report": _report,
+                    "check": _check, "bench": _bench}
         for option, value in vars(args).items():
             if isinstance(value, Path):
                 try:
@@ -556,11 +592,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except WriteFault as exc:
         print(f"tce: error: {exc}", file=sys.stderr)
         return EXIT_FAULT
-    except BrokenPipeError:  # the reader of stdout went away (tce show | head): end quietly
-        import os
-
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at exit
-        return 141  # 128 + SIGPIPE, as a program killed by it
+    except BrokenPipeError:  # the reader went away (``tce show | head``): stop quietly, as SIGPIPE would
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # Python's own flush at exit finds no pipe
+        return EXIT_PIPE
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -1,9 +1,16 @@
 """Builders shared by the tests: a single block on a support (closed forms), two blocks side by side,
-an arch centroid height, a one-point-load pattern and the planar and spatial limits of a scene."""
+an arch centroid height, a one-point-load pattern, the planar and spatial limits of a scene, and a
+headless Chromium driven by selenium."""
 
 from __future__ import annotations
 
+import shutil
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+
 import numpy as np
+import pytest
 
 from tce.core.limit import LimitSolver
 from tce.core.loads import LoadPattern, PointLoad
@@ -59,3 +66,36 @@ def extrados_midpoint(k: int, ri=1.0, t=0.2, n=14) -> list[float]:
     """Midpoint of the extrados chord of voussoir k (1-based) of a semicircular arch (m)."""
     th = np.pi * (1 - np.array([k - 1, k]) / n)
     return [(ri + t) * float(np.cos(th).mean()), 0.0, (ri + t) * float(np.sin(th).mean())]
+
+
+BROWSER = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
+DRIVER = shutil.which("chromedriver")
+#: no network, no first-run or background traffic, software WebGL
+CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                  "--enable-unsafe-swiftshader", "--window-size=1200,800")
+
+
+@contextmanager
+def chromium() -> Iterator[object]:
+    """A selenium driver of Debian's headless chromium (browser console logged), with a
+    throw-away profile; skips the test, with the reason, when selenium, chromium or
+    chromedriver is missing (``.ci/run`` installs them)."""
+    pytest.importorskip("selenium", reason="selenium is not installed (pip install -e '.[test]')")
+    if BROWSER is None or DRIVER is None:
+        pytest.skip("no chromium/chromedriver on PATH (apt-get install chromium chromium-driver)")
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = BROWSER
+    profile = tempfile.mkdtemp(prefix="tce-chromium-")
+    for flag in (*CHROMIUM_FLAGS, f"--user-data-dir={profile}"):
+        opts.add_argument(flag)
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    driver = webdriver.Chrome(service=Service(DRIVER), options=opts)
+    try:
+        yield driver
+    finally:
+        driver.quit()
+        shutil.rmtree(profile, ignore_errors=True)

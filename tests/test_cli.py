@@ -123,3 +123,18 @@ def test_run_show_plot(tmp_path: Path, capsys, monkeypatch) -> None:
     assert main(["plot", str(results), "--out", str(figures)]) == 0
     assert "figures in" in capsys.readouterr().out
     assert list(figures.glob("*.png"))
+
+
+def test_show_into_a_closed_pipe_stops_quietly(tmp_path: Path) -> None:
+    """``tce show RESULTS.nc | head``: no traceback when the reader goes away (exit 141, as SIGPIPE)."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "results"
+    assert main(["-q", "run", str(write(tmp_path, STUDY)), "--out", str(out), "--no-plots", "--no-report"]) == 0
+    p = subprocess.Popen([sys.executable, "-m", "tce.cli", "show", str(out / "cli" / "results.nc")],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    p.stdout.close()
+    code, err = p.wait(), p.stderr.read().decode()
+    p.stderr.close()
+    assert "Traceback" not in err and code == 141, err

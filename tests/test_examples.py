@@ -21,6 +21,7 @@ EXPECT = {
     "04_study_file.py": (["{examples}/04_study.toml", "{tmp}"], ["4 scenarios solved", "limit"]),
     "05_limit_mechanism.py": ([], ["lambda_0max = 0.2428243", "v01|v02 on the intrados", "v14|right on the extrados"]),
     "06_minimum_thickness.py": (["8"], ["8 voussoirs: t/R = 0.", "Milankovitch"]),
+    "07_settlement_capacity.py": ([], ["| 0.15 | 36 | 0.05606 | 0.05606 |", "30.00 -> 30.00 | 0 | collapse"]),
 }
 
 

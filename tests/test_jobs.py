@@ -86,3 +86,23 @@ def test_tce_program_does_not_import_dask(tmp_path, jobs):
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split()[-2:] == ["0", "None"]  # blocked: never imported
+
+
+def test_the_estimate_is_cpu_time_not_wall(fig8, monkeypatch):
+    """A busy machine stretches wall time, not CPU time: a wall clock that jumps 10 s per
+    reading leaves the estimate (and the choice) as it was."""
+    import itertools
+
+    ticks = itertools.count(step=10.0)
+    monkeypatch.setattr(jobs_module.time, "perf_counter", lambda: next(ticks))
+    choice = choose_jobs(fig8, None, _analysis, cpus=2)
+    assert choice.jobs == 1 and choice.work_s < jobs_module.WORKER_START_S
+
+
+def test_a_sweep_of_many_scenarios_counts_their_answers(fig8, monkeypatch):
+    """Recording and writing an answer is work the workers share: many scenarios go parallel
+    even when their solves are cheap."""
+    monkeypatch.setattr(jobs_module, "SCENARIO_S", 1.0)
+    work, how = estimate_work(fig8, _analysis)
+    assert work >= 4.0 and "4 answers" in how
+    assert choose_jobs(fig8, None, _analysis, cpus=2).jobs == 2

@@ -83,6 +83,6 @@ def test_callback_form_updates_the_total(caplog):
 
 
 def test_drawing_shows_a_bar_naming_the_file_on_a_terminal(tmp_path):
-    out = _run_on_pty([sys.executable, "-m", "tce.cli", "run", str(STUDY), "--out", str(tmp_path)])
+    out = _run_on_pty([sys.executable, "-m", "tce.cli", "run", str(STUDY), "--out", str(tmp_path), "--no-report"])
     assert "figures:" in out and "/5 [" in out and "file/s" in out and "states.png]" in out
     assert "5/5" in out

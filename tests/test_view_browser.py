@@ -9,26 +9,19 @@ only when no chromium or chromedriver can be found (``.ci/run`` installs them).
 
 from __future__ import annotations
 
-import shutil
-import tempfile
 import time
 from pathlib import Path
 
 import pytest
 import xarray as xr
 
+from helpers import chromium
 from tce.plot.view import view_html
 from tce.study.runner import run_study
 from tce.study.schema import parse_study
 
 ROOT = Path(__file__).resolve().parents[1]
 SHOT = ROOT / "results" / "view" / "view_screenshot.png"
-BROWSER = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
-DRIVER = shutil.which("chromedriver")
-FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         "--enable-unsafe-swiftshader", "--window-size=1200,800")
-
 STUDY = """
 [study]
 name = "browser"
@@ -48,24 +41,8 @@ right = [0, 0.001, 0, 0, 0, 0]
 
 @pytest.fixture(scope="module")
 def browser():
-    selenium = pytest.importorskip("selenium", reason="selenium is not installed (pip install -e '.[test]')")
-    if BROWSER is None or DRIVER is None:
-        pytest.skip("no chromium/chromedriver on PATH (apt-get install chromium chromium-driver): "
-                    "the view cannot be tested in a browser here")
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = BROWSER
-    profile = tempfile.mkdtemp(prefix="tce-chromium-")
-    for flag in (*FLAGS, f"--user-data-dir={profile}"):
-        opts.add_argument(flag)
-    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    driver = webdriver.Chrome(service=Service(DRIVER), options=opts)
-    del selenium
-    yield driver
-    driver.quit()
-    shutil.rmtree(profile, ignore_errors=True)
+    with chromium() as driver:
+        yield driver
 
 
 def wait_for(driver, script: str, timeout: float = 30.0):

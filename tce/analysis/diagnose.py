@@ -85,7 +85,7 @@ def binding_interfaces(
     return out
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class Diagnosis(Result):
     """What a scene's status means, where.
 

@@ -26,7 +26,7 @@ import math
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -44,7 +44,7 @@ __all__ = ["MAX_INCREMENTS", "LoadPathResult", "load_path"]
 MAX_INCREMENTS = 10_000
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class LoadPathResult(Result):
     """A load path and its limit (``ok`` when ``status == "limit"``).
 
@@ -79,6 +79,8 @@ class LoadPathResult(Result):
         Time of the whole call (s).
     """
 
+    HEADLINE = ("lambda_max", "lambda_upper", "lambda_direct", "alpha", "n_solves")
+
     OK = ("limit",)
 
     alpha: float
@@ -109,6 +111,27 @@ class LoadPathResult(Result):
     def path(self) -> list[TCEResult]:
         """The steps sorted by lambda."""
         return sorted(self.steps, key=lambda r: r.lam)
+
+    def _arrays(self) -> tuple[dict[str, tuple], dict[str, Any]]:
+        """The steps sorted by lambda along ``step``: ``lam``, ``status``, ``tce``, residuals
+        and each step's labelled arrays (:meth:`tce.core.solve.TCEResult.to_xarray`)."""
+        path = self.path
+        if not path:
+            return {}, {}
+        first, coords = path[0]._arrays()
+        data: dict[str, tuple] = {
+            "lam": (("step",), np.array([r.lam for r in path])),
+            "status": (("step",), np.array([r.status for r in path], dtype=object)),
+            "tce": (("step",), np.array([r.tce for r in path]), {"units": "kN m"}),
+            "eq_residual": (("step",), np.array([r.eq_residual for r in path])),
+            "cone_residual": (("step",), np.array([r.cone_residual for r in path])),
+        }
+        per_step = [first] + [r._arrays()[0] for r in path[1:]]
+        for name, (dims, _, attrs) in first.items():
+            if name != "vertex_point":
+                data[name] = (("step", *dims), np.stack([a[name][1] for a in per_step]), attrs)
+        data["vertex_point"] = first["vertex_point"]
+        return data, coords
 
     @property
     def at_limit(self) -> TCEResult | None:
@@ -169,6 +192,7 @@ def load_path(
     lam_cap: float = 100.0,
     loads: LoadPattern | None = None,
     bracket: Literal["direct", "bisection"] = "direct",
+    mechanism: bool = True,
 ) -> LoadPathResult:
     """Increment lambda by ``step`` from 0, then narrow the first inadmissible increment.
 
@@ -191,6 +215,10 @@ def load_path(
     bracket : {"direct", "bisection"}
         How the last increment is narrowed (module docstring): first a bracket around the
         direct lambda_max, or bisection alone.
+    mechanism : bool
+        Whether the result's direct ``limit`` carries its collapse mechanism (classified
+        once, after the path; a study stores it). Without it the path costs its solves and
+        one direct lambda_max.
 
     Returns
     -------
@@ -240,14 +268,14 @@ def load_path(
     if outcome == "limit":
         assert lo is not None and hi is not None
         if bracket == "direct":
-            lo, hi = _confirm_direct(run, lo, hi, analysis.limit(loads=pattern).lambda_max, atol, rtol)
+            lo, hi = _confirm_direct(run, lo, hi, analysis.limit(loads=pattern, mechanism=False).lambda_max, atol, rtol)
         lo_bracket = lo  # admissible end of the bracket; `lo` stays the last optimal step
         while hi - lo_bracket > max(atol, rtol * abs(hi)):
             mid = 0.5 * (lo_bracket + hi)
             if not lo_bracket < mid < hi:
                 break  # the bracket is two neighbouring floats: no multiplier lies between them
             r = run(mid)
-            direct = analysis.limit(loads=pattern).lambda_max
+            direct = analysis.limit(loads=pattern, mechanism=False).lambda_max
             if r.status == "optimal":
                 lo = lo_bracket = mid
             elif r.status == "infeasible":
@@ -276,7 +304,7 @@ def load_path(
         steps=steps,
         lambda_max=float(lam_max),
         lambda_upper=float(hi) if hi is not None else float("nan"),
-        limit=analysis.limit(loads=pattern),
+        limit=analysis.limit(loads=pattern, mechanism=mechanism),
         n_solves=len(steps),
         solve_time=float(sum(s.solve_time for s in steps)),
         wall_time=time.perf_counter() - t0,

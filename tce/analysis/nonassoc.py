@@ -65,6 +65,7 @@ from __future__ import annotations
 import logging
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -88,7 +89,7 @@ log = logging.getLogger(__name__)
 DILATANCY_TOL = 1e-4
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class NonAssocResult(Result):
     """The associative/non-associative bracket of one load direction (``ok`` when ``converged``).
 
@@ -129,6 +130,8 @@ class NonAssocResult(Result):
         Collapse mechanism of the final iteration.
     """
 
+    HEADLINE = ("lambda_assoc", "lambda_nonassoc", "iterations", "model", "alpha")
+
     OK = ("converged",)
 
     alpha: float
@@ -143,6 +146,10 @@ class NonAssocResult(Result):
     dilatancy: float = float("nan")
     forces: NDArray[np.float64] = field(repr=False)
     mechanism: Mechanism | None = field(default=None, repr=False)
+
+    def _arrays(self) -> tuple[dict[str, tuple], dict[str, Any]]:
+        """``history``: lambda of every iteration (dim ``iteration``, the associative one first)."""
+        return {"history": (("iteration",), np.asarray(self.history, dtype=float))}, {}
 
 
 def contact_velocities(model: Model, velocities: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -27,7 +27,7 @@ from ..core.result import Result
 __all__ = ["ThicknessResult", "arch_minimum_thickness", "minimum_thickness"]
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class ThicknessResult(Result):
     """Outcome of a minimum-thickness bisection (``status`` is ``optimal``: a bracket was
     found; the thickness is a verified standing one whatever ``undecided`` says).
@@ -44,6 +44,8 @@ class ThicknessResult(Result):
     undecided : int
         Solves whose status was ``numerical`` (treated as "does not stand").
     """
+
+    HEADLINE = ("thickness", "lower", "ratio", "n_solves", "undecided")
 
     thickness: float
     lower: float

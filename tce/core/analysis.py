@@ -21,11 +21,13 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .. import display
 from ..structures.assembly import Assembly
 from .limit import LimitResult, LimitSolver
 from .loads import AppliedLoads, LoadPattern, as_pattern, resolve
 from .material import Material
 from .model import Model, build_model, find_plane, motions_in_plane
+from .problem import Formulation
 from .solve import SolverOptions, TCEResult, TCESolver, check_settlements
 
 __all__ = ["Analysis"]
@@ -66,6 +68,29 @@ class Analysis:
         self._solvers: dict[str, TCESolver] = {}
         self._limits: dict[tuple[str, LoadPattern], LimitResult] = {}
         self._limit_solvers: dict[str, LimitSolver] = {}
+        self._formulations: dict[str, Formulation] = {}
+
+    def _facts(self) -> dict[str, str]:
+        """What the repr and the HTML table show."""
+        a = self.assembly
+        if self.choice == "spatial" or self.plane is None:
+            models = "spatial" + (" (forced)" if self.choice == "spatial" else " (not planar)")
+        else:
+            models = "planar" if self.choice == "planar" else "planar for in-plane scenes, spatial otherwise"
+        return {
+            "assembly": f"{len(a.blocks)} blocks, {len(a.support_indices)} supports, {len(a.interfaces)} interfaces"
+                        + (f" ({a.meta['generator']})" if "generator" in a.meta else ""),
+            "models": models,
+            "material": self.material.describe(),
+            "built": ", ".join(sorted(self._models)) or "nothing yet",
+        }
+
+    def __repr__(self) -> str:
+        f = self._facts()
+        return display.call("Analysis", {}, head=f"{f['assembly']}; models: {f['models']}; {f['material']}")
+
+    def _repr_html_(self) -> str:
+        return display.html_table("Analysis", self._facts().items())
 
     def reset_solvers(self) -> None:
         """Drop the warm solvers (keeping the operators), so that the next answer does not
@@ -121,10 +146,17 @@ class Analysis:
             self._models[kind] = build_model(self.assembly, kind)  # type: ignore[arg-type]
         return self._models[kind]
 
+    def formulation(self, kind: str) -> Formulation:
+        """The scaled operators of model ``kind`` and the material (built on first use), which
+        the TCE and limit solvers of that model share."""
+        if kind not in self._formulations:
+            self._formulations[kind] = Formulation(self.model(kind), self.material)
+        return self._formulations[kind]
+
     def solver(self, kind: str) -> TCESolver:
         """The warm TCE solver of model ``kind``."""
         if kind not in self._solvers:
-            self._solvers[kind] = TCESolver(self.model(kind), self.material, self.options)
+            self._solvers[kind] = TCESolver(self.model(kind), self.material, self.options, self.formulation(kind))
         return self._solvers[kind]
 
     def solve(
@@ -155,14 +187,19 @@ class Analysis:
 
         return solve
 
-    def limit(self, alpha: float | None = None, loads: LoadPattern | None = None) -> LimitResult:
+    def limit(self, alpha: float | None = None, loads: LoadPattern | None = None, mechanism: bool = True) -> LimitResult:
         """Direct lambda_max of the live part of the pattern ``loads`` (default: the lateral
-        pattern in direction ``alpha``, degrees), cached per pattern."""
+        pattern in direction ``alpha``, degrees), cached per pattern; its mechanism is
+        classified when ``mechanism`` is True (once: a later call adds it to the cached
+        answer)."""
         pattern = as_pattern(alpha, loads)
         kind = self.model_kind(loads=pattern)
         key = (kind, pattern)
+        if kind not in self._limit_solvers:
+            self._limit_solvers[kind] = LimitSolver(self.model(kind), self.material, formulation=self.formulation(kind))
+        solver = self._limit_solvers[kind]
         if key not in self._limits:
-            if kind not in self._limit_solvers:
-                self._limit_solvers[kind] = LimitSolver(self.model(kind), self.material)
-            self._limits[key] = self._limit_solvers[kind].solve(loads=pattern)
+            self._limits[key] = solver.solve(loads=pattern, mechanism=mechanism)
+        elif mechanism:
+            self._limits[key] = solver.with_mechanism(self._limits[key])
         return self._limits[key]

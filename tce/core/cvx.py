@@ -39,7 +39,7 @@ _STATUS = {
 }
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class CvxResult(Result):
     """Answer of a cvxpy solve (statuses: :data:`tce.core.result.STATUSES`).
 
@@ -55,6 +55,8 @@ class CvxResult(Result):
     ``solver`` is the cvxpy solver's name; ``solve_time`` is the wall time of
     ``Problem.solve`` (cvxpy's canonicalisation included); ``message`` is cvxpy's status.
     """
+
+    HEADLINE = ("tce",)
 
     forces: NDArray[np.float64] = field(repr=False)
     support_wrenches: NDArray[np.float64] = field(repr=False)

@@ -31,17 +31,18 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from .clarabel_solver import Solution, SolverOptions, solve_once
-from .conic import ConeRows, law_violation
+from .conic import ConeRows, law_violation, matvec
 from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import EZ, Model
-from .problem import Formulation, lateral_ray_problem, limit_problem
-from .result import Result
+from .problem import Formulation, LimitProblems, lateral_ray_problem
+from .result import DOFS, Result
 
 __all__ = ["LimitResult", "LimitSolver", "Mechanism", "mechanism_from_velocities"]
 
@@ -142,7 +143,7 @@ def mechanism_from_velocities(model: Model, vel: NDArray[np.float64], tol: float
     return Mechanism(vel, tuple(modes), hp)
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class LimitResult(Result):
     """Answer of a direct limit analysis.
 
@@ -163,16 +164,23 @@ class LimitResult(Result):
         ``|lambda_kinematic - lambda_max| / max(|lambda_max|, 1e-12)``.
     admissibility : float
         Largest violation of the dual cone by the mechanism's relative velocities (relative
-        to the largest relative velocity).
+        to the largest relative velocity); NaN without the mechanism.
     forces : (nc, dim) ndarray
         A limit force state (kN); NaN unless optimal.
     mechanism : Mechanism or None
+        None when not asked for (:meth:`LimitSolver.with_mechanism` adds it).
+    row_velocities : (m_eq,) ndarray or None
+        Virtual velocities per equilibrium row of the model (``z / row_div``, ``A_eq``'s row
+        layout: m/s and rad/s per unit power of the live load), from which the mechanism is
+        classified; None when the solve gave none.
     model : str
         ``"spatial"`` or ``"planar"``.
     iterations : int
     setup_time : float
         Wall time of the solver set-up (s).
     """
+
+    HEADLINE = ("lambda_max", "alpha", "model", "lambda_kinematic", "certificate_gap")
 
     alpha: float
     loads: LoadPattern | None = field(default=None, repr=False)
@@ -182,9 +190,17 @@ class LimitResult(Result):
     admissibility: float = float("nan")
     forces: NDArray[np.float64] = field(repr=False)
     mechanism: Mechanism | None = field(default=None, repr=False)
+    row_velocities: NDArray[np.float64] | None = field(default=None, repr=False)
     model: str = "spatial"
     iterations: int = 0
     setup_time: float = 0.0
+
+    def _arrays(self) -> tuple[dict[str, tuple], dict[str, Any]]:
+        """The collapse mechanism (``mechanism``: dims ``(block, dof)``, blocks in assembly order)."""
+        if self.mechanism is None:
+            return {}, {}
+        data = {"mechanism": (("block", "dof"), self.mechanism.velocities, {"units": "m, rad (unit amplitude)"})}
+        return data, {"dof": list(DOFS)}
 
 
 class LimitSolver:
@@ -198,26 +214,52 @@ class LimitSolver:
         Clarabel's tolerances on the scaled problem.
     rows : ConeRows, optional
         Another contact law than the material's (e.g. a friction pyramid).
+    formulation : Formulation, optional
+        The scaled operators of ``model`` and ``material`` when the caller already has them
+        (:class:`tce.core.analysis.Analysis` shares one with its TCE solver); not with ``rows``.
     """
 
-    def __init__(self, model: Model, material: Material, tol: float = 1e-10, rows: ConeRows | None = None) -> None:
+    def __init__(
+        self,
+        model: Model,
+        material: Material,
+        tol: float = 1e-10,
+        rows: ConeRows | None = None,
+        formulation: Formulation | None = None,
+    ) -> None:
+        if formulation is not None and (rows is not None or formulation.model is not model
+                                        or formulation.material is not material or not formulation.own_law):
+            raise ValueError("LimitSolver: a formulation must be of the same model and material, without rows")
         self.model = model
         self.material = material
         self.tol = tol
-        self.formulation = Formulation(model, material, rows)
+        self.formulation = formulation or Formulation(model, material, rows)
         self.options = SolverOptions(tol=tol, max_iter=500)
+        self._problems = LimitProblems(self.formulation)
+        #: Clarabel settings without and with iterative refinement (the retry)
+        self._settings = tuple(self.options.settings(refine=r, kkt=self.formulation.kkt) for r in (False, True))
+        self._rel_times = matvec(model.A_eq.T)
+        self._vectors_last: tuple[object, tuple[LoadPattern, NDArray[np.float64], NDArray[np.float64]]] | None = None
 
-    def solve(self, alpha: float | None = None, loads: LoadPattern | None = None) -> LimitResult:
+    def solve(self, alpha: float | None = None, loads: LoadPattern | None = None, mechanism: bool = True) -> LimitResult:
         """Largest multiplier of the live part of the pattern ``loads`` (default: the lateral
-        pattern in direction ``alpha``, degrees), with its mechanism.
+        pattern in direction ``alpha``, degrees), with its mechanism unless ``mechanism`` is
+        False (see :meth:`solve_loads`).
 
         Raises
         ------
         ValueError
             A pattern that cannot be applied, or that leaves a planar model's plane.
         """
-        pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
-        return self.solve_loads(b_fixed, b_live, pattern.direction, pattern)
+        # the last call's vectors, when it had the same direction alone or the same pattern
+        key = ("alpha", 0.0 if alpha is None else alpha) if loads is None else loads
+        last = self._vectors_last
+        if last is not None and (last[0] is key or last[0] == key):
+            pattern, b_fixed, b_live = last[1]
+        else:
+            pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
+            self._vectors_last = (key, (pattern, b_fixed, b_live))
+        return self.solve_loads(b_fixed, b_live, pattern.direction, pattern, mechanism=mechanism)
 
     def solve_loads(
         self,
@@ -225,61 +267,91 @@ class LimitSolver:
         b_live: NDArray[np.float64],
         alpha: float = float("nan"),
         loads: LoadPattern | None = None,
+        mechanism: bool = True,
     ) -> LimitResult:
         """Largest multiplier of the live loads ``b_live`` with ``b_fixed`` always applied
-        (both in ``A_eq``'s row layout, kN and kN m), with its mechanism; ``alpha`` and
-        ``loads`` are recorded in the result."""
+        (both in ``A_eq``'s row layout, kN and kN m); ``alpha`` and ``loads`` are recorded in
+        the result.
+
+        The mechanism (:func:`mechanism_from_velocities`, a fifth of the whole call on the
+        paper's arch) is classified only when ``mechanism`` is True; the result carries the
+        virtual velocities ``row_velocities`` either way, from which :meth:`with_mechanism`
+        classifies it later."""
         t0 = time.perf_counter()
         model, f = self.model, self.formulation
         m = f.A_eq.shape[0]
-        problem = limit_problem(f, b_fixed, b_live)
+        problem = self._problems(b_fixed, b_live)
+        rhs_scaled = problem.b[:m]
         # without iterative refinement first (0.6x the time on a 10,100-block dome, lambda
         # within 1e-10); an answer that is not clean is solved again with it
-        sol = solve_once(problem, self.options.settings(refine=False, kkt=f.kkt))
+        sol = solve_once(problem, self._settings[0])
         retried, spent = "", (0.0, 0.0)
-        if sol.status not in ("PrimalInfeasible", "DualInfeasible") and not self._clean(sol, b_fixed, b_live):
+        checked = self._checked(sol, rhs_scaled, b_live)
+        if sol.status not in ("PrimalInfeasible", "DualInfeasible") and checked is None:
             retried, spent = f" (after {sol.status} without iterative refinement)", (sol.solve_time, sol.setup_time)
-            sol = solve_once(problem, self.options.settings(refine=True, kkt=f.kkt))
+            sol = solve_once(problem, self._settings[1])
+            checked = self._checked(sol, rhs_scaled, b_live)
         common = dict(alpha=alpha, loads=loads, model=model.kind, solve_time=sol.solve_time + spent[0],
                       setup_time=sol.setup_time + spent[1],
                       iterations=sol.iterations)
-        empty = np.full((model.n_contacts, model.dim), np.nan)
         if sol.status == "PrimalInfeasible":
             # Farkas certificate: block velocities under which the fixed loads do positive
             # work while every contact opens or slides admissibly: the collapse under them
             v = sol.z[:m] / f.row_div
             mech = mechanism_from_velocities(model, _block_velocities(model, v)) if np.any(v) else None
-            return LimitResult(status="infeasible", forces=empty, mechanism=mech, message=f"clarabel: {sol.status}",
-                               wall_time=time.perf_counter() - t0, **common)
+            return LimitResult(status="infeasible", forces=self._no_forces(), mechanism=mech, row_velocities=v,
+                               message=f"clarabel: {sol.status}", wall_time=time.perf_counter() - t0, **common)
         if sol.status == "DualInfeasible":
-            return LimitResult(status="unbounded", lambda_max=float("inf"), forces=empty, message=f"clarabel: {sol.status}",
+            return LimitResult(status="unbounded", lambda_max=float("inf"), forces=self._no_forces(), message=f"clarabel: {sol.status}",
                                wall_time=time.perf_counter() - t0, **common)
-        lam = float(sol.x[-1])
-        F = f.forces(sol.x)
-        eq, law = f.residuals(F, b_fixed + lam * b_live)
-        if not (sol.solved and eq <= 1e-8 and law <= 1e-8):  # the same test as _clean
-            return LimitResult(status="numerical", forces=empty, message=f"clarabel: {sol.status}{retried}; residual {eq:.3g}",
+        if checked is None:
+            eq = f.residuals_scaled(f.forces(sol.x), rhs_scaled - float(sol.x[-1]) * b_live / f.row_div)[0]
+            return LimitResult(status="numerical", forces=self._no_forces(), message=f"clarabel: {sol.status}{retried}; residual {eq:.3g}",
                                wall_time=time.perf_counter() - t0, **common)
+        lam, F = checked
         v = sol.z[:m] / f.row_div  # virtual velocities per equilibrium row, v . b_live = 1
         # power of the fixed loads plus what the law's offsets dissipate (cohesion, tension,
         # crushing: h . y with y the law rows' multipliers; zero for the paper's laws)
         lam_kin = float((-(v @ b_fixed) + f.law_h @ sol.z[m:]) / (v @ b_live))
         gap = abs(lam_kin - lam) / max(abs(lam), 1e-12)
-        rel = model.A_eq.T @ v  # relative contact velocities (B w.r.t. A), model variables
-        mech = mechanism_from_velocities(model, _block_velocities(model, v))
+        mech, adm = self._mechanism(v) if mechanism else (None, float("nan"))
         return LimitResult(
-            status="optimal", lambda_max=lam, lambda_kinematic=lam_kin, certificate_gap=gap,
-            admissibility=self._dual_cone_violation(rel), forces=F.reshape(model.n_contacts, model.dim),
-            mechanism=mech, message=f"clarabel: {sol.status}{retried}", wall_time=time.perf_counter() - t0, **common,
+            status="optimal", lambda_max=lam, lambda_kinematic=lam_kin, certificate_gap=gap, admissibility=adm,
+            forces=F.reshape(model.n_contacts, model.dim), mechanism=mech, row_velocities=v,
+            message=f"clarabel: {sol.status}{retried}", wall_time=time.perf_counter() - t0, **common,
         )
 
-    def _clean(self, sol: Solution, b_fixed: NDArray[np.float64], b_live: NDArray[np.float64]) -> bool:
-        """Whether a limit solve passes the residual checks (1e-8 of W and W L)."""
+    def _no_forces(self) -> NDArray[np.float64]:
+        """The forces of an answer that has none: NaN, shaped as an optimal answer's."""
+        return np.full((self.model.n_contacts, self.model.dim), np.nan)
+
+    def with_mechanism(self, result: LimitResult) -> LimitResult:
+        """``result`` (an optimal answer of this solver) with its mechanism classified from
+        its ``row_velocities``, and the mechanism's ``admissibility``; the same object when
+        it has them or is not optimal."""
+        if result.mechanism is not None or result.row_velocities is None or result.status != "optimal":
+            return result
+        mech, adm = self._mechanism(result.row_velocities)
+        return replace(result, mechanism=mech, admissibility=adm)
+
+    def _mechanism(self, v: NDArray[np.float64]) -> tuple[Mechanism, float]:
+        """The mechanism of the virtual velocities ``v`` (per equilibrium row) and the dual
+        cone's violation by its relative contact velocities (``A_eq' v``, B w.r.t. A)."""
+        mech = mechanism_from_velocities(self.model, _block_velocities(self.model, v))
+        return mech, self._dual_cone_violation(self._rel_times(v))
+
+    def _checked(
+        self, sol: Solution, rhs_scaled: NDArray[np.float64], b_live: NDArray[np.float64]
+    ) -> tuple[float, NDArray[np.float64]] | None:
+        """``(lam, F)`` of a limit solve that passes the residual checks (1e-8 of W and W L),
+        else None; ``rhs_scaled`` is the fixed loads' scaled right-hand side (``b[:m_eq]``)."""
         if not sol.solved:
-            return False
+            return None
+        f = self.formulation
         lam = float(sol.x[-1])
-        eq, law = self.formulation.residuals(self.formulation.forces(sol.x), b_fixed + lam * b_live)
-        return eq <= 1e-8 and law <= 1e-8
+        F = f.forces(sol.x)
+        eq, law = f.residuals_scaled(F, rhs_scaled - lam * b_live / f.row_div)
+        return (lam, F) if eq <= 1e-8 and law <= 1e-8 else None
 
     def _dual_cone_violation(self, rel: NDArray[np.float64]) -> float:
         """Violation of ``dn >= mu ||dt||`` (tangential free of constraint for mu = 0; no sliding
@@ -288,8 +360,9 @@ class LimitSolver:
         Cohesion and tensile strength shift the law without changing its recession cone,
         so they leave the flow rule as it is."""
         d = rel.reshape(self.model.n_contacts, self.model.dim)
-        scale = max(np.abs(d).max(initial=0.0), 1e-300)
-        dn, dt = d[:, 0], np.linalg.norm(d[:, 1:], axis=1)
+        scale = max(np.abs(rel).max(initial=0.0), 1e-300)
+        dn = d[:, 0]
+        dt = np.abs(d[:, 1]) if self.model.dim == 2 else np.hypot(d[:, 1], d[:, 2])
         if self.material.compressive_strength is not None:
             dn = np.full_like(dn, np.inf)
         mu = self.material.friction

@@ -140,6 +140,21 @@ class Material:
             "compressive_strength": self.compressive_strength,
         }
 
+    def describe(self) -> str:
+        """The contact law in words, e.g. ``Coulomb friction mu = 0.8, no tension, unlimited
+        compression, rigid contacts, associative flow`` (units kN, m)."""
+        parts = ["Heyman: unlimited friction" if self.heyman else f"Coulomb friction mu = {self.friction:g}"]
+        if self.cohesion:
+            parts.append(f"cohesion {self.cohesion:g} kN/m^2")
+        parts.append(f"tensile strength {self.tensile_strength:g} kN/m^2" if self.tensile_strength else "no tension")
+        parts.append("unlimited compression" if self.compressive_strength is None
+                     else f"compressive strength {self.compressive_strength:g} kN/m^2")
+        parts.append("rigid contacts" if self.rigid else
+                     f"compliant contacts (kn {self.normal_stiffness:g}, ks {self.shear_stiffness:g} kN/m^3)")
+        if not self.heyman:
+            parts.append(f"{self.flow} flow")
+        return ", ".join(parts)
+
     @property
     def plain(self) -> bool:
         """True for the paper's dry joint: no cohesion, no tension, unlimited compression."""

@@ -143,6 +143,11 @@ class InterfaceMap:
         Unit normal (from A into B) of each slot's interface.
     B_sup : (6 ns, nc * dim) sparse
         Support wrenches on the structure (see :class:`Model`).
+    supports : tuple of str
+        Support block names, in the order of the rows of ``B_sup`` (the labels of a result's
+        support wrenches).
+    labels : tuple of str
+        ``"A|B"`` block names of each slot's interface.
     """
 
     interfaces: tuple[int, ...]
@@ -152,6 +157,8 @@ class InterfaceMap:
     vertex_frames: NDArray[np.float64]
     normals: NDArray[np.float64]
     B_sup: sp.csr_matrix
+    supports: tuple[str, ...] = ()
+    labels: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -235,8 +242,11 @@ class Model:
     def interface_map(self) -> InterfaceMap:
         """The arrays results need to report vertex forces, resultants and support wrenches."""
         normals = self.assembly.interface_table.normal[list(self.interfaces)].reshape(-1, 3)
+        a = self.assembly
+        labels = tuple(f"{a.names[a.interfaces[k].a]}|{a.names[a.interfaces[k].b]}" for k in self.interfaces)
         return InterfaceMap(
-            self.interfaces, self.lift, self.vertex_slot, self.vertex_points, self.vertex_frames, normals, self.B_sup
+            self.interfaces, self.lift, self.vertex_slot, self.vertex_points, self.vertex_frames, normals, self.B_sup,
+            a.support_names, labels,
         )
 
     @cached_property

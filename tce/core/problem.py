@@ -65,6 +65,7 @@ __all__ = [
     "Formulation",
     "lateral_ray_problem",
     "least_violation_problem",
+    "LimitProblems",
     "limit_problem",
     "phase1_b",
     "phase1_problem",
@@ -156,6 +157,8 @@ class Formulation:
         Scaled equilibrium operator on ``x``: ``diag(W / row_div) A_eq``.
     law : ConeRows
         The contact law on the physical forces.
+    own_law : bool
+        Whether ``law`` is the material's own (no ``rows`` given).
     D : (n,) ndarray or None
         Diagonal compliance (m/kN), None for rigid contacts.
     kkt : str
@@ -170,6 +173,7 @@ class Formulation:
         self.row_div = self.scaling.rows(model)
         self.A_eq = sp.csc_matrix(sp.diags(W / self.row_div) @ model.A_eq)
         self.law = rows if rows is not None else cone_rows(model, material.friction, **material.strengths)
+        self.own_law = rows is None
         if rows is None:
             self.law_check: Callable[[NDArray[np.float64]], float] = LawCheck(
                 model, material.friction, **material.strengths
@@ -194,6 +198,12 @@ class Formulation:
     def n(self) -> int:
         """Number of force unknowns."""
         return self.model.n_vars
+
+    @cached_property
+    def constraints(self) -> sp.csc_matrix:
+        """``[A_eq; -M]`` ((m_eq + law rows, n), CSC), built once: the constraint matrix of
+        :func:`tce_problem` and the first ``n`` columns of :func:`limit_problem`'s."""
+        return sp.vstack([self.A_eq, -self.law.M]).tocsc()
 
     @cached_property
     def law_h(self) -> NDArray[np.float64]:
@@ -269,7 +279,7 @@ def tce_problem(f: Formulation, b: NDArray[np.float64], U: NDArray[np.float64]) 
     Unknowns ``x = F / W`` (n); rows: ``m_eq`` equalities, then the contact law.
     """
     law = f.law
-    A = sp.vstack([f.A_eq, -law.M]).tocsc()
+    A = f.constraints
     cones = _cones(("zero", f.A_eq.shape[0] + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
     # the objective's scale is free: a q far from order one (a compliance of 1e-18 with a 1 mm
     # motion puts |q| near 1e15 once P is normalised, and Clarabel then misreads the scene as
@@ -346,21 +356,60 @@ def limit_problem(f: Formulation, b_fixed: NDArray[np.float64], b_live: NDArray[
     Unknowns ``(x, lam)`` (n + 1); rows: ``m_eq`` equalities, then the contact law. The
     multipliers ``z`` of the equality rows, divided by ``row_div``, are the virtual block
     velocities of the collapse mechanism (:mod:`tce.core.limit`).
+
+    The problem's arrays are its own; :class:`LimitProblems` builds the problems of one
+    formulation in place instead (what :class:`tce.core.limit.LimitSolver` solves).
     """
-    law = f.law
-    m, n = f.A_eq.shape
-    live = (b_live / f.row_div)[:, None]
-    A = sp.vstack(
-        [
-            sp.hstack([f.A_eq, sp.csc_matrix(live)]),
-            sp.hstack([-law.M, sp.csr_matrix((law.n_rows, 1))]),
-        ]
-    ).tocsc()
-    b = np.concatenate([f.b_eq(b_fixed), f.law_h])
-    q = np.zeros(n + 1)
-    q[-1] = -1.0
-    cones = _cones(("zero", m + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
-    return ConicProblem("limit", sp.csc_matrix((n + 1, n + 1)), q, A, b, cones)
+    return LimitProblems(f)(b_fixed, b_live)
+
+
+class LimitProblems:
+    """:func:`limit_problem` for one formulation and any loads, built once and then updated.
+
+    ``A`` is :attr:`Formulation.constraints` with the live load's column appended to its CSC
+    arrays. A call whose live load has the nonzero rows of the previous call's writes the
+    new column values (and ``b``) into the same arrays; another pattern rebuilds them by
+    concatenation, never by sparse stacking. Each problem returned is therefore valid until
+    the next call: solve it before asking for another. On the paper's arch this brought the
+    build from 0.5 ms (stacking per call) to 0.01-0.07 ms against a 0.3 ms planar solve.
+
+    Parameters
+    ----------
+    f : Formulation
+    """
+
+    def __init__(self, f: Formulation) -> None:
+        law = f.law
+        self.f = f
+        self.m, n = f.A_eq.shape
+        self.q = np.zeros(n + 1)
+        self.q[-1] = -1.0
+        self.q.flags.writeable = False
+        self.P = sp.csc_matrix((n + 1, n + 1))
+        self.cones = _cones(("zero", self.m + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
+        self._rows: NDArray[np.int64] | None = None
+        self._A: sp.csc_matrix | None = None
+
+    def __call__(self, b_fixed: NDArray[np.float64], b_live: NDArray[np.float64]) -> ConicProblem:
+        """The limit problem of ``b_fixed`` and ``b_live`` (kN, kN m; ``A_eq``'s row layout)."""
+        f = self.f
+        base = f.constraints
+        live = b_live / f.row_div
+        rows = np.flatnonzero(live)
+        if self._A is not None and self._rows is not None and np.array_equal(rows, self._rows):
+            self._A.data[base.nnz :] = live[rows]
+        else:
+            self._A = sp.csc_matrix(
+                (
+                    np.concatenate([base.data, live[rows]]),
+                    np.concatenate([base.indices, rows.astype(base.indices.dtype)]),
+                    np.append(base.indptr, base.nnz + len(rows)).astype(base.indptr.dtype),
+                ),
+                shape=(base.shape[0], base.shape[1] + 1),
+            )
+            self._rows = rows
+        b = np.concatenate([f.b_eq(b_fixed), f.law_h])
+        return ConicProblem("limit", self.P, self.q, self._A, b, self.cones)
 
 
 def least_violation_problem(

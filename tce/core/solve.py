@@ -50,6 +50,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -59,7 +60,10 @@ from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
 from .material import Material
 from .model import InterfaceMap, Model
 from .problem import Formulation, phase1_b, phase1_problem, q_scale, recession_problem, tce_b, tce_problem
-from .result import STATUSES, Result
+from .result import STATUSES, WRENCH_COMPONENTS, XYZ, Result
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = [
     "SOLVER_NAME",
@@ -106,7 +110,7 @@ def settlement_vector(model: Model, settlements: Mapping[str, ArrayLike] | None)
     return U.ravel()
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class TCEResult(Result):
     """Answer of one TCE solve (status words: :data:`tce.core.result.STATUSES`).
 
@@ -143,6 +147,8 @@ class TCEResult(Result):
     interface_map : InterfaceMap
         The model's arrays that turn ``forces`` into vertex forces and resultants.
     """
+
+    HEADLINE = ("lam", "alpha", "model", "tce", "eq_residual", "cone_residual", "unique")
 
     lam: float
     alpha: float
@@ -191,6 +197,37 @@ class TCEResult(Result):
         """Torque about the interface normal at the pressure point (kN m), on block B."""
         return self._resultants[2]
 
+    @property
+    def reactions(self) -> xr.DataArray:
+        """:attr:`support_wrenches` labelled: dims ``(support, component)``, the support block
+        names and ``Fx Fy Fz Mx My Mz`` (kN, kN m; NaN unless optimal), e.g.
+        ``r.reactions.sel(support="right", component="Fx")``."""
+        import xarray as xr
+
+        return xr.DataArray(
+            self.support_wrenches, dims=("support", "component"), name="reaction",
+            coords={"support": list(self.interface_map.supports), "component": list(WRENCH_COMPONENTS)},
+            attrs={"units": "kN, kN m", "long_name": "wrench each support exerts on the structure, global frame, "
+                   "about the support centroid"},
+        )
+
+    def _arrays(self) -> tuple[dict[str, tuple], dict[str, Any]]:
+        """Reactions, interface resultants, pressure points, torques and vertex forces, labelled."""
+        from .resultants import global_vertex_forces
+
+        imap = self.interface_map
+        data = {
+            "reaction": (("support", "component"), self.support_wrenches, {"units": "kN, kN m"}),
+            "resultant": (("interface", "xyz"), self.resultants, {"units": "kN"}),
+            "pressure_point": (("interface", "xyz"), self.pressure_points, {"units": "m"}),
+            "torque": (("interface",), self.torques, {"units": "kN m"}),
+            "vertex_force": (("vertex", "xyz"), global_vertex_forces(imap, self.vertex_forces), {"units": "kN"}),
+            "vertex_point": (("vertex", "xyz"), imap.vertex_points, {"units": "m"}),
+        }
+        coords = {"support": list(imap.supports), "component": list(WRENCH_COMPONENTS),
+                  "interface": list(imap.labels), "xyz": list(XYZ)}
+        return data, coords
+
 
 class TCESolver:
     """Clarabel-direct TCE solver for one model and material (see module docstring).
@@ -200,16 +237,25 @@ class TCESolver:
     model : Model
     material : Material
     options : SolverOptions, optional
+    formulation : Formulation, optional
+        The scaled operators of ``model`` and ``material`` (with the material's own contact
+        law) when the caller already has them: :class:`tce.core.analysis.Analysis` shares
+        one between its TCE and limit solvers.
     """
 
     #: Phase-1 residuals in ``(feas_tol, PHASE1_BAND * feas_tol]`` are decided with tight tolerances.
     PHASE1_BAND: float = 100.0
 
-    def __init__(self, model: Model, material: Material, options: SolverOptions | None = None) -> None:
+    def __init__(
+        self, model: Model, material: Material, options: SolverOptions | None = None, formulation: Formulation | None = None
+    ) -> None:
+        if formulation is not None and (formulation.model is not model or formulation.material is not material
+                                        or not formulation.own_law):
+            raise ValueError("TCESolver: a formulation must be of the same model and material, with its own law")
         self.model = model
         self.material = material
         self.options = options or SolverOptions()
-        self.formulation = Formulation(model, material)
+        self.formulation = formulation or Formulation(model, material)
         self.scaling = self.formulation.scaling
         self._warm: ClarabelSolver | None = None
         self._warm_q: NDArray[np.float64] | None = None

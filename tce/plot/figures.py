@@ -90,6 +90,7 @@ __all__ = [
     "summary_figure",
     "thrust_curves",
     "thrust_lines",
+    "transversal_figure",
 ]
 
 # Okabe-Ito (colour-blind safe), black first; line styles and markers keep them apart in greyscale
@@ -106,6 +107,9 @@ TORQUE_FRACTION = 0.05  # largest torque arc radius, as a fraction of the assemb
 MECHANISM_FRACTION = 0.06  # largest drawn mechanism displacement, as a fraction of the size
 TORQUE_TOL = 1e-3  # torques below TORQUE_TOL * max|R| * size are not drawn
 MAX_ARROWS = 40  # resultants drawn per panel (the largest)
+LARGE_AT = 60  # interfaces: from here the states are drawn in wider panels, resultants on the near half only
+LARGE_WIDTH = 5.4  # inches: panel width of a large structure's states
+CATEGORICAL = ("alpha",)  # swept coordinates drawn as separate points, never joined by a line
 FACET_AT = 8  # more scenarios than this in the thrust curves: one row per value of the other parameters
 FONT = 7.5
 
@@ -332,14 +336,18 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
         handles.append(Line2D([], [], color="black", alpha=0.4, linewidth=2.5,
                               label="faint: state not necessarily unique\n(rigid, no support motion)"))
     notes = [f"{s}: {outcome_note(ds, s)}" for s in names if outcome_note(ds, s)]
+    limits = sorted({round(float(value(ds, "lambda_max", s)), 9) for s in names
+                     if math.isfinite(float(value(ds, "lambda_max", s)))})
+    if limits:
+        shown = ", ".join(f"{v:.3f}" for v in limits[:6]) + (" ..." if len(limits) > 6 else "")
+        handles.append(Line2D([], [], color="#555555", linestyle=":", linewidth=1.0, label=f"λmax = {shown}"))
     square = len(comps) == 4 and len(facets) == 1
     ncols, nrows = (2, 2) if square else (len(comps), len(facets))
     w = 3.4
     width = 0.8 + ncols * w + (ncols - 1) * 0.85 + 0.2
     below = _legend_height([h.get_label() for h in handles], width) + 0.16 * len(notes)
     grid = _Grid(nrows, ncols, w, 2.3, left=0.8, wspace=0.85, hspace=0.8, top=0.8, bottom=0.45, below=below)
-    lmax = sorted({round(float(value(ds, "lambda_max", s)), 9) for s in names
-                   if math.isfinite(float(value(ds, "lambda_max", s)))})
+    lmax = limits
     xmax = 1.08 * max([*lmax, *(float(np.max(v)) for v in lams.values() if v.size)], default=1.0)
     for r, (facet, members) in enumerate(facets):
         for c, comp in enumerate(comps):
@@ -360,10 +368,8 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
                         markevery=(0.03 * (j % 2), 0.1), gid=f"reaction:{comp}:{s}:{sup}", **style(s, j))
                 if len(g) > 1:
                     same.append([keys[i] for i in g])
-            for k, v in enumerate(lmax):  # labels of neighbouring limits alternate in height
+            for v in lmax:  # named in the legend, not over the curves
                 ax.axvline(v, color="#555555", linestyle=":", linewidth=1.0, gid="lambda_max")
-                ax.text(v, 0.72 - 0.44 * (k % 2), f" λmax = {v:.3f}", transform=ax.get_xaxis_transform(), ha="left",
-                        va="center", rotation=90, fontsize=FONT - 1, color="#333333")
             _min_span(ax, allv)
             ax.grid(True, linewidth=0.3, alpha=0.6)
             ax.set_xlim(0.0, xmax)
@@ -525,6 +531,8 @@ def _state_panel(ax: Axes, off: NDArray, ds: xr.Dataset, asm: Assembly, art: dra
     art.draw(ax, off)
     pp, res, tq = arrays.state(st)
     ok = np.all(np.isfinite(pp), axis=1) & np.all(np.isfinite(res), axis=1)
+    if _thinned(asm, camera):  # the far half is seen through the near one: leave it out
+        ok &= camera.depth(np.nan_to_num(pp)) >= camera.depth(asm.centroids[list(asm.free_indices)].mean(axis=0))
     mag = np.where(ok, np.linalg.norm(np.nan_to_num(res), axis=1), -1.0)
     shown = np.zeros(len(ok), bool)
     shown[np.argsort(-mag, kind="stable")[: min(MAX_ARROWS, int(ok.sum()))]] = True
@@ -562,6 +570,12 @@ def _state_panel(ax: Axes, off: NDArray, ds: xr.Dataset, asm: Assembly, art: dra
         _hinges(ax, ds, st.scenario, asm, camera, planar=is_planar(ds, st.scenario), offset=off)
 
 
+def _thinned(asm: Assembly, camera: draw.Camera) -> bool:
+    """Whether a state panel draws only the resultants on the near half of the structure
+    (more than :data:`LARGE_AT` interfaces seen in an axonometric view: a dome, a vault)."""
+    return len(asm.interfaces) > LARGE_AT and not camera.flat
+
+
 def _hinges(ax: Axes, ds: xr.Dataset, scenario: str, asm: Assembly, camera: draw.Camera, planar: bool,
             offset: NDArray = np.zeros(2)) -> None:
     """Hinge lines of the mechanism (segments along the hinge axes, gid ``"hinges"``); in an
@@ -586,12 +600,13 @@ def _content_box(art: draw.BlockArt, pad: float) -> tuple[NDArray, NDArray]:
     return art.points.min(axis=0) - pad, art.points.max(axis=0) + pad
 
 
-def _state_handles(scales: _Scales, chain: bool, hinges: bool, loads: bool = False) -> list:
+def _state_handles(scales: _Scales, chain: bool, hinges: bool, loads: bool = False, thinned: bool = False) -> list:
     h: list = [Patch(facecolor=draw.BLOCK_COLOUR, edgecolor=draw.EDGE_COLOUR, label="block"),
                Patch(facecolor=draw.SUPPORT_COLOUR, edgecolor=draw.EDGE_COLOUR, label="support")]
     if scales.force > 0:
+        rule = f"\non the near half of the structure, the {MAX_ARROWS} largest per panel" if thinned else ""
         h.append(Line2D([], [], color=FORCE_COLOUR, linewidth=1.5, marker="o", markersize=3,
-                        label=f"interface resultant at its pressure point (1 kN = {scales.force:.3g} m)"))
+                        label=f"interface resultant at its pressure point (1 kN = {scales.force:.3g} m){rule}"))
     if scales.torque > 0:
         h.append(Line2D([], [], color=TORQUE_COLOUR, linewidth=1.0,
                         label=f"torque about the normal (arc radius: 1 kN m = {scales.torque:.3g} m)"))
@@ -645,7 +660,7 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
     else:
         cols = min(len(names), 2)
         rows = math.ceil(len(names) / cols)
-    width = 3.0 if camera.flat else 3.2
+    width = 3.0 if camera.flat else LARGE_WIDTH if _thinned(asm, camera) else 3.2
     # what holds for every state of a scenario (outcome, non-unique) is said once, in its header
     common = {s: _common_note([states[(s, t)] for t in targets if (s, t) in states]) for s in names}
     heads = {s: s + ("\n" + _wrap(common[s], width) if common[s] else "") for s in names} if many else {}
@@ -653,7 +668,8 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
     cell_notes = {k: _rest(st.note, common[k[0]] if many else "") for k, st in states.items() if st.step is not None}
     cell_lines = 1 + max((_wrap(n, width).count("\n") + 1 for n in cell_notes.values() if n), default=0)
     has_loads = any(declared_loads(ds, s) is not None for s in names)
-    handles = _state_handles(scales, chain is not None, any(t == "max" for t in targets), has_loads)
+    handles = _state_handles(scales, chain is not None, any(t == "max" for t in targets), has_loads,
+                             _thinned(asm, camera))
     below = _legend_height([x.get_label() for x in handles], max(cols * (width + _Sheet.GAP), _Sheet.MIN_WIDTH))
     sheet = _Sheet(rows, cols, lo, hi, width, 0.16 * cell_lines + 0.08, below, camera,
                    header=0.16 * header_lines + 0.05 if grid else 0.0)
@@ -893,14 +909,150 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str]) -> Figure:
     return sheet.fig
 
 
+# ---------------------------------------------------------------------------- transversal shift (Figs. 5-6)
+def transversal_offsets(ds: xr.Dataset, st: State, asm: Assembly, chain: Sequence[int],
+                        across: NDArray[np.float64]) -> tuple[list[NDArray], NDArray, NDArray]:
+    """The joints of ``chain`` in their own planes and where the resultant crosses each.
+
+    Each joint is seen along its normal: screen ``u`` runs across the joint in the plane of
+    the structure (``across x normal``), screen ``y`` across the depth (along ``across``),
+    both from the joint's centroid (m).
+
+    Returns
+    -------
+    outlines : list of (k, 2) arrays
+        Each joint's polygon ``(u, y)``.
+    points : (n, 2) array
+        The pressure point ``(u, y)`` of each joint (NaN when the state has none).
+    shift : (n,) array
+        ``y / (d/2)``: the pressure point's distance from the middle of the depth over half
+        the joint's depth (``±1`` at the faces).
+    """
+    pp = np.asarray(ds["pressure_point"].sel(scenario=st.scenario).transpose("step", "interface", "xyz").values,
+                    float)[st.step]
+    outlines, points, shift = [], [], []
+    for k in chain:
+        itf = asm.interfaces[k]
+        u = np.cross(across, itf.normal)
+        u /= np.linalg.norm(u)
+        c = itf.centroid
+        poly = np.column_stack([(itf.points - c) @ u, (itf.points - c) @ across])
+        lo, hi = poly[:, 1].min(), poly[:, 1].max()
+        p = np.array([(pp[k] - c) @ u, (pp[k] - c) @ across])
+        outlines.append(poly)
+        points.append(p)
+        shift.append((p[1] - 0.5 * (lo + hi)) / (0.5 * (hi - lo)))
+    return outlines, np.array(points), np.array(shift)
+
+
+def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object]) -> Figure:
+    """The transversal (out-of-plane) shift of the pressure points along a line of blocks (Figs. 5-6).
+
+    Top: one row per drawn state, every joint seen along its normal, to scale and side by
+    side from the first support (screen: across the joint in the plane of the structure,
+    and across the depth), with the pressure point of the state and the middle of the
+    depth dashed. Bottom: ``y/(d/2)`` of every state against the joint (``±1``: the faces
+    of the structure), its extreme value in the legend.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+    names : sequence of str
+        Scenarios drawn.
+    targets : sequence
+        Multipliers drawn (``"max"`` for the limit), as in :func:`states_figure`.
+
+    Returns
+    -------
+    Figure
+        Pressure points in the joint rows (gid ``"transversal:<scenario>:<lambda>"``) and
+        the curves of the bottom panel (gid ``"shift:<scenario>:<lambda>"``).
+
+    Raises
+    ------
+    ValueError
+        The structure is not one line of blocks, or its supports do not lie on a line.
+    """
+    asm = assembly(ds)
+    chain = chain_interfaces(asm)
+    frame = structure_frame(asm)
+    if chain is None or frame.kind == "radial":
+        raise ValueError("the transversal shift needs one line of blocks on supports along a line")
+    across = next(iter(frame.across.values()))
+    states = [st for st in (find_state(ds, s, t) for s in names for t in targets) if st.step is not None]
+    if not states:
+        raise ValueError("no drawn state has a solved step")
+    drawn = [(st, *transversal_offsets(ds, st, asm, chain, across)) for st in states]
+    pitch = 1.6 * max(float(np.ptp(o[:, 0])) for o in drawn[0][1])
+    depth = max(float(np.ptp(o[:, 1])) for o in drawn[0][1])
+    n = len(chain)
+    inch = min(10.0 / (n * pitch), 1.1 / depth)  # inches per metre in the joint rows
+    row_h = 1.24 * depth * inch + 0.35
+    colours = _palette(len(drawn))
+    width = max(n * pitch * inch + 1.4, 7.0)
+    handles = [Line2D([], [], color=colours[i], marker=MARKERS[i % len(MARKERS)], linewidth=1.2, markersize=4,
+                      label=f"{st.scenario}: {st.label}, max |y|/(d/2) = {np.nanmax(np.abs(sh)):.2f}")
+               for i, (st, _, _, sh) in enumerate(drawn)]
+    below = _legend_height([h.get_label() for h in handles], width)
+    plot_h = 2.4
+    height = 0.7 + len(drawn) * row_h + 0.55 + plot_h + 0.5 + below
+    fig = Figure(figsize=(width, height))
+    top = height - 0.7
+    for i, (st, outlines, points, shift) in enumerate(drawn):
+        y0 = top - (i + 1) * row_h
+        ax = fig.add_axes((0.7 / width, y0 / height, n * pitch * inch / width, (row_h - 0.3) / height))
+        ax.set_axis_off()
+        for j, poly in enumerate(outlines):
+            x = j * pitch
+            ax.add_patch(Polygon(poly + [x, 0.0], closed=True, facecolor=draw.BLOCK_COLOUR, edgecolor=draw.EDGE_COLOUR,
+                                 linewidth=0.5))
+            ax.plot([x + poly[:, 0].min(), x + poly[:, 0].max()], [0.0, 0.0], color="#777777", linewidth=0.5,
+                    linestyle="--")
+        xs = np.arange(n) * pitch + points[:, 0]
+        ax.plot(xs, points[:, 1], linestyle="none", marker=MARKERS[i % len(MARKERS)], markersize=4,
+                color=colours[i], zorder=5, clip_on=False, gid=f"transversal:{st.scenario}:{st.lam:g}")
+        ax.set_xlim(-0.5 * pitch, (n - 0.5) * pitch)
+        ax.set_ylim(-0.62 * depth, 0.62 * depth)
+        ax.set_aspect("equal")
+        ax.text(-0.5 * pitch, 0.62 * depth, f"{st.scenario}: {st.label}", fontsize=FONT,
+                color=colours[i], va="bottom", ha="left")
+    ax = fig.add_axes((0.7 / width, (0.5 + below) / height, n * pitch * inch / width, plot_h / height))
+    joints = np.arange(1, n + 1)
+    for i, (st, _, _, shift) in enumerate(drawn):
+        ax.plot(joints, shift, color=colours[i], marker=MARKERS[i % len(MARKERS)], markersize=4, linewidth=1.2,
+                gid=f"shift:{st.scenario}:{st.lam:g}")
+    for y in (-1.0, 1.0):
+        ax.axhline(y, color="#555555", linewidth=0.8, linestyle="--")
+    ax.axhline(0.0, color="#999999", linewidth=0.5)
+    ax.set_ylim(-1.15, 1.15)
+    ax.set_xlim(0.5, n + 0.5)
+    ax.set_xticks(joints)
+    ax.tick_params(labelsize=FONT - 0.5)
+    ax.set_xlabel("joint, from the first support", fontsize=FONT)
+    k = int(np.argmax(np.abs(across)))
+    towards = f"{'+' if across[k] > 0 else '-'}{'xyz'[k]}" if abs(abs(across[k]) - 1) < 1e-9 else "the across axis"
+    ax.set_ylabel(f"y/(d/2): pressure point across the depth\n(±1: the faces; + towards {towards})", fontsize=FONT)
+    ax.grid(True, linewidth=0.3, alpha=0.6)
+    fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 0.04 / height),
+               ncols=_legend_rows([h.get_label() for h in handles], width)[0], fontsize=FONT, frameon=False)
+    fig.suptitle(f"{_study(ds)}: transversal shift of the pressure points", fontsize=FONT + 2, y=1 - 0.12 / height)
+    fig.text(0.5, 1 - 0.36 / height, f"each joint seen along its normal, to scale (1 m = {inch:.3g} in): across the "
+             "joint in the plane of the structure (horizontal) and across the depth (vertical; dashed: mid-depth)",
+             ha="center", va="top", fontsize=FONT)
+    return fig
+
+
 # ---------------------------------------------------------------------------- sweeps
 def summary_figure(ds: xr.Dataset) -> Figure:
     """lambda_max against each swept parameter, one row per settlement case.
 
     In the panel of parameter ``p``, one line per combination of the other swept
     parameters; lines with the same values are drawn once and named together, and so are
-    settlement cases with the same answers everywhere (one row). Scenarios whose outcome is
-    not ``limit`` are crosses at the bottom of the panel, named in the legend.
+    settlement cases with the same answers everywhere (one row). A categorical parameter
+    (:data:`CATEGORICAL`: the load direction ``alpha``) is drawn as points, never joined.
+    The axis starts at 0, so that a difference reads against the value and solver noise
+    (1e-12) draws flat. Scenarios whose outcome is not ``limit`` are markers at the foot
+    of the panel in their curve's colour, one marker shape per outcome, named in the legend.
 
     Raises
     ------
@@ -928,7 +1080,9 @@ def summary_figure(ds: xr.Dataset) -> Figure:
         else:
             rows.append([c])
     w, h = 3.4, 2.3
-    grid = _Grid(len(rows), len(params), w, h, left=0.75, right=2.3, wspace=2.6, hspace=0.85, top=0.75, bottom=0.5)
+    legends = len(params) > 1 or any(o != "limit" for o in outcome.values())  # else no room kept for one
+    grid = _Grid(len(rows), len(params), w, h, left=0.75, right=2.3 if legends else 0.3,
+                 wspace=2.6 if legends else 0.8, hspace=0.85, top=0.75, bottom=0.5)
     for r, row in enumerate(rows):
         for c, p in enumerate(params):
             ax = grid.axes[r][c]
@@ -944,21 +1098,37 @@ def summary_figure(ds: xr.Dataset) -> Figure:
                 curves.append((np.array([par[s][p] for s in ss]), np.array([lmax[s] for s in ss])))
             groups = group_identical(curves, atol=1e-9)
             palette = _palette(len(groups))
-            bad: dict[str, list[float]] = {}
+            categorical = p in CATEGORICAL  # directions are cases, not a scale: points, no line between them
+            bad: dict[str, str] = {}  # outcome -> marker
             for g, members in enumerate(groups):
                 x, y = curves[members[0]]
                 label = _combo_label(others, [keys[i] for i in members])
-                ax.plot(x, y, color=palette[g], linestyle=LINESTYLES[g % len(LINESTYLES)], marker="o", markersize=3.5,
+                ax.plot(x, y, color=palette[g], linestyle="none" if categorical else LINESTYLES[g % len(LINESTYLES)],
+                        marker=MARKERS[g % len(MARKERS)] if categorical else "o", markersize=5 if categorical else 3.5,
                         linewidth=1.2, label=label, gid=f"summary:{p}:{g}")
-            for s in names:
-                if case[s] == row[0] and outcome[s] != "limit":
-                    bad.setdefault(outcome[s], []).append(par[s][p])
-            for k, (o, xs) in enumerate(bad.items()):
-                ax.plot(xs, np.zeros(len(xs)), linestyle="none", marker="x", markersize=6,
-                        color=COLOURS[(k + 1) % len(COLOURS)], label=f"{o} (no λmax)", clip_on=False)
-            finite = [v for v in lmax.values() if math.isfinite(v)]
-            _min_span(ax, np.array(finite + [0.0]))
-            ax.set_xlabel(f"{p} ({SWEPT[p]}); points: scenarios", fontsize=FONT)
+                for xv, yv in zip(x, y) if categorical and len(groups) <= 3 else ():  # the value, above its point
+                    if math.isfinite(yv):
+                        ax.annotate(f"{yv:.4g}", (xv, yv), xytext=(0, 5 + 9 * g), textcoords="offset points",
+                                    ha="center", va="bottom", fontsize=FONT - 1, color=palette[g])
+                for i in members:  # a scenario without a limit: its curve's colour, at the foot of the panel
+                    for s in lines[keys[i]]:
+                        if outcome[s] != "limit":
+                            mark = bad.setdefault(outcome[s], "xv+^"[len(bad) % 4])
+                            ax.plot([par[s][p]], [0.03], transform=ax.get_xaxis_transform(), linestyle="none",
+                                    marker=mark, markersize=6, color=palette[g], clip_on=False,
+                                    gid=f"no_limit:{p}:{g}")
+            for o, mark in bad.items():
+                ax.plot([], [], linestyle="none", marker=mark, markersize=6, color="#555555",
+                        label=f"{o}: no λmax (at the foot; the curve's colour)")
+            finite = [v for v in lmax.values() if math.isfinite(v)]  # from 0: differences read against the value
+            ax.set_ylim(0.0, 1.15 * max(finite) if finite and max(finite) > 0 else 1.0)
+            if categorical:
+                ticks = sorted({par[s][p] for s in names})
+                ax.set_xticks(ticks, [f"{v:g}" for v in ticks])
+                pad = 0.25 * (ticks[-1] - ticks[0]) if len(ticks) > 1 else 1.0
+                ax.set_xlim(ticks[0] - pad, ticks[-1] + pad)
+            what = "cases, not joined" if categorical else "points: scenarios"
+            ax.set_xlabel(f"{p} ({SWEPT[p]}); {what}", fontsize=FONT)
             ax.set_ylabel("λmax (–)", fontsize=FONT)
             ax.grid(True, linewidth=0.3, alpha=0.6)
             ax.set_title(_wrap("settlement: " + join_names(row, 6), w), fontsize=FONT - 0.5, loc="left", y=1.0)

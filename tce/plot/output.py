@@ -11,6 +11,8 @@ given):
 ``thrust.png``          forces on the supports against lambda (kind ``thrust``)
 ``states.png``          drawn states, ``states_2.png`` ... for further pages (``states``)
 ``thrust_lines.png``    lines of thrust per drawn state (``thrust_lines``; one line of blocks only)
+``transversal.png``     the pressure points across the depth of every joint (``transversal``; one line
+                        of blocks with a drawn spatial scenario: Figs. 5-6)
 ``base.png``            pressure points on the support interfaces (``base``)
 ``mechanism.png``       collapse mechanism, ``mechanism_2.png`` ... for other mechanisms (``mechanism``)
 ``summary.png``         lambda_max against the swept parameters (``summary``; sweeps only)
@@ -32,7 +34,17 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .data import PlotSpec, assembly, chain_interfaces, mechanism_groups, plot_spec, state_pages, swept_parameters
+from .data import (
+    PlotSpec,
+    assembly,
+    chain_interfaces,
+    is_planar,
+    mechanism_groups,
+    plot_spec,
+    state_pages,
+    structure_frame,
+    swept_parameters,
+)
 from ..study.progress import Progress, track
 from .states import missing_states, solve_states
 
@@ -102,6 +114,14 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
                 skipped.append("thrust_lines (the structure is not one line of blocks)")
             else:
                 tasks.append(Task(name("thrust_lines"), kind, (tuple(names), tuple(steps))))
+        elif kind == "transversal":
+            asm = assembly(ds)
+            if chain_interfaces(asm) is None or structure_frame(asm).kind == "radial":
+                skipped.append("transversal (the structure is not one line of blocks)")
+            elif all(is_planar(ds, s) for s in names):
+                skipped.append("transversal (every drawn scenario is planar: the pressure points stay mid-depth)")
+            else:
+                tasks.append(Task(name("transversal"), kind, (tuple(names), tuple(steps))))
         elif kind == "base":
             tasks.append(Task(name("base"), kind, (tuple(names), tuple(steps))))
         elif kind == "mechanism":
@@ -126,6 +146,7 @@ def _builders() -> dict[str, Callable]:
         "thrust": figures.thrust_curves,
         "states": figures.states_figure,
         "thrust_lines": figures.thrust_lines,
+        "transversal": figures.transversal_figure,
         "base": figures.base_figure,
         "mechanism": figures.mechanism_view,
         "summary": figures.summary_figure,

@@ -19,6 +19,12 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     lambda_max of the spatial arch with the friction cone (friction 0.5, ``alpha = 45``,
     where sliding governs) by the direct SOCP and by inscribed/circumscribed pyramids of
     ``k`` sides (:mod:`tce.pyramid`): time against error and bracket width.
+``limit_cost``
+    The direct lambda_max of the paper's arch (3D and planar; without and with its
+    mechanism) against one raw Clarabel set-up + solve of the same problem, and the planar
+    load path (1 mm spreading, step 0.02, atol 1e-6, direct bracket, no mechanism) against a
+    hand-written bisection on a warm raw Clarabel solver of the same TCE data, interleaved
+    call by call, CPU time, medians; the ratio in ``note``.
 ``load_path``
     Number of solves and time of the load path against the bisection tolerance, against
     the direct lambda_max.
@@ -275,6 +281,110 @@ def _limit_rows(quick: bool) -> list[dict[str, Any]]:
                          residual=_eq_residual(model, res[-1].forces, res[-1].lambda_max, alpha))
                 )
             rows[-1]["note"] = rows[-2]["note"] = f"bracket width {bounds['circumscribed'] - bounds['inscribed']:.3g}"
+    return rows
+
+
+# ---------------------------------------------------------------- the direct limit's cost
+def _raw_bisection(raw: Any, b0: np.ndarray, b1: np.ndarray, step: float, atol: float) -> tuple[float, int]:
+    """The load path written by hand on a warm Clarabel solver: ``b = b0 + lam b1``, increments
+    of ``step`` until Clarabel reports infeasible, then bisection to ``atol``; admissible means
+    ``Solved``. Returns ``(lambda_max, solves)``."""
+    lo, hi, k, n = 0.0, float("nan"), 0, 0
+    while True:
+        raw.update(b=b0 + k * step * b1)
+        n += 1
+        if str(raw.solve().status) != "Solved":
+            hi = k * step
+            break
+        lo = k * step
+        k += 1
+    while hi - lo > atol:
+        mid = 0.5 * (lo + hi)
+        raw.update(b=b0 + mid * b1)
+        n += 1
+        if str(raw.solve().status) == "Solved":
+            lo = mid
+        else:
+            hi = mid
+    return lo, n
+
+
+def _limit_cost(quick: bool) -> list[dict[str, Any]]:
+    """The direct lambda_max against one raw Clarabel set-up + solve of the same problem, and
+    the planar load path against a hand-written bisection on raw Clarabel, interleaved call
+    by call (CPU time, medians; ratios in ``note``)."""
+    import clarabel
+
+    from ..analysis.loadpath import load_path
+    from ..core.analysis import Analysis
+    from ..core.clarabel_solver import _cones
+    from ..core.loads import scene_vectors
+    from ..core.problem import limit_problem, tce_b, tce_problem
+
+    arch = semicircular_arch().validate()
+    rows: list[dict[str, Any]] = []
+    reps = 150 if quick else 1000
+    mat = Material(friction=FRICTION)
+    clock = time.process_time
+    for kind in ("spatial", "planar"):
+        model = build_model(arch, kind)
+        solver = LimitSolver(model, mat)
+        _, b_fixed, b_live = scene_vectors(model, 0.0)
+        p = limit_problem(solver.formulation, b_fixed, b_live)
+        settings = solver.options.settings(refine=False, kkt=solver.formulation.kkt)
+        calls = {
+            "tce direct lambda_max (LimitSolver.solve, no mechanism)": lambda: solver.solve(0.0, mechanism=False),
+            "tce direct lambda_max, with its mechanism": lambda: solver.solve(0.0),
+            "clarabel set-up + solve (raw, same problem)":
+                lambda: clarabel.DefaultSolver(p.P, p.q, p.A, p.b, _cones(p), settings).solve(),  # noqa: B023
+        }
+        times: dict[str, list[float]] = {k: [] for k in calls}
+        for i in range(reps):
+            for name in (list(calls) if i % 2 else list(calls)[::-1]):
+                t0 = clock()
+                calls[name]()
+                times[name].append(clock() - t0)
+        raw = statistics.median(times["clarabel set-up + solve (raw, same problem)"])
+        label = "3D SOCP" if kind == "spatial" else "planar LP"
+        for name, ts in times.items():
+            med = statistics.median(ts)
+            rows.append(_row("limit_cost", f"arch 16 blocks lambda_max, {label}", name, solver="CLARABEL", model=kind,
+                             n_blocks=len(arch.blocks), n_solves=reps, time_s=med, time_min_s=min(ts),
+                             note=f"{med / raw:.3f}x raw (CPU, interleaved)"))
+    # the planar load path (direct bracket, no mechanism) against the hand-written bisection
+    model = build_model(arch, "planar")
+    U = np.zeros(6 * len(arch.support_names))
+    U[6 * arch.support_names.index("right")] = SETTLEMENT["right"][0]
+    f = LimitSolver(model, mat).formulation
+    _, b_fixed, b_live = scene_vectors(model, 0.0)
+    tp = tce_problem(f, tce_b(f, b_fixed), U)
+    b0, b1 = tce_b(f, b_fixed), tce_b(f, b_fixed + b_live) - tce_b(f, b_fixed)
+    opts = SolverOptions()
+    atol, step = 1e-6, 0.02
+    times = {"tce": [], "raw": []}
+    got: dict[str, Any] = {}
+    for i in range(10 if quick else 60):
+        an = Analysis(arch, mat, model="planar")
+        an.formulation("planar")  # both start from the built, scaled operators (the raw one from tp)
+        order = ("tce", "raw") if i % 2 else ("raw", "tce")
+        for name in order:
+            t0 = clock()
+            if name == "tce":
+                got["tce"] = load_path(an, 0.0, SETTLEMENT, step=step, atol=atol, mechanism=False)
+            else:
+                raw = clarabel.DefaultSolver(tp.P, tp.q, tp.A, b0, _cones(tp), opts.settings(refine=False, kkt=f.kkt))
+                got["raw"] = _raw_bisection(raw, b0, b1, step, atol)
+            times[name].append(clock() - t0)
+    mt, mr = statistics.median(times["tce"]), statistics.median(times["raw"])
+    lp, (lam_raw, n_raw) = got["tce"], got["raw"]
+    case = "arch in plane, 1 mm spreading, step 0.02, atol 1e-6"
+    rows.append(_row("limit_cost", case, "tce load path (direct bracket, no mechanism)", solver="CLARABEL", model="planar",
+                     n_blocks=len(arch.blocks), n_solves=lp.n_solves, time_s=mt, time_min_s=min(times["tce"]),
+                     note=f"{mt / mr:.3f}x the raw bisection (CPU, interleaved); lambda_max {lp.lambda_max:.7f}, "
+                          f"{lp.n_solves} TCE solves + 1 direct"))
+    rows.append(_row("limit_cost", case, "hand-written bisection on raw clarabel", solver="CLARABEL", model="planar",
+                     n_blocks=len(arch.blocks), n_solves=n_raw, time_s=mr, time_min_s=min(times["raw"]),
+                     note=f"lambda_max {lam_raw:.7f}, {n_raw} solves"))
     return rows
 
 
@@ -691,6 +801,18 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
             r = float(mine.time_s.iloc[0] / raw.time_s.iloc[0])
             out.append((f"{model}: load-path solve <= 1.15x Clarabel's own update + solve (same run, interleaved)",
                         f"{r:.3f}x ({mine.time_s.iloc[0] * 1e3:.3f} / {raw.time_s.iloc[0] * 1e3:.3f} ms)", r <= 1.15))
+    cost = df[df.section == "limit_cost"]
+    for case, g in cost.groupby("case", sort=False):
+        t = dict(zip(g.method, g.time_s))
+        raw = t.get("clarabel set-up + solve (raw, same problem)")
+        mine = t.get("tce direct lambda_max (LimitSolver.solve, no mechanism)")
+        if raw and mine:
+            out.append((f"{case}: direct lambda_max <= 1.3x one raw Clarabel set-up + solve (CPU, interleaved)",
+                        f"{mine / raw:.3f}x ({mine * 1e3:.3f} / {raw * 1e3:.3f} ms)", mine <= 1.3 * raw))
+        path, bis = t.get("tce load path (direct bracket, no mechanism)"), t.get("hand-written bisection on raw clarabel")
+        if path and bis:
+            out.append((f"{case}: planar load path no slower than a hand-written bisection on raw Clarabel",
+                        f"{path / bis:.3f}x ({path * 1e3:.2f} / {bis * 1e3:.2f} ms)", path <= bis))
     for case, g in df[df.section == "plotting"].groupby("case", sort=False):
         cold = {m.split(" (")[0]: t for m, t in zip(g.method, g.time_s) if "cold" in m}
         if len(cold) == 2:
@@ -793,6 +915,7 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "per_solve": _per_solve,
     "hot_path": _hot_path,
     "limit": _limit_rows,
+    "limit_cost": _limit_cost,
     "load_path": _load_path,
     "discretisation": _discretisation,
     "scaling": _scaling,

@@ -16,6 +16,8 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .. import display
+
 from .geometry import (
     FaceTable,
     GeometryError,
@@ -71,6 +73,11 @@ class Block:
     def centroid(self) -> NDArray[np.float64]:
         """Centroid (m), where self-weight and lateral loads are applied."""
         return self.shape.centroid
+
+    def __repr__(self) -> str:
+        kind = "support, " if self.support else ""
+        return display.call("Block", {"volume": self.volume, "unit_weight": self.unit_weight},
+                            head=f"{self.name!r}, {kind}{len(self.shape.vertices)} vertices")
 
 
 @dataclass(frozen=True, eq=False)
@@ -134,6 +141,11 @@ class Interface:
         if len(self.points) < 3:
             return np.zeros(len(self.points))
         return tributary_areas(self.points)
+
+    def __repr__(self) -> str:
+        normal = "(" + ", ".join(f"{v:.3g}" for v in self.normal) + ")"
+        return display.call("Interface", {"area": self.area, "stiffness": self.stiffness},
+                            head=f"{self.a}-{self.b}, {len(self.points)} vertices, normal {normal}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -298,6 +310,35 @@ class Assembly:
     def size(self) -> float:
         """Characteristic length (m): diagonal of the bounding box of all blocks."""
         return float(np.linalg.norm(np.ptp(self.face_table.points, axis=0)))
+
+    @property
+    def extent(self) -> NDArray[np.float64]:
+        """Size of the bounding box of all blocks along x, y, z (m), (3,)."""
+        return np.ptp(self.face_table.points, axis=0)
+
+    # ------------------------------------------------------------------ display
+    def _facts(self) -> dict[str, str]:
+        """What the repr and the HTML table show: counts, supports, weight, extent, origin."""
+        dx, dy, dz = self.extent
+        facts = {
+            "blocks": str(len(self.blocks)),
+            "supports": f"{len(self.support_indices)} {display.names(self.support_names, 3)}",
+            "interfaces": str(len(self.interfaces)),
+            "weight": f"{self.total_weight:.4g} kN (free blocks)",
+            "extent": f"{dx:.4g} x {dy:.4g} x {dz:.4g} m (x, y, z)",
+        }
+        if "generator" in self.meta:
+            facts["generator"] = str(self.meta["generator"])
+        return facts
+
+    def __repr__(self) -> str:
+        f = self._facts()
+        text = (f"{f['blocks']} blocks, {f['supports'].replace(' ', ' supports ', 1)}, {f['interfaces']} interfaces, "
+                f"weight {f['weight']}, extent {f['extent']}" + (f", {f['generator']}" if "generator" in f else ""))
+        return display.call("Assembly", {}, head=text)
+
+    def _repr_html_(self) -> str:
+        return display.html_table("Assembly", self._facts().items())
 
     # ------------------------------------------------------------------ edits
     def with_supports(self, names: Iterable[str]) -> Assembly:

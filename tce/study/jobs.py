@@ -1,23 +1,30 @@
 """How many worker processes a run uses: in-process when the work is smaller than starting workers.
 
-A parallel run pays, per worker, a process start, the imports of numpy, scipy, xarray, Clarabel
-and tce, and the pickling of every scenario and answer: :data:`WORKER_START_S` seconds of wall
-time, whatever the study. Most paper studies solve in well under that (the Fig. 8 study's
-whole solver work is about 30 ms), so running them on all cores makes them slower (2.4x on
-this project's machine). :func:`choose_jobs` estimates the study's solver work from the
-first scenario's analysis (built in the calling process, where an in-process run reuses it)
-and one timed solve, and runs in-process unless the work saved by ``k`` workers exceeds
-their start-up. ``--jobs N`` (``jobs=N``) is never second-guessed.
+A parallel run pays a fork server that imports numpy, scipy, xarray, Clarabel and tce once
+(:func:`tce.study.runner._context`), a fork per worker, the analyses each worker builds again
+and the pickling of every scenario and answer: :data:`WORKER_START_S` CPU seconds, whatever
+the study. Most paper studies solve in well under that (the Fig. 8 study's whole solver work
+is about 30 ms), so running them on all cores makes them slower (2.4x on this project's
+machine with spawned workers). :func:`choose_jobs` estimates the study's work from the first
+scenario's analysis (built in the calling process, where an in-process run reuses it), one
+timed solve and the per-scenario cost of recording and writing an answer, and runs
+in-process unless the work saved by ``k`` workers exceeds their start-up. ``--jobs N``
+(``jobs=N``) is never second-guessed.
 
-Estimate of the work, seconds::
+Every time is CPU time of this process (:func:`time.process_time`): on a shared machine the
+wall time of a solve grows with the load (0.18 to 8.3 ms for the same solve), which made a
+busy machine start workers; CPU time does not depend on the other processes.
 
-    sum over scenarios (increments + 2) * t_solve + (groups - 1) * t_build
+Estimate of the work, CPU seconds::
+
+    sum over scenarios (increments + 2) * t_solve + scenarios * SCENARIO_S + (groups - 1) * t_build
 
 with ``increments = lambda_max / step + 1`` from the direct limit of the scenario's direction
 (``lam_cap / step + 1`` when there is none), ``t_solve`` a warm TCE solve of the first
-scenario and ``t_build`` the time to build its analysis (assembly, model). An assembly whose
-model has more than :data:`LARGE_MODEL` unknowns is taken as large work without solving
-anything (one solve of it costs about a worker start).
+scenario, :data:`SCENARIO_S` the recording and writing of one answer and ``t_build`` the
+time to build its analysis (assembly, model). An assembly whose model has more than
+:data:`LARGE_MODEL` unknowns is taken as large work without solving anything (one solve of
+it costs about a worker start).
 
 Dask: xarray imports dask, when it is installed, the first time it makes a Dataset
 (``xarray.namedarray.pycompat.array_type("dask")``), about 0.8 s per process on this
@@ -43,13 +50,16 @@ if TYPE_CHECKING:  # imported lazily: this module must load before anything impo
     from ..core.analysis import Analysis
     from .schema import Scenario
 
-__all__ = ["LARGE_MODEL", "WORKER_START_S", "JobsChoice", "block_dask_import", "choose_jobs", "estimate_work"]
+__all__ = ["LARGE_MODEL", "SCENARIO_S", "WORKER_START_S", "JobsChoice", "block_dask_import", "choose_jobs", "estimate_work"]
 
 log = logging.getLogger(__name__)
 
-#: Wall seconds to start one loky worker and import tce's stack in it (measured 2-3 s on this
-#: project's machine when idle, 6-8 s when shared; the lower figure keeps big studies parallel).
-WORKER_START_S = 3.0
+#: CPU seconds to start the workers: the fork server's imports of tce's stack (1.2-2 CPU-s on
+#: this project's machine), the forks and the analyses the workers build again.
+WORKER_START_S = 2.0
+#: CPU seconds to record and write one scenario's answer (its dataset and netCDF file), which
+#: the workers share: 0.03-0.05 on this project's machine for the paper's arch.
+SCENARIO_S = 0.03
 #: Unknowns above which a model is taken as large work without a timed solve.
 LARGE_MODEL = 20_000
 #: Environment variable that keeps dask from being imported (see module docstring).
@@ -96,16 +106,17 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
     solve and the direct limit of each direction.
     """
     first = scenarios[0]
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     an = analysis_of(first)
     model = an.model(an.model_kind(first.alpha, first.settlements))
-    t_build = time.perf_counter() - t0
+    t_build = time.process_time() - t0
     if model.n_vars > LARGE_MODEL:
         return math.inf, f"a model of {model.n_vars} unknowns"
     an.solve(0.0, first.alpha, first.settlements)  # set-up
-    t0 = time.perf_counter()
-    an.solve(0.0, first.alpha, first.settlements)
-    t_solve = time.perf_counter() - t0
+    t0 = time.process_time()
+    for _ in range(3):  # CPU clocks tick coarsely on some systems: three solves, the mean
+        an.solve(0.0, first.alpha, first.settlements)
+    t_solve = (time.process_time() - t0) / 3
     an.reset_solvers()
     solves = 0.0
     for sc in scenarios:
@@ -114,8 +125,9 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
         increments = min(lam, cap) / step + 1 if math.isfinite(lam) else cap / step + 1
         solves += increments + 2
     groups = len({sc.group for sc in scenarios})
-    work = solves * t_solve + (groups - 1) * t_build
-    return work, f"about {solves:.0f} solves of {t_solve * 1e3:.2g} ms and {groups} model(s) of {t_build:.2g} s"
+    work = solves * t_solve + len(scenarios) * SCENARIO_S + (groups - 1) * t_build
+    return work, (f"about {solves:.0f} solves of {t_solve * 1e3:.2g} ms, {len(scenarios)} answers of "
+                  f"{SCENARIO_S:.2g} s and {groups} model(s) of {t_build:.2g} s, CPU")
 
 
 def choose_jobs(
@@ -154,6 +166,6 @@ def choose_jobs(
     threshold = WORKER_START_S * k / (k - 1)  # parallel wins when work (1 - 1/k) > start-up
     if work > threshold:
         return JobsChoice(k, f"{k} workers: the study's work ({how}; {work:.3g} s) exceeds "
-                             f"{threshold:.3g} s, what starting {k} workers would cost", work)
+                             f"{threshold:.3g} s, what starting {k} workers would cost (CPU)", work)
     return JobsChoice(1, f"in-process: the study's work ({how}; {work:.3g} s) is below "
-                         f"{threshold:.3g} s, what starting {k} workers would cost", work)
+                         f"{threshold:.3g} s, what starting {k} workers would cost (CPU)", work)

@@ -43,6 +43,7 @@ from ..analysis.loadpath import LoadPathResult
 from ..analysis.nonassoc import NonAssocResult
 from ..core.model import InterfaceMap
 from ..core.resultants import global_vertex_forces
+from ..core.result import DOFS, WRENCH_COMPONENTS, XYZ
 from ..core.solve import SOLVER_NAME, TCEResult
 from .schema import Scenario, Study
 
@@ -64,9 +65,6 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-COMPONENTS = ("Fx", "Fy", "Fz", "Mx", "My", "Mz")
-XYZ = ("x", "y", "z")
-DOF = ("vx", "vy", "vz", "wx", "wy", "wz")
 #: variables that measure cost, not the answer (they differ from run to run)
 TIMING = ("solve_time", "wall_time")
 #: data variables every scenario file holds (a file without one of them is solved again)
@@ -119,6 +117,26 @@ META: dict[str, tuple[str, str]] = {
     "load_point": ("m", "point of application of each declared load (a distributed load: each part's resultant)"),
     "load_force": ("kN", "force of each declared load, global frame (a scaled load: at lambda = 1)"),
     "load_scaled": ("1", "1 for a live load (multiplied by lambda), 0 for a fixed load"),
+    # finite settlements ([settlement_path] only; tce.analysis.settlement_path, docs/settlements.md)
+    "settlement_capacity": ("1", "settlement capacity: largest magnitude found standing, in multiples of the "
+                            "scenario's settlement vectors (NaN unless the outcome is collapse, snap_through "
+                            "or contact_lost)"),
+    "settlement_upper": ("1", "smallest magnitude found not standing (NaN if none)"),
+    "settlement_outcome": ("-", "how the settlement path ended (collapse, snap_through, contact_lost, "
+                           "no_collapse, infeasible, incompatible, numerical, no_motion)"),
+    "settlement_message": ("-", "what decided the settlement path's outcome"),
+    "settlement_hinge_sequence": ("-", "interfaces that start rotating (hinge) or close again, with the magnitude"),
+    "settlement_n_solves": ("-", "linear programs solved along the settlement path"),
+    "settlement_reaction": ("kN, kN m", "wrench each support exerts on the structure at each magnitude, global "
+                            "frame, about the support's current centroid"),
+    "settlement_lambda_max": ("1", "lambda_max of the lateral pattern on the deformed structure (NaN unless "
+                              "lambda = true)"),
+    "settlement_hinge": ("-", "1 for the interfaces that rotate in the mechanism at each magnitude"),
+    "settlement_open": ("-", "number of open ends (0, 1 or 2) of each interface at each magnitude"),
+    "settlement_displacement": ("m, rad", "displacement (ux, uy, uz) of each block's centroid and its rotation "
+                                "vector (rx, ry, rz) from the reference placement, along dof"),
+    "settlement_step": ("-", "standing configuration of the settlement path, in order of magnitude"),
+    "settlement_magnitude": ("1", "settlement magnitude, in multiples of the scenario's settlement vectors"),
     # coordinates
     "scenario": ("-", "scenario name"),
     "step": ("-", "load-path step, sorted by load multiplier"),
@@ -295,11 +313,11 @@ def _coords(sc: Scenario, analysis: Analysis, n_steps: int) -> dict[str, tuple]:
         "scenario": (("scenario",), _text([sc.name])),
         "step": (("step",), np.arange(n_steps)),
         "support": (("support",), _text(a.support_names)),
-        "component": (("component",), _text(COMPONENTS)),
+        "component": (("component",), _text(WRENCH_COMPONENTS)),
         "interface": (("interface",), _text([f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces])),
         "xyz": (("xyz",), _text(XYZ)),
         "block": (("block",), _text(a.names)),
-        "dof": (("dof",), _text(DOF)),
+        "dof": (("dof",), _text(DOFS)),
         "settlement": (("scenario",), _text([sc.settlement])),
     }
     for k, v in sc.params.items():
@@ -332,7 +350,11 @@ def _nonassoc_vars(na: NonAssocResult) -> dict[str, tuple]:
 
 
 def scenario_dataset(
-    sc: Scenario, lp: LoadPathResult, analysis: Analysis, nonassoc: NonAssocResult | None = None
+    sc: Scenario,
+    lp: LoadPathResult,
+    analysis: Analysis,
+    nonassoc: NonAssocResult | None = None,
+    settlement: xr.Dataset | None = None,
 ) -> xr.Dataset:
     """The one-scenario dataset of a load path (``docs/results.md``).
 
@@ -347,6 +369,9 @@ def scenario_dataset(
     nonassoc : NonAssocResult, optional
         The non-associative bracket (materials with ``flow = "non-associative"``): adds
         ``lambda_assoc``, ``lambda_nonassoc`` and the ``nonassoc_*`` variables.
+    settlement : xarray.Dataset, optional
+        The finite-settlement variables (``[settlement_path]``:
+        :func:`tce.study.settlement.settlement_vars`), merged in.
     """
     path = lp.path
     n_itf = len(analysis.assembly.interfaces)
@@ -361,6 +386,8 @@ def scenario_dataset(
     loads, load_coord = _load_vars(lp, analysis)
     data.update(loads)
     ds = xr.Dataset(data, coords=_coords(sc, analysis, len(path)) | load_coord)
+    if settlement is not None:
+        ds = ds.merge(settlement)
     ds.attrs["scenario_key"] = sc.key
     return _label(ds)
 

@@ -4,7 +4,8 @@
 written under ``<out>/<study name>/scenarios/`` that can be trusted
 (:func:`tce.study.results.load_finished`), and solves the rest: in this process with
 ``jobs=1``, in a pool of worker processes with ``jobs > 1`` (``backend="loky"``, the
-default), or on a Dask distributed cluster through joblib's ``dask`` backend. Each worker
+default; workers are forked from a fork server that imported tce once, see
+:func:`_context`), or on a Dask distributed cluster through joblib's ``dask`` backend. Each worker
 keeps the :class:`tce.analysis.Analysis` of the structures and materials it has met, so
 operators are built once per worker and reused; the structure itself is built once per
 run (when the study is validated) and sent to the workers. The answer of a scenario does
@@ -73,6 +74,7 @@ from .results import (
 )
 from .schema import Scenario, Study, build_material
 from ..signals import quiet_children
+from .settlement import settlement_vars
 
 __all__ = [
     "LAMBDA_TOL",
@@ -206,7 +208,10 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     bracket = None
     if analysis.material.flow == "non-associative":
         bracket = nonassociative_limit(analysis, loads=pattern)
-    ds = scenario_dataset(sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket)
+    settlement = settlement_vars(sc, assembly, analysis.material) if sc.settlement_path is not None else None
+    ds = scenario_dataset(
+        sc, with_drawn_states(analysis, lp, sc.draw), analysis, nonassoc=bracket, settlement=settlement
+    )
     if "dead_factor" in sc.loads:
         factors = sc.loads["dead_factor"], sc.loads["live_factor"]
         ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
@@ -291,10 +296,26 @@ def _on_terminate(signum: int, frame: Any) -> None:
 
 
 def _watch_parent(parent: int) -> None:
-    """End this worker within a second of its parent's death (``kill -9`` of ``tce run``)."""
-    while os.getppid() == parent:
+    """End this worker within a second of its parent's death (``kill -9`` of ``tce run``).
+
+    The worker's own parent is ``parent`` (spawned) or the fork server (forked from it,
+    which ends when ``parent`` does): either way the worker is re-parented when its parent
+    dies; ``parent`` is also watched directly."""
+    ppid = os.getppid()
+    while os.getppid() == ppid and _alive(parent):
         time.sleep(0.5)
     os.kill(os.getpid(), signal.SIGTERM)
+
+
+def _alive(pid: int) -> bool:
+    """Whether a process ``pid`` exists."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: int) -> None:
@@ -406,9 +427,24 @@ def _death(process: mp.process.BaseProcess, sc: Scenario | None) -> str:
     return f"worker process {process.pid} {how} {what}; the other scenarios went on"
 
 
+def _context() -> mp.context.BaseContext:
+    """How worker processes start: forked from a fork server that has imported tce once
+    (``forkserver`` with :mod:`tce.study.runner` preloaded), where the platform has one;
+    spawned (each importing numpy, scipy, xarray, Clarabel and tce again) elsewhere.
+
+    The fork server is started by the first pool of the process and kept for later runs;
+    it ignores Ctrl-C and ends with the process. A forked worker starts in milliseconds
+    instead of a fresh interpreter's 1.5-3 CPU seconds of imports."""
+    if "forkserver" not in mp.get_all_start_methods():
+        return mp.get_context("spawn")
+    ctx = mp.get_context("forkserver")
+    ctx.set_forkserver_preload([__name__])
+    return ctx
+
+
 def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tally: _Tally) -> None:
     """Solve ``todo`` in ``jobs`` worker processes (see the module docstring for faults)."""
-    ctx = mp.get_context("spawn")
+    ctx = _context()
     queue = deque(todo)
     workers: dict[Any, list] = {}  # parent end of the pipe -> [process, scenario being solved]
     stopping = False

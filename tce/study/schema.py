@@ -513,7 +513,8 @@ class SweepSection(_Strict):
 
 
 #: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
-PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "base", "mechanism", "summary", "bracket", "view")
+PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "transversal", "base", "mechanism", "summary", "bracket",
+              "view")
 #: studies with more scenarios draw per-scenario figures only for those ``[plots] scenarios`` names
 MAX_DRAWN_SCENARIOS = 12
 
@@ -588,6 +589,30 @@ class AssessmentSection(_Strict):
     live_factor: Positive = 1.0
 
 
+class SettlementPathSection(_Strict):
+    """``[settlement_path]``: follow each scenario's settlement vectors times a growing
+    magnitude, the geometry updated as the blocks move, to the settlement capacity
+    (:func:`tce.analysis.settlement_path.settlement_path`, ``docs/settlements.md``)."""
+
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True, strict=True, populate_by_name=True)
+
+    increment: Positive = 0.001
+    s_max: Positive = 1.0
+    tolerance: Positive | None = None
+    lam: bool = Field(default=False, alias="lambda")
+
+    @model_validator(mode="after")
+    def _not_too_many_increments(self) -> SettlementPathSection:
+        from ..analysis.settlement_path import MAX_STEPS
+
+        if self.s_max / self.increment > MAX_STEPS:
+            raise ValueError(
+                f"s_max / increment = {self.s_max / self.increment:.3g} increments, more than {MAX_STEPS}; "
+                "fix: a larger increment or a smaller s_max"
+            )
+        return self
+
+
 class StudyFile(_Strict):
     """The whole study file."""
 
@@ -601,6 +626,7 @@ class StudyFile(_Strict):
     ] = Field(default_factory=lambda: {"none": {}})
     plots: PlotsSection = PlotsSection()
     assessment: AssessmentSection | None = None
+    settlement_path: SettlementPathSection | None = None
 
     @field_validator("sweep")
     @classmethod
@@ -657,6 +683,7 @@ class Scenario:
     loads: dict[str, Any]
     assembly_digest: str
     draw: tuple[float, ...] = ()
+    settlement_path: dict[str, Any] | None = None
 
     @property
     def group(self) -> str:
@@ -682,6 +709,8 @@ class Scenario:
         }
         if not self.loads_pattern.default:
             what["pattern"] = self.pattern
+        if self.settlement_path is not None:
+            what["settlement_path"] = self.settlement_path
         return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()
 
     @property
@@ -769,6 +798,7 @@ class Study:
                     material=_with(spec.material.model_dump(), p, MATERIAL_SWEEPS),
                     loads=loads,
                     assembly_digest=self._digest(structure),
+                    settlement_path=spec.settlement_path.model_dump() if spec.settlement_path else None,
                 )
 
     def _digest(self, structure: dict[str, Any]) -> str:
@@ -950,6 +980,7 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
     _check_scenarios(study)
     guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])))
     _check_plots(study)
+    _check_settlement_path(study)
     return study
 
 
@@ -1086,3 +1117,26 @@ def _check_plots(study: Study) -> None:
             f"fix: use one of {names[:8]}{' ...' if len(names) > 8 else ''} (or a pattern such as 'outward/*')"
             f"{did_you_mean(entry, names)}"
         )
+
+
+def _check_settlement_path(study: Study) -> None:
+    """``[settlement_path]`` follows planar assemblies of the rigid Heyman material, with
+    in-plane motions and (with ``lambda = true``) an in-plane lateral direction."""
+    section = study.spec.settlement_path
+    if section is None:
+        return
+    from ..analysis.settlement_path import check_path_scene
+
+    for sc in study.scenarios():
+        if not sc.loads_pattern.default:
+            raise StudyError(
+                f"{study.path}: settlement_path: the path carries the self-weight (and, with lambda = true, the "
+                "lateral pattern) only; fix: remove the [loads] point or distributed loads, or [settlement_path]"
+            )
+        try:
+            check_path_scene(study.assembly(sc.structure), build_material(sc.material), sc.settlements, sc.alpha if section.lam else None)
+        except ValueError as exc:
+            raise StudyError(
+                f"{study.path}: settlement_path (scenario {sc.name!r}): {exc}; fix: remove [settlement_path] "
+                "or give a planar structure of a Heyman material (no [material] keys) with in-plane motions"
+            ) from None

@@ -82,7 +82,7 @@ class Scripted:
 
         return solve_at
 
-    def limit(self, alpha=None, loads=None):
+    def limit(self, alpha=None, loads=None, mechanism=True):
         return SimpleNamespace(lambda_max=self.direct)
 
 

@@ -1,0 +1,297 @@
+"""What the calculation report says, read from a results dataset (``docs/results.md``).
+
+:func:`report_content` gathers, as plain values the template prints: the study (name,
+description, text), the structure (parameters, counts, weight, extent), the material and its
+contact law, the loads, scenarios and sweep, the method with its references, the results table
+(every number ``tce show`` prints, in the same format), the critical positions of a
+load-position sweep, the warnings and the provenance. Nothing here draws or writes.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import platform
+import tomllib
+from dataclasses import dataclass, field
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from .. import __version__
+from ..core.material import Material
+from ..plot.data import assembly
+from ..study.positions import critical_positions
+
+__all__ = ["SHOW_COLUMNS", "Content", "fmt", "report_content"]
+
+#: the columns of ``tce show`` (:func:`tce.cli._show`), in its order, with the report's headings
+SHOW_COLUMNS = {
+    "lambda_max": "λmax", "lambda_direct": "λ direct", "lambda_gap": "gap", "outcome": "outcome", "model": "model",
+    "n_solves": "solves", "solve_time": "solve time (s)", "wall_time": "wall time (s)",
+}
+#: the bracket and check columns of the second results table, with their headings
+CHECK_COLUMNS = {"lambda_upper": "λ upper (first inadmissible)", "lambda_kinematic": "λ kinematic",
+                 "certificate_gap": "certificate gap", "lambda_assoc": "λ associative",
+                 "lambda_nonassoc": "λ non-associative", "nonassoc_status": "non-associative status",
+                 "nonassoc_iterations": "iterations"}
+#: a relative certificate gap above this is reported as a warning (the limit and its mechanism disagree)
+CERTIFICATE_TOL = 1e-6
+
+
+def fmt(value: object) -> str:
+    """A number as ``tce show`` prints it (six significant figures; ``NaN``, ``inf``)."""
+    if isinstance(value, (float, np.floating)):
+        v = float(value)
+        return "NaN" if math.isnan(v) else f"{v:.6g}"
+    if isinstance(value, (np.integer, int)) and not isinstance(value, bool):
+        return str(int(value))
+    return str(value)
+
+
+@dataclass
+class Content:
+    """Everything the report prints (see the module docstring); figures are added by the caller."""
+
+    study: dict[str, Any]
+    structure: dict[str, Any]
+    material: dict[str, Any]
+    loads: dict[str, Any]
+    method: list[str]
+    references: list[str]
+    results: dict[str, Any]
+    warnings: list[str]
+    provenance: dict[str, Any]
+    figures: list[dict[str, str]] = field(default_factory=list)
+
+
+def _table(section: object) -> list[tuple[str, str]]:
+    """A TOML table as ``(key, value)`` rows (nested tables and arrays as JSON)."""
+    if not isinstance(section, dict):
+        return []
+    return [(k, v if isinstance(v, str) else json.dumps(v)) for k, v in section.items()]
+
+
+def _structure(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
+    asm = assembly(ds)
+    weights = sorted({round(float(b.unit_weight), 9) for b in asm.blocks})
+    dx, dy, dz = asm.extent
+    section = dict(toml.get("structure", {}))
+    return {
+        "type": section.pop("type", "?"),
+        "parameters": _table(section),
+        "blocks": len(asm.blocks),
+        "free_blocks": len(asm.free_indices),
+        "supports": ", ".join(asm.support_names),
+        "interfaces": len(asm.interfaces),
+        "unit_weight": ", ".join(f"{w:g}" for w in weights) + " kN/m³",
+        "weight": f"{asm.total_weight:.6g} kN",
+        "extent": f"{dx:.4g} × {dy:.4g} × {dz:.4g} m (x × y × z)",
+        "assembly": asm,
+    }
+
+
+def _material(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
+    section = json.loads(ds.attrs.get("material", "{}"))
+    mat = Material(**section)
+    swept = {k: sorted({fmt(v) for v in np.atleast_1d(ds[k].values)}) for k in
+             ("friction", "cohesion", "tensile_strength", "compressive_strength") if k in ds.coords}
+    return {
+        "describe": mat.describe(),
+        "parameters": _table(toml.get("material", {})) or [("(none)", "the defaults: Heyman, rigid, no tension")],
+        "swept": [(k, ", ".join(v)) for k, v in swept.items()],
+        "heyman": mat.heyman,
+        "nonassociative": mat.flow == "non-associative",
+        "rigid": mat.rigid,
+    }
+
+
+def _loads(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
+    loads = dict(toml.get("loads", {}))
+    points = loads.pop("point", [])
+    distributed = loads.pop("distributed", [])
+    scenarios = []
+    for name, table in toml.get("scenarios", {}).items():
+        moves = [(k, v) for k, v in table.items() if isinstance(v, list)]
+        rest = [(k, v) for k, v in table.items() if not isinstance(v, list)]
+        scenarios.append({
+            "name": name,
+            "moves": ", ".join(f"{k} = {json.dumps(v)}" for k, v in moves) or "none (supports fixed)",
+            "other": ", ".join(f"{k} = {json.dumps(v)}" for k, v in rest),
+        })
+    lateral = loads.get("lateral", True)
+    if points or distributed:
+        live = "the live loads below (λ multiplies the loads marked scaled)"
+    else:
+        live = "a lateral body force λ × self-weight in the direction alpha (the paper's pattern)"
+    return {
+        "settings": _table(loads),
+        "points": [_table(p) for p in points],
+        "distributed": [_table(d) for d in distributed],
+        "live": live + ("" if lateral or not (points or distributed) else "; no lateral load"),
+        "scenarios": scenarios,
+        "sweep": _table(toml.get("sweep", {})),
+        "n_scenarios": int(ds.sizes["scenario"]),
+    }
+
+
+def _method(ds: xr.Dataset, material: dict, toml: dict) -> tuple[list[str], list[str]]:
+    """Paragraphs on the method and assumptions, and the references they cite."""
+    refs = ["[1] 3D exploration of internal stresses due to lateral loads and foundation movements in a semicircular "
+            "arch (the TCE method implemented by tce; docs/conventions.md).",
+            "[2] J. Heyman, The stone skeleton, International Journal of Solids and Structures 2 (1966) 249-279."]
+    text = [
+        "The structure is a set of rigid blocks in unilateral contact; contact forces act at the vertices of the "
+        "interfaces (normal force ≥ 0 unless a tensile strength is given; friction cone ||f_t|| ≤ μ f_n + c A). "
+        "Every free block is in equilibrium under self-weight, the fixed loads and λ times the live loads; support "
+        "blocks may move (six components about their centroid) [1].",
+        "Among all admissible force states the one minimising the Total Complementary Energy is the answer: a linear "
+        "program for a planar scene, a second-order cone program in 3D, solved by Clarabel; a support motion that "
+        "the material cannot accommodate makes the problem unbounded [1].",
+        "A load path raises λ in steps and bisects between the last admissible and the first inadmissible "
+        "multiplier; λmax is the last admissible one and the bracket [λmax, λ upper] is reported. The direct limit "
+        "analysis (one conic program) gives λ direct and the collapse mechanism; their difference (gap) is a check.",
+    ]
+    if material["heyman"]:
+        text.append("Friction is unlimited (Heyman's assumptions: no tensile strength, unlimited compressive strength, "
+                    "no sliding) [2].")
+    else:
+        refs.append("[3] D. Cocchetti, E. Rizzi, Non-symmetrical collapse mode of circular arches with friction, "
+                    "2020 (the arch with finite friction).")
+        text.append("Sliding is limited by Coulomb friction; with associative flow the limit theorems hold (sliding "
+                    "with dilatancy) [3].")
+    if material["nonassociative"]:
+        refs.append("[4] M. Gilbert, C. Casapulla, H.M. Ahmed, Limit analysis of masonry block structures with "
+                    "non-associative frictional joints using linear programming, Computers & Structures 84 (2006).")
+        text.append("The flow rule is non-associative: the associative λ is an upper bound and the iterative scheme "
+                    "of Gilbert et al. gives the non-associative estimate; both are reported [4].")
+    if any(t.values() for t in toml.get("scenarios", {}).values() if isinstance(t, dict)):
+        refs.append("[5] J. Ochsendorf, The masonry arch on spreading supports, The Structural Engineer 84 (2006); "
+                    "S. Coccia, C. Di Carlo, F. Rinaldi, on arches under support settlements.")
+        text.append("Support settlements are prescribed motions of the support blocks, imposed before the lateral "
+                    "load is raised [5].")
+    if not material["rigid"]:
+        text.append("The contacts are compliant (normal and shear stiffness per unit area): the force state is "
+                    "unique.")
+    else:
+        text.append("The contacts are rigid: without support motion every admissible state minimises the energy, "
+                    "and the state shown is one of them (flagged below).")
+    if "load_x" in ds.coords:
+        text.append("The moving live loads are placed at every position of the sweep; the critical position is the "
+                    "one with the smallest λmax (an influence line, as bridge assessment does).")
+    return text, refs
+
+
+def _results(ds: xr.Dataset) -> dict[str, Any]:
+    coords = [k for k, v in ds.coords.items() if v.dims == ("scenario",) and k not in ("scenario",)
+              and len(np.unique(v.values.astype(str))) > 1]
+    extra = [k for k in ("lambda_upper", "lambda_kinematic", "certificate_gap") if k in ds]
+    nonassoc = [k for k in ("lambda_assoc", "lambda_nonassoc", "nonassoc_status", "nonassoc_iterations") if k in ds]
+    rows = []
+    for i, name in enumerate(ds["scenario"].values):
+        row = {"scenario": str(name)}
+        row.update({k: fmt(ds[k].values[i]) for k in coords})
+        row.update({k: fmt(ds[k].values[i]) for k in SHOW_COLUMNS})
+        row.update({k: fmt(ds[k].values[i]) for k in extra + nonassoc})
+        row["reason"] = str(ds["no_limit_reason"].values[i]) if "no_limit_reason" in ds else ""
+        rows.append(row)
+    finite = [(float(v), str(s)) for s, v in zip(ds["scenario"].values, ds["lambda_max"].values) if np.isfinite(v)]
+    critical = []
+    if "load_x" in ds.coords:
+        for c in critical_positions(ds):
+            critical.append({"group": c.group or "all", "scenario": c.scenario or "none",
+                             "load_x": fmt(c.load_x) if c.scenario else "–",
+                             "lambda_max": fmt(c.lambda_max) if c.scenario else "no finite λmax"})
+    return {
+        "coords": coords,
+        "columns": SHOW_COLUMNS,
+        "checks": {"lambda_max": "λmax", **{k: CHECK_COLUMNS.get(k, k) for k in extra + nonassoc}},
+        "rows": rows,
+        "smallest": (fmt(min(finite)[0]), min(finite)[1]) if finite else None,
+        "outcomes": {o: int((ds["outcome"].values == o).sum()) for o in np.unique(ds["outcome"].values.astype(str))},
+        "critical": critical,
+    }
+
+
+def _warnings(ds: xr.Dataset) -> list[str]:
+    out = []
+    for i, name in enumerate(ds["scenario"].values):
+        outcome = str(ds["outcome"].values[i])
+        reason = str(ds["no_limit_reason"].values[i]) if "no_limit_reason" in ds else ""
+        if outcome == "no_limit":
+            out.append(f"{name}: capped: no limit found up to the cap of the load path{f' ({reason})' if reason else ''}.")
+        elif outcome != "limit":
+            out.append(f"{name}: outcome {outcome}: no λmax is reported for it.")
+        if "unique" in ds:
+            flat = np.asarray(ds["unique"].values[i], dtype=float)
+            status = ds["status"].values[i].astype(str)
+            n = int(((flat == 0) & (status == "optimal")).sum())
+            if n:
+                out.append(f"{name}: {n} optimal step(s) are not necessarily unique (rigid contacts, no support "
+                           "motion): the force state drawn is one admissible state of many.")
+        if "nonassoc_status" in ds and str(ds["nonassoc_status"].values[i]) not in ("converged", ""):
+            out.append(f"{name}: the non-associative scheme did not converge ({ds['nonassoc_status'].values[i]}): "
+                       "only the associative upper bound holds.")
+        gap = float(ds["certificate_gap"].values[i]) if "certificate_gap" in ds else 0.0
+        if math.isfinite(gap) and gap > CERTIFICATE_TOL:
+            out.append(f"{name}: the mechanism's kinematic multiplier differs from λ direct by {gap:.3g} (relative).")
+    return out
+
+
+def _versions() -> list[tuple[str, str]]:
+    out = [("python", platform.python_version())]
+    for pkg in ("numpy", "scipy", "clarabel", "xarray", "matplotlib", "jinja2"):
+        try:
+            out.append((pkg, version(pkg)))
+        except PackageNotFoundError:
+            out.append((pkg, "not installed"))
+    return out
+
+
+def _digest(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def report_content(ds: xr.Dataset, results: Path) -> Content:
+    """The report's content for the results dataset ``ds`` read from ``results``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A study's results (``docs/results.md``).
+    results : Path
+        The file ``ds`` was read from (its digest and name go into the provenance).
+    """
+    text = str(ds.attrs.get("study", ""))
+    toml = tomllib.loads(text) if text else {}
+    name = str(ds.attrs.get("study_name", results.parent.name))
+    material = _material(ds, toml)
+    method, refs = _method(ds, material, toml)
+    return Content(
+        study={"name": name, "description": toml.get("study", {}).get("description", ""), "text": text},
+        structure=_structure(ds, toml),
+        material=material,
+        loads=_loads(ds, toml),
+        method=method,
+        references=refs,
+        results=_results(ds),
+        warnings=_warnings(ds),
+        provenance={
+            "tce_run": str(ds.attrs.get("tce_version", "?")),
+            "tce_report": __version__,
+            "solver": str(ds.attrs.get("solver", "?")),
+            "created": str(ds.attrs.get("created", "?")),
+            "versions": _versions(),
+            "digests": [
+                ("study text (SHA-256)", _digest(text.encode())),
+                ("assembly (SHA-256 of the stored JSON)", _digest(str(ds.attrs.get("assembly", "")).encode())),
+                (f"{results.name} (SHA-256)", _digest(results.read_bytes())),
+            ],
+            "rerun": f"tce run {name}.toml --out <folder>   # {name}.toml: the study text in the appendix",
+            "results": str(results),
+        },
+    )

@@ -1,0 +1,1 @@
+"""The cross-feature battery (issue 21): metamorphic relations over generated scenes and studies."""

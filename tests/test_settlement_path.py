@@ -1,0 +1,113 @@
+"""The finite-settlement path's statuses, errors and invariants (tce against itself: a rigid
+motion of the scene, a change of units, a mirror, a split of the motion)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tce.analysis.settlement_path import settlement_path
+from tce.core.material import Material
+from tce.structures.arch import semicircular_arch
+from tce.structures.assembly import Assembly, Block, Interface
+from tce.structures.contacts import detect_interfaces
+from tce.structures.geometry import Polyhedron, box
+
+SPREAD = {"left": [-1.0, 0, 0, 0, 0, 0], "right": [1.0, 0, 0, 0, 0, 0]}
+
+
+def small_arch(t: float = 0.2, n: int = 12) -> Assembly:
+    return semicircular_arch(inner_radius=1.0 - t / 2, thickness=t, voussoirs=n)
+
+
+def rigidly_moved(a: Assembly, rot: np.ndarray, shift: np.ndarray) -> Assembly:
+    """The assembly turned by ``rot`` (3x3) and shifted by ``shift``."""
+    blocks = [Block(b.name, Polyhedron(b.shape.vertices @ rot.T + shift, b.shape.faces), b.unit_weight, b.support) for b in a.blocks]
+    inter = [Interface(i.a, i.b, i.points @ rot.T + shift, rot @ i.normal) for i in a.interfaces]
+    return Assembly(tuple(blocks), tuple(inter), a.meta)
+
+
+def test_statuses_at_the_ends():
+    """Too thin to stand: infeasible at s = 0; a short s_max: no_collapse with no capacity."""
+    thin = settlement_path(small_arch(0.05, 12), SPREAD, increment=0.01)
+    assert thin.status == "infeasible" and not thin.ok and np.isnan(thin.capacity)
+    assert "nothing stands" in thin.message
+    short = settlement_path(small_arch(), SPREAD, increment=0.01, s_max=0.02)
+    assert short.status == "no_collapse" and not short.ok and np.isnan(short.capacity)
+    np.testing.assert_allclose(short.magnitudes, [0.0, 0.01, 0.02])
+
+
+def test_incompatible_motion():
+    """A block wedged between two supports that close in on it: no motion of the block
+    avoids interpenetration."""
+    blocks = (
+        Block("left", box([-1.0, -0.15, 0.0], [0.0, 0.15, 1.0]), 20.0, support=True),
+        Block("v1", box([0.0, -0.15, 0.0], [1.0, 0.15, 1.0]), 20.0),
+        Block("right", box([1.0, -0.15, 0.0], [2.0, 0.15, 1.0]), 20.0, support=True),
+    )
+    a = Assembly(blocks, tuple(detect_interfaces(blocks)))
+    r = settlement_path(a, {"left": [0.1, 0, 0, 0, 0, 0], "right": [-0.1, 0, 0, 0, 0, 0]}, increment=0.01)
+    assert r.status == "incompatible" and "interpenetration" in r.message
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(material=Material(0.6)), "Heyman"),
+        (dict(increment=0.0), "increment"),
+        (dict(increment=float("nan")), "increment"),
+        (dict(s_max=-1.0), "s_max"),
+        (dict(atol=0.0), "atol"),
+        (dict(lam=True, alpha=90.0), "plane"),
+        (dict(settlements={"right": [0, 0.1, 0, 0, 0, 0]}), "plane"),
+        (dict(settlements={"middle": [0.1, 0, 0, 0, 0, 0]}), "middle"),
+    ],
+)
+def test_bad_input(kwargs, match):
+    args = dict(settlements=SPREAD) | kwargs
+    with pytest.raises(ValueError, match=match):
+        settlement_path(small_arch(), **args)
+
+
+def test_rigid_motion_units_and_mirror():
+    """The capacity does not change when the scene is turned to span y and shifted, when the
+    lengths are in mm (the magnitude is a multiple of the motion, so it does not scale), or
+    when the arch is mirrored (the left support spreading instead of the right)."""
+    a = small_arch()
+    one = {"right": [1.0, 0, 0, 0, 0, 0]}
+    ref = settlement_path(a, one, increment=0.01)
+    assert ref.status == "collapse"
+    rot = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    turned = settlement_path(rigidly_moved(a, rot, np.array([3.0, -2.0, 1.5])), {"right": [0.0, 1.0, 0, 0, 0, 0]}, increment=0.01)
+    assert turned.status == "collapse"
+    assert turned.capacity == pytest.approx(ref.capacity, abs=1e-12)
+    mm = settlement_path(a.scaled(length=1000.0), {"right": [1000.0, 0, 0, 0, 0, 0]}, increment=0.01)
+    assert mm.capacity == pytest.approx(ref.capacity, abs=1e-12)
+    np.testing.assert_allclose(mm.reactions[:, :, :2], ref.reactions[:, :, :2], rtol=1e-6)  # same force unit
+    mirror = settlement_path(a, {"left": [-1.0, 0, 0, 0, 0, 0]}, increment=0.01)
+    assert mirror.capacity == pytest.approx(ref.capacity, abs=1e-12)
+    np.testing.assert_allclose(mirror.reactions[:, ::-1, 0], -ref.reactions[:, :, 0], rtol=1e-6, atol=1e-9)
+
+
+def test_a_split_motion_is_the_same_motion():
+    """Spreading both supports by 1 is the right support spreading by 2 and the whole scene
+    moving left by 1 (a rigid translation of everything): same capacity in the same units."""
+    a = small_arch()
+    both = settlement_path(a, SPREAD, increment=0.005)
+    right = settlement_path(a, {"right": [2.0, 0, 0, 0, 0, 0]}, increment=0.005)
+    assert both.status == right.status == "collapse"
+    assert both.capacity == pytest.approx(right.capacity, abs=0.005 / 64 + 1e-12)
+
+
+def test_sinking_support_and_deformed_shape():
+    """A support that sinks (and one that rotates) runs; the deformed assembly at the last
+    step has the support moved by capacity times its motion and the blocks' weights kept."""
+    a = small_arch()
+    r = settlement_path(a, {"right": [0.0, 0, -1.0, 0, 0, 0]}, increment=0.01, lam=True)
+    assert r.status in ("collapse", "contact_lost"), r.message
+    d = r.deformed(a)
+    k = a.index["right"]
+    np.testing.assert_allclose(d.centroids[k] - a.centroids[k], [0, 0, -r.capacity], atol=1e-12)
+    np.testing.assert_allclose(d.weights, a.weights, rtol=1e-12)
+    assert np.isfinite(r.lambda_max[0]) and r.lambda_max[-1] < r.lambda_max[0]
+    assert [e for e in r.hinge_sequence if e[2] == "hinge"]
