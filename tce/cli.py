@@ -37,7 +37,7 @@ from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from . import __version__
-from .signals import exit_code, handle_signals
+from .signals import exit_code, handle_signals, restore_signals
 from .study.guards import check_path
 from .study.schema import PLOT_KINDS
 
@@ -568,7 +568,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         Arguments without the program name (default: ``sys.argv[1:]``, the ``tce``
         program, which then keeps dask from being imported unless ``--backend dask``).
     """
-    handle_signals()  # first: Ctrl-C or SIGTERM at any moment, imports included, ends in one line
+    before = handle_signals()  # first: Ctrl-C or SIGTERM at any moment, imports included, ends in one line
     try:
         args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
         _setup_logging(args.verbose, args.quiet)
@@ -595,6 +595,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:  # the reader went away (``tce show | head``): stop quietly, as SIGPIPE would
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # Python's own flush at exit finds no pipe
         return EXIT_PIPE
+    finally:
+        restore_signals(before)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -27,7 +27,7 @@ import contextlib
 import os
 from types import FrameType
 
-__all__ = ["Interrupted", "exit_code", "handle_signals", "quiet_children"]
+__all__ = ["Interrupted", "exit_code", "handle_signals", "quiet_children", "restore_signals"]
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 _NAMES = {signal.SIGINT: "SIGINT", signal.SIGTERM: "SIGTERM", signal.SIGHUP: "SIGHUP"}
@@ -53,15 +53,29 @@ def _stop(signum: int, frame: FrameType | None) -> None:
     raise Interrupted(signum)
 
 
-def handle_signals(raising: bool = True) -> None:
+def handle_signals(raising: bool = True) -> dict[int, object]:
     """SIGINT, SIGTERM and SIGHUP raise :class:`Interrupted` in the main thread (module
     docstring); with ``raising=False`` (while the program imports its modules, before
-    anything could catch it) they print one line and end the process at once."""
+    anything could catch it) they print one line and end the process at once.
+
+    Returns the dispositions it replaced, for :func:`restore_signals`: a caller that is not the
+    ``tce`` program (a script or a test calling :func:`tce.cli.main`) gets its own back.
+    """
     global _raising
     _raising = raising
+    before = {sig: signal.getsignal(sig) for sig in _SIGNALS}
     for sig in _SIGNALS:
-        if signal.getsignal(sig) is not signal.SIG_IGN:  # nohup's choice is kept
+        if before[sig] is not signal.SIG_IGN:  # nohup's choice is kept
             signal.signal(sig, _stop)
+    return before
+
+
+def restore_signals(before: dict[int, object]) -> None:
+    """Put back the dispositions :func:`handle_signals` replaced (also the ignored signals a
+    stop leaves behind), so that processes started afterwards do not inherit an ignored Ctrl-C."""
+    for sig, handler in before.items():
+        if handler is not None:  # None: set from outside Python, not restorable
+            signal.signal(sig, handler)
 
 
 def exit_code(exc: KeyboardInterrupt) -> int:

@@ -24,3 +24,20 @@ settings.load_profile(os.environ.get("TCE_HYPOTHESIS", "ci"))
 def arch() -> Assembly:
     """The paper's arch: inner radius 1.00 m, thickness 0.20 m, depth 0.25 m, 14 voussoirs."""
     return semicircular_arch()
+
+
+@pytest.fixture(autouse=True)
+def _signals_left_as_found():
+    """Every test leaves the process's signal dispositions as it found them: an ignored Ctrl-C
+    left behind (by a stop, or a handler not restored) is inherited by every process a later test
+    starts, which then cannot be interrupted (the Ctrl-C fault tests ended 0 instead of 130)."""
+    import signal
+
+    sigs = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+    before = {s: signal.getsignal(s) for s in sigs}
+    yield
+    after = {s: signal.getsignal(s) for s in sigs}
+    for s in sigs:
+        signal.signal(s, before[s])
+    changed = {signal.Signals(s).name: (before[s], after[s]) for s in sigs if after[s] != before[s]}
+    assert not changed, f"the test left signal handlers changed: {changed}"

@@ -138,3 +138,13 @@ def test_show_into_a_closed_pipe_stops_quietly(tmp_path: Path) -> None:
     code, err = p.wait(), p.stderr.read().decode()
     p.stderr.close()
     assert "Traceback" not in err and code == 141, err
+
+
+def test_main_gives_the_callers_signal_handlers_back(tmp_path) -> None:
+    """A script or a test calling main() keeps its own Ctrl-C: handlers replaced for the command
+    are put back, whether the command succeeds, fails or is refused."""
+    import signal
+
+    before = signal.getsignal(signal.SIGINT)
+    assert main(["show", str(tmp_path / "missing.nc")]) == 2
+    assert signal.getsignal(signal.SIGINT) is before

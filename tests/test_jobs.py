@@ -106,3 +106,24 @@ def test_a_sweep_of_many_scenarios_counts_their_answers(fig8, monkeypatch):
     work, how = estimate_work(fig8, _analysis)
     assert work >= 4.0 and "4 answers" in how
     assert choose_jobs(fig8, None, _analysis, cpus=2).jobs == 2
+
+
+def test_other_groups_are_reckoned_with_the_first_limits():
+    """A sweep over frictions has one group per friction: each is reckoned with the first
+    analysis's direct limit, not as a path running to lam_cap (which sent every sweep to
+    workers)."""
+    from tce.study.schema import parse_study
+
+    text = (STUDIES / "fig7_8_inplane.toml").read_text()
+    sweep = parse_study(text + "\n[sweep]\nfriction = [0.6, 0.8, 1.0]\n", "sweep.toml")
+    scenarios = sweep.scenarios()
+    assert len({sc.group for sc in scenarios}) == 3
+
+    def analysis(sc):
+        return _runner_analysis(sc, sweep.assembly(sc.structure))
+
+    work, how = estimate_work(scenarios, analysis)
+    solves = float(how.split("about ")[1].split(" ")[0])
+    per = [sc.loads["lambda_cap"] / sc.loads["lambda_step"] for sc in scenarios]
+    assert solves < 0.1 * sum(per)  # nowhere near lam_cap
+    assert solves == pytest.approx(len(scenarios) * (0.243 / 0.02 + 3), rel=0.15)

@@ -205,3 +205,28 @@ def test_bad_fill_names_its_key(kwargs, key):
     with pytest.raises(LoadError) as err:
         LoadPattern(fill=kwargs)
     assert err.value.key == f"fill.{key}"
+
+
+# ---------------------------------------------------------------------------- invariants
+def test_vehicle_invariants_units_mirrors():
+    from tce.core.analysis import Analysis
+
+    bridge = segmental_arch(span=6.0, rise=1.5, thickness=0.4, depth=3.0, voussoirs=12)
+    an = Analysis(bridge)
+
+    def lam(**v):
+        return an.limit(loads=LoadPattern(lateral=False, vehicle=[v])).lambda_max
+
+    base = lam(axles=[[0.0, 1.0], [1.2, 2.0]], wheels=[-0.9, 0.9], x=-2.0)
+    # kN -> 1000 x the load: lambda / 1000 (the live load is multiplied by lambda)
+    assert lam(axles=[[0.0, 1000.0], [1.2, 2000.0]], wheels=[-0.9, 0.9], x=-2.0) == pytest.approx(base / 1000, rel=1e-7)
+    # the vehicle mirrored about x = 0 (offsets negated, position negated)
+    assert lam(axles=[[0.0, 1.0], [-1.2, 2.0]], wheels=[-0.9, 0.9], x=2.0) == pytest.approx(base, rel=1e-7)
+    # wheels given in another order, the reference on the other axle
+    assert lam(axles=[[1.2, 2.0], [0.0, 1.0]], wheels=[0.9, -0.9], x=-2.0) == pytest.approx(base, rel=1e-9)
+    assert lam(axles=[[-1.2, 1.0], [0.0, 2.0]], wheels=[-0.9, 0.9], x=-0.8) == pytest.approx(base, rel=1e-9)
+    # off the plane of symmetry (spatial model): mirrored in y
+    off = lam(axles=[[0.0, 1.0]], wheels=[-0.5, 0.7], y=0.3, x=-1.5)
+    assert an.model_kind(loads=LoadPattern(lateral=False, vehicle=[dict(axles=[[0.0, 1.0]], wheels=[-0.5, 0.7], y=0.3,
+                                                                       x=-1.5)])) == "spatial"
+    assert lam(axles=[[0.0, 1.0]], wheels=[0.5, -0.7], y=-0.3, x=-1.5) == pytest.approx(off, rel=1e-6)

@@ -88,9 +88,8 @@ class Fill:
             raise LoadError("dispersion", f"{angle:g} degrees", "give a spread angle from 0 to 60 degrees from the vertical")
         if not 0 <= k0 < 1:
             raise LoadError("k0", f"{k0:g}", "give a coefficient at rest from 0 to below 1 (Jaky: 1 - sin(phi))")
-        for key in ("weight",):
-            if not isinstance(getattr(self, key), bool):
-                raise LoadError(key, f"not true or false ({getattr(self, key)!r})", "write true or false")
+        if not isinstance(self.weight, bool):
+            raise LoadError("weight", f"not true or false ({self.weight!r})", "write true or false")
         for key, v in (("depth", depth), ("unit_weight", gamma), ("dispersion", angle), ("k0", k0)):
             object.__setattr__(self, key, v)
 

@@ -40,6 +40,8 @@ __all__ = [
     "Vehicle",
     "VehicleLoad",
     "aashto_hl93_truck",
+    "deck_edges",
+    "deck_range",
     "eurocode_lm1_tandem",
     "eurocode_lm2_axle",
     "single_axle",
@@ -241,16 +243,17 @@ def _patch_parts(
 
 
 def deck_range(assembly: Assembly) -> tuple[float, float]:
-    """Plan range along x (m) of the top surface of the free blocks (the deck)."""
-    xs = [
-        np.asarray(poly.exterior.coords)[:, 0]
-        for block, _, poly in top_surface(assembly)
-        if not assembly.blocks[block].support
-    ]
-    if not xs:
+    """Plan range along x (m) of the top surface of the free blocks (the deck).
+
+    Raises
+    ------
+    LoadError
+        No free block has an exposed top surface.
+    """
+    edges = deck_edges(assembly)
+    if not len(edges):
         raise LoadError("vehicle", "the structure has no exposed top surface on a free block", "load a structure with a deck")
-    v = np.concatenate(xs)
-    return float(v.min()), float(v.max())
+    return float(edges[0]), float(edges[-1])
 
 
 def deck_edges(assembly: Assembly) -> NDArray[np.float64]:

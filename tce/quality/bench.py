@@ -40,6 +40,12 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     ``tce run`` end to end on the paper's studies with and without figures; on Fig. 8 and
     Fig. 10 also the default choice of jobs against ``--jobs 1`` and ``--jobs 2``, and dask
     kept out against dask importable (variants interleaved, medians of repeats).
+``sweeps``
+    The 300-scenario sweep of the paper's arch (no figures) with ``--jobs 1``, ``--jobs 2``
+    and the default, interleaved, each a fresh ``tce run`` (:func:`measured_run`): wall time,
+    the CPU time of every process of the run (fork server and workers included) against the
+    CPU time of the same load paths alone in this process (:func:`solving_cpu`); the share of
+    CPU in solving of each paper study.
 ``reduction``
     What the planar model, dropping the cone (Heyman) and dropping the quadratic term
     (rigid) save, each with its effect on the answer.
@@ -615,6 +621,110 @@ def _runs(quick: bool) -> list[dict[str, Any]]:
     return rows
 
 
+# ---------------------------------------------------------------- sweeps: whole runs in CPU time
+#: Runs a command and prints the wall and CPU seconds of it and of every process it started
+#: (Linux: this process becomes the child subreaper, so the fork server and the workers it
+#: forked, re-parented here when their parent ends, are waited for and counted).
+_MEASURED = """
+import ctypes, json, os, resource, subprocess, sys, time
+try:
+    ctypes.CDLL(None).prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER
+except (AttributeError, OSError):
+    pass
+t0 = time.perf_counter()
+done = subprocess.run(sys.argv[1:], capture_output=True, text=True)
+wall = time.perf_counter() - t0
+while True:
+    try:
+        os.waitpid(-1, 0)
+    except ChildProcessError:
+        break
+r = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(json.dumps(dict(wall=wall, cpu=r.ru_utime + r.ru_stime, rc=done.returncode, err=done.stderr[-2000:])))
+"""
+
+
+def measured_run(study: Path, out: Path, args: Sequence[str]) -> dict[str, float]:
+    """``tce run STUDY --fresh ARGS`` in a fresh process: its wall time, the CPU time of it and
+    of every process it started, and the solver time its results record (``solve_time``
+    summed over scenarios: wall time inside the solve calls)."""
+    import xarray as xr
+
+    cmd = [sys.executable, "-m", "tce.cli", "-q", "run", str(study), "--out", str(out), "--fresh", *args]
+    done = subprocess.run([sys.executable, "-c", _MEASURED, *cmd], capture_output=True, text=True, check=True)
+    got = json.loads(done.stdout.strip().splitlines()[-1])
+    if got["rc"] != 0:
+        raise RuntimeError(f"tce run {study.name} failed: {got['err']}")
+    name = next(line.split("=", 1)[1].strip().strip('"') for line in study.read_text().splitlines()
+                if line.strip().startswith("name"))
+    with xr.open_dataset(out / name / "results.nc") as ds:
+        got["solver"] = float(ds["solve_time"].sum())
+        got["scenarios"] = int(ds.sizes["scenario"])
+    return got
+
+
+def solving_cpu(study: Path) -> float:
+    """CPU seconds of the load paths of every scenario of ``study`` in this process, as the
+    runner solves them (a cold analysis per scenario) but without recording or writing: the
+    solving a run cannot do without (the results' ``solve_time`` is wall time, which a shared
+    machine stretches)."""
+    from ..analysis.loadpath import load_path
+    from ..study.runner import _analysis, _cold
+    from ..study.schema import load_study
+
+    st = load_study(study)
+    c0 = time.process_time()
+    for sc in st.scenarios():
+        an = _cold(_analysis(sc, st.assembly(sc.structure)))
+        load_path(an, settlements=sc.settlements, step=sc.loads["lambda_step"], atol=sc.loads["tolerance"],
+                  lam_cap=sc.loads["lambda_cap"], loads=sc.loads_pattern)
+    return time.process_time() - c0
+
+
+def _sweeps(quick: bool) -> list[dict[str, Any]]:
+    """The 300-scenario sweep of the paper's arch (10 frictions x 5 magnitudes x 6 settlement
+    cases, no figures) with ``--jobs 1``, ``--jobs 2`` and the default, interleaved, each in a
+    fresh process: wall, CPU of every process, and the solver time the results record; the
+    paper studies' share of CPU in solving (``--quick``: a 60-scenario sweep, one repeat)."""
+    import tempfile
+
+    rows: list[dict[str, Any]] = []
+    repeats = 1 if quick else 3
+    with tempfile.TemporaryDirectory() as tmp:
+        sweep = Path(tmp) / "sweep300.toml"
+        text = SWEEP_300 if not quick else SWEEP_300.replace(
+            "[0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.2, 1.4, 1.7, 2.0]", "[0.5, 0.8]")
+        sweep.write_text(text)
+        variants = {"--jobs 1": ["--no-plots", "--jobs", "1"], "--jobs 2": ["--no-plots", "--jobs", "2"],
+                    "default": ["--no-plots"]}
+        got: dict[str, list[dict[str, float]]] = {k: [] for k in variants}
+        for _ in range(repeats):
+            for label, args in variants.items():
+                got[label].append(measured_run(sweep, Path(tmp) / "out", args))
+        base = statistics.median(g["wall"] for g in got["--jobs 1"])
+        solving = solving_cpu(sweep)
+        for label, gs in got.items():
+            wall, cpu = statistics.median(g["wall"] for g in gs), statistics.median(g["cpu"] for g in gs)
+            solver = statistics.median(g["solver"] for g in gs)
+            rows.append(_row("sweeps", f"sweep of {gs[0]['scenarios']} scenarios (arch, no figures)", label,
+                             n_solves=len(gs), time_s=wall, time_min_s=min(g["wall"] for g in gs),
+                             solver_time_s=solving,
+                             note=f"{base / wall:.2f}x faster than --jobs 1 (wall); CPU {cpu:.2f} s, "
+                                  f"{cpu / solving:.1f}x the load paths' CPU ({solving:.2f} s), solving "
+                                  f"{solving / cpu:.0%} of the CPU; recorded solve_time {solver:.2f} s (wall)"))
+        root = Path(__file__).resolve().parents[2] / "studies"
+        for name in () if quick else PAPER_STUDIES:
+            if not (root / f"{name}.toml").exists():
+                continue
+            g = measured_run(root / f"{name}.toml", Path(tmp) / "out", ["--no-plots"])
+            solving = solving_cpu(root / f"{name}.toml")
+            rows.append(_row("sweeps", f"tce run {name}", "default (no figures)", n_solves=1, time_s=g["wall"],
+                             solver_time_s=solving,
+                             note=f"CPU {g['cpu']:.2f} s, the load paths {solving:.2f} s: solving {solving / g['cpu']:.1%} "
+                                  f"of the CPU; recorded solve_time {g['solver']:.3f} s (wall)"))
+    return rows
+
+
 # ---------------------------------------------------------------- model reduction
 def _reduction(quick: bool) -> list[dict[str, Any]]:
     arch = semicircular_arch().validate()
@@ -835,6 +945,18 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
             out.append((f"load path to {tol}: direct bracket takes fewer solves than bisection, same lambda_max within atol",
                         f"{r.n_solves:.0f} vs {b.n_solves:.0f} solves, time {r.time_s / b.time_s:.2f}x",
                         bool(r.n_solves < b.n_solves and abs(r.error - b.error) <= float(tol))))
+    sw = df[df.section == "sweeps"]
+    for case in sw.case.unique():
+        g = sw[sw.case == case].set_index("method")
+        if "--jobs 1" not in g.index:
+            continue
+        j1, j2, dflt = (g.time_s.get(k) for k in ("--jobs 1", "--jobs 2", "default"))
+        out.append((f"{case}: --jobs 2 at least 1.6x faster than --jobs 1 (wall)", f"{j1 / j2:.2f}x", bool(j1 >= 1.6 * j2)))
+        out.append((f"{case}: the default no slower than --jobs 1 (wall)", f"{dflt / j1:.2f}x", bool(dflt <= 1.05 * j1)))
+        cpu = float(g.note["--jobs 1"].split("CPU ")[1].split(" s")[0])
+        solver = float(g.solver_time_s["--jobs 1"])
+        out.append((f"{case}: --jobs 1 at most 3x its own solving (CPU of the run / CPU of its load paths)",
+                    f"{cpu / solver:.1f}x ({cpu:.1f} / {solver:.2f} s)", bool(cpu <= 3 * solver)))
     runs = df[df.section == "runs"]
     for case in runs.case.unique():
         g = runs[runs.case == case].set_index("method").time_s
@@ -920,6 +1042,7 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "discretisation": _discretisation,
     "scaling": _scaling,
     "runs": _runs,
+    "sweeps": _sweeps,
     "reduction": _reduction,
     "plotting": _plotting,
 }

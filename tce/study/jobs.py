@@ -20,7 +20,7 @@ Estimate of the work, CPU seconds::
     sum over scenarios (increments + 2) * t_solve + scenarios * SCENARIO_S + (groups - 1) * t_build
 
 with ``increments = lambda_max / step + 1`` from the direct limit of the scenario's direction
-(``lam_cap / step + 1`` when there is none), ``t_solve`` a warm TCE solve of the first
+on the first scenario's analysis (``lam_cap / step + 1`` when there is none), ``t_solve`` a warm TCE solve of the first
 scenario, :data:`SCENARIO_S` the recording and writing of one answer and ``t_build`` the
 time to build its analysis (assembly, model). An assembly whose model has more than
 :data:`LARGE_MODEL` unknowns is taken as large work without solving anything (one solve of
@@ -54,12 +54,13 @@ __all__ = ["LARGE_MODEL", "SCENARIO_S", "WORKER_START_S", "JobsChoice", "block_d
 
 log = logging.getLogger(__name__)
 
-#: CPU seconds to start the workers: the fork server's imports of tce's stack (1.2-2 CPU-s on
-#: this project's machine), the forks and the analyses the workers build again.
-WORKER_START_S = 2.0
+#: CPU seconds to start the workers: the fork server's imports of tce's stack, the forks and the
+#: analyses the workers build again (a 60-scenario sweep of the paper's arch: 4.27 CPU-s with
+#: --jobs 2 against 3.02 with --jobs 1, every process counted, on this project's machine).
+WORKER_START_S = 1.5
 #: CPU seconds to record and write one scenario's answer (its dataset and netCDF file), which
-#: the workers share: 0.03-0.05 on this project's machine for the paper's arch.
-SCENARIO_S = 0.03
+#: the workers share: about 0.02 on this project's machine for the paper's arch.
+SCENARIO_S = 0.02
 #: Unknowns above which a model is taken as large work without a timed solve.
 LARGE_MODEL = 20_000
 #: Environment variable that keeps dask from being imported (see module docstring).
@@ -103,7 +104,8 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
 
     Builds the first scenario's analysis with ``analysis_of(scenario)`` (the runner's cached
     builder) and, for a model of at most :data:`LARGE_MODEL` unknowns, times one warm TCE
-    solve and the direct limit of each direction.
+    solve and the direct limit of each direction; scenarios of the other groups (other
+    materials or structures) are reckoned with the first analysis's limits.
     """
     first = scenarios[0]
     t0 = time.process_time()
@@ -121,7 +123,9 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
     solves = 0.0
     for sc in scenarios:
         step, cap = sc.loads["lambda_step"], sc.loads["lambda_cap"]
-        lam = an.limit(sc.alpha).lambda_max if sc.group == first.group else math.nan
+        # the first analysis's limit in the scenario's direction, for every group (another
+        # material or structure changes it less than running to lam_cap would assume)
+        lam = an.limit(sc.alpha, mechanism=False).lambda_max
         increments = min(lam, cap) / step + 1 if math.isfinite(lam) else cap / step + 1
         solves += increments + 2
     groups = len({sc.group for sc in scenarios})

@@ -193,9 +193,12 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     pattern, crit = sc.loads_pattern, None
     if sc.loads.get("critical_position"):
         crit = critical_position(analysis, pattern, start=sc.loads["positions"])
-        log.debug("scenario %r: critical position %s", sc.name, crit.message)
         if crit.ok:
+            log.debug("scenario %r: critical position %s", sc.name, crit.message)
             pattern = crit.pattern
+        else:
+            log.warning("scenario %r: no critical position (%s): %s; the load path runs at the declared position",
+                        sc.name, crit.status, crit.message)
     lp = load_path(
         analysis,
         settlements=sc.settlements,
@@ -262,12 +265,13 @@ def with_drawn_states(analysis: Analysis, lp: LoadPathResult, lams: Sequence[flo
     )
 
 
-def _solve_and_write(sc: Scenario, assembly: Assembly, directory: Path) -> tuple[str, int]:
-    """Solve ``sc`` and write its file; return its outcome and number of solves."""
+def _solve_and_write(sc: Scenario, assembly: Assembly, directory: Path) -> xr.Dataset:
+    """Solve ``sc`` and write its file; return its dataset (what the file holds), which the
+    run merges without reading the file back."""
     ds = solve_scenario(sc, assembly)
     with _writing():
         write_scenario(ds, directory, sc)
-    return str(ds["outcome"].values[0]), int(ds["n_solves"].values[0])
+    return ds
 
 
 class _Stop:
@@ -338,8 +342,7 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
             return
         sc, assembly = task
         try:
-            outcome, n_solves = _solve_and_write(sc, assembly, Path(directory))
-            reply: tuple = ("done", sc.name, outcome, n_solves)
+            reply: tuple = ("done", sc.name, _solve_and_write(sc, assembly, Path(directory)))
         except StorageError as exc:
             reply = ("storage", sc.name, str(exc))
         except Exception as exc:  # noqa: BLE001 - reported to the parent with its traceback
@@ -388,12 +391,16 @@ class _Tally:
     def __init__(self, total: int, progress: Progress | None) -> None:
         self.total, self.progress = total, progress
         self.outcomes: dict[str, str] = {}
+        #: the datasets of the scenarios solved and written (merged without reading them back)
+        self.datasets: dict[str, xr.Dataset] = {}
         self.faults: list[str] = []
         self.steps = 0
 
-    def done(self, name: str, outcome: str, n_solves: int) -> None:
-        self.outcomes[name] = outcome
-        self.steps += n_solves
+    def done(self, name: str, ds: xr.Dataset) -> None:
+        """Scenario ``name`` is solved and its file written; ``ds`` is its dataset."""
+        self.outcomes[name] = str(ds["outcome"].values[0])
+        self.datasets[name] = ds
+        self.steps += int(ds["n_solves"].values[0])
         if self.progress is not None:
             self.progress(len(self.outcomes), self.total, self.steps)
 
@@ -410,14 +417,14 @@ def _in_process(todo: list[Scenario], study: Study, directory: Path, tally: _Tal
     """Solve ``todo`` one after the other in this process."""
     for sc in todo:
         try:
-            result = _solve_and_write(sc, study.assembly(sc.structure), directory)
+            ds = _solve_and_write(sc, study.assembly(sc.structure), directory)
         except StorageError as exc:
             tally.fault(str(exc))
             return  # the destination takes no more: stop
         except Exception as exc:  # noqa: BLE001 - reported as a fault, the others go on
             tally.fault(_failed(sc, exc), traceback.format_exc())
             continue
-        tally.done(sc.name, *result)
+        tally.done(sc.name, ds)
 
 
 def _death(process: mp.process.BaseProcess, sc: Scenario | None) -> str:
@@ -538,7 +545,7 @@ def _on_dask(todo: list[Scenario], study: Study, directory: Path, scheduler: str
                 except StorageError as exc:
                     tally.fault(str(exc))
                     return
-                tally.done(sc.name, str(ds["outcome"].values[0]), int(ds["n_solves"].values[0]))
+                tally.done(sc.name, ds)
         except Exception as exc:  # noqa: BLE001 - a lost worker or a failed task, reported as a fault
             tally.fault(f"the Dask run failed: {type(exc).__name__}: {exc}", traceback.format_exc())
 
@@ -676,9 +683,9 @@ def run_study(
                 _in_pool(_grouped(todo), study, folder, jobs, tally)
             report.solved = [sc.name for sc in todo if sc.name in tally.outcomes]
             report.faults = tally.faults
-            parts.update(load_finished(folder, [sc for sc in todo if sc.name in tally.outcomes]))
-            lost = [n for n in report.solved if n not in parts]
-            report.faults += [f"scenario {n!r} was solved but its file cannot be read back" for n in lost]
+            # each was written atomically (fsync, rename) before it counted as done: merged
+            # from memory, not read back
+            parts.update(tally.datasets)
         report.outcomes = {sc.name: str(parts[sc.name]["outcome"].values[0]) for sc in scenarios if sc.name in parts}
         if report.faults:
             raise RunFault(report)

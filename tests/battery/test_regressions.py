@@ -118,8 +118,6 @@ def test_step_above_the_cap_is_refused(tmp_path):
         parse_study(text, tmp_path / "study.toml")
 
 
-@pytest.mark.xfail(strict=True, reason="issue 21 item 3 / issue 22: a load_x sweep merges every moving load into one "
-                   "point, fixed on branch i22")
 def test_moving_axles_keep_their_spacing(tmp_path):
     """Issue 21, problem 3: two live wheel loads 0.6 m apart swept along the arch with
     ``load_x`` become one point load of twice the force. Expected: the study is refused, or

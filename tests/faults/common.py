@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import copy
 import os
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -72,7 +73,17 @@ def tce_run(study: Path, out: Path, *args: str, fault: str | None = None, timeou
         env["TCE_FAULT"] = fault
         env["PYTHONPATH"] = os.pathsep.join([str(HOOK), *filter(None, [env.get("PYTHONPATH")])])
     cmd = [sys.executable, "-m", "tce.cli", "run", str(study), "--out", str(out), "--no-plots", *args]
-    return subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=timeout, start_new_session=True)
+    return subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=timeout, start_new_session=True,
+                          preexec_fn=_as_from_a_shell)
+
+
+def _as_from_a_shell() -> None:
+    """In the child before it runs tce: Ctrl-C, SIGTERM and SIGHUP at their defaults and not
+    blocked, as a shell starts a program (an ignored or blocked signal would be inherited from
+    whatever the test process did before, and the Ctrl-C fault would never reach tce)."""
+    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        signal.signal(sig, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, (signal.SIGINT, signal.SIGTERM, signal.SIGHUP))
 
 
 def clean(err: str) -> None:

@@ -70,7 +70,7 @@ def test_ctrl_c_keeps_a_finished_scenario_not_yet_returned(study, reference, tmp
     finished = "none/friction=2"
     # with two workers, none/friction=0.8 is the other worker's: the interrupt waits for its file
     run = tce_run(write(tmp_path), out, "--jobs", jobs, fault=f"interrupt:{finished}:2")
-    assert run.returncode == 130
+    assert run.returncode == 130, run.stderr
     clean(run.stderr)
     said = [line for line in run.stderr.strip().splitlines() if not line.startswith("tce: tiny: ")]  # progress lines
     assert "interrupted" in run.stderr and len(said) <= 2

@@ -51,3 +51,22 @@ def test_single_load_same_answer_whatever_grid(grid):
     assert res.lambda_max == pytest.approx(lam_ref, rel=1e-4)
     assert abs(res.critical_x) == pytest.approx(abs(x_ref), abs=2.4e-3) and res.critical_x < 0
     assert res.ties and res.ties[0] == pytest.approx(-res.critical_x, abs=1e-6)
+
+
+def test_a_failed_solve_gives_no_position(monkeypatch):
+    """Honest statuses: one limit solve that fails makes the search numerical, with no number."""
+    from dataclasses import replace
+
+    an = Analysis(semicircular_arch())
+    real = an.limit
+    calls = []
+
+    def flaky(*args, **kwargs):
+        res = real(*args, **kwargs)
+        calls.append(res)
+        return replace(res, status="numerical", message="planted") if len(calls) == 7 else res
+
+    monkeypatch.setattr(an, "limit", flaky)
+    res = critical_position(an, LoadPattern(lateral=False, vehicle=[dict(axles=[(0.0, 1.0)])]))
+    assert res.status == "numerical" and not res.ok and "planted" in res.message
+    assert res.critical_x != res.critical_x and res.lambda_max != res.lambda_max and res.pattern is None
