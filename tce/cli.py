@@ -244,7 +244,7 @@ def _out_folder(out: Path, option: str = "--out") -> Path:
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise UsageError(f"{option}: cannot create {out} ({exc.strerror}); fix: give another {option}") from None
+        raise UsageError(f"{option}: cannot write {out} ({exc.strerror}); fix: give another {option}") from None
     if not os.access(out, os.W_OK | os.X_OK):
         raise UsageError(f"{option}: cannot write {out} (read-only or not permitted); fix: give another {option}")
     free = shutil.disk_usage(out).free
@@ -561,7 +561,9 @@ def _check(args: argparse.Namespace) -> int:
 def _bench(args: argparse.Namespace) -> int:
     from .quality.bench import bench_command
 
-    return bench_command(args)
+    out = _out_folder(args.out)
+    with _writing(out):
+        return bench_command(args)
 
 
 def _without_dask() -> None:

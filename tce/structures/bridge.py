@@ -22,7 +22,7 @@ import numpy as np
 from .arch import _at_depth, segmental_arch
 from .assembly import Assembly, Block, Interface
 from .geometry import prisms
-from .params import check_positive, check_whole
+from .params import check_blocks, check_positive, check_whole
 
 __all__ = ["arch_bridge"]
 
@@ -78,6 +78,8 @@ def arch_bridge(
     check_positive(span=span, rise=rise, thickness=thickness, depth=depth, unit_weight=unit_weight,
                    pier_width=pier_width, pier_height=pier_height)
     n_spans = check_whole(spans, "spans")
+    check_blocks(n_spans * (check_whole(voussoirs, "voussoirs") + 2) + 1,
+                 f"spans x (voussoirs + 2) + 1 = {n_spans} x ({voussoirs} + 2) + 1")
     if piers not in ("free", "fixed"):
         raise ValueError(f"piers must be 'free' or 'fixed', got {piers!r}")
     ring = segmental_arch(span, rise, thickness, depth, voussoirs, unit_weight)

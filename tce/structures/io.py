@@ -39,6 +39,17 @@ compas_assembly and compas_cra)
     Interfaces stored on the edges (``data.graph.data.edge[u][v]["interfaces"]``, as
     compas_assembly and compas_cra write them: each a polygon ``points`` with a ``frame``
     whose z axis points from block u into block v) are used as they are, after checks.
+    COMPAS 2 points are ``Point`` objects (``{"dtype": "compas.geometry/Point", "data":
+    [x, y, z]}``), read wherever a point is expected.
+
+compas_dem ``BlockModel`` JSON (``data.elements`` and ``data.graph``)
+    Each graph node names an element (``{"element": guid}``): a ``Block`` whose ``geometry``
+    is its mesh, with ``is_support`` and an optional ``transformation`` (applied). Contacts
+    on the edges (``"contacts"``, ``FrictionContact`` objects) are stored interfaces.
+
+Every value is checked for its type (not its truthiness: ``"support": "no"`` is an error,
+not a support; a face index must be a whole number, a coordinate a JSON number, a name a
+string), and an error names the file and the key (``blocks[1] (top).faces[0][2]``).
 
 Stored interfaces (tce or COMPAS)
     A file's interfaces are used instead of detection (which remains the fallback when the

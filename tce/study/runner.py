@@ -318,14 +318,19 @@ def _watch_parent(parent: int) -> None:
 
 
 def _alive(pid: int) -> bool:
-    """Whether a process ``pid`` exists."""
+    """Whether a process ``pid`` exists and has not ended (a zombie, killed but not yet
+    reaped by its own parent, has ended)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
     except PermissionError:
         return True
-    return True
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            return fh.read().rpartition(b")")[2].split()[0] != b"Z"
+    except (OSError, IndexError):  # no /proc: existing is alive
+        return True
 
 
 def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: int) -> None:

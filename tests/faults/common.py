@@ -4,11 +4,13 @@ results files without what differs from run to run."""
 
 from __future__ import annotations
 
+import copy
 import os
 import signal
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import xarray as xr
 
@@ -38,6 +40,16 @@ friction = [0.8, 2.0]
 right = [0.001, 0.0, 0.0, 0.0, 0.0, 0.0]
 """
 NAMES = ["none/friction=0.8", "none/friction=2", "outward/friction=0.8", "outward/friction=2"]
+
+
+def replaced(doc: Any, place: tuple, value: Any) -> Any:
+    """A deep copy of ``doc`` with the value at ``place`` (keys and indices) replaced."""
+    doc = copy.deepcopy(doc)
+    node = doc
+    for key in place[:-1]:
+        node = node[key]
+    node[place[-1]] = value
+    return doc
 
 
 def write(folder: Path, text: str = TINY, name: str = "study.toml") -> Path:

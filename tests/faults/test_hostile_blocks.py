@@ -7,7 +7,6 @@ property draws arbitrary JSON at every place. The issue's examples also go throu
 
 from __future__ import annotations
 
-import copy
 import json
 import math
 from pathlib import Path
@@ -22,7 +21,7 @@ from tce.structures.geometry import GeometryError
 from tce.structures.io import load_assembly
 from tce.cli import main
 
-from .common import clean, errors, write
+from .common import clean, errors, replaced, write
 from .test_hostile_input import FILE_STUDY, cube
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "compas2"
@@ -98,15 +97,6 @@ SLOTS = [
     (("interfaces", 0, "normal"), "optional point", "interfaces[0].normal"),
     (("interfaces", 0, "stiffness"), "positive", "interfaces[0].stiffness"),
 ]
-
-
-def replaced(doc: Any, place: tuple, value: Any) -> Any:
-    doc = copy.deepcopy(doc)
-    node = doc
-    for key in place[:-1]:
-        node = node[key]
-    node[place[-1]] = value
-    return doc
 
 
 def outcome(path: Path) -> Exception | None:

@@ -1,0 +1,204 @@
+"""Signals and storage faults in every command: SIGTERM and SIGKILL of the main process, Ctrl-C
+while tce imports its modules, a closed output pipe, a disk that fills while figures are
+drawn, read-only results, ``--out`` at a file, foreign and older netCDF files, a full disk
+when the lock is taken. Each: the documented exit code, one line without a traceback,
+nothing new written, no finished scenario lost."""
+
+from __future__ import annotations
+
+import errno
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import matplotlib.figure
+import numpy as np
+import pytest
+import xarray as xr
+
+from tce.study import results, runner
+from tce.cli import main
+from tce.study.schema import parse_study
+
+from .common import NAMES, TINY, answer, clean, errors, leftovers, tce_run, write
+from .test_run_faults import files, resume_equals, tmpfs  # noqa: F401  (tmpfs: a fixture)
+
+
+@pytest.fixture(scope="module")
+def study():
+    return parse_study(TINY, "study.toml")
+
+
+@pytest.fixture(scope="module")
+def reference(study, tmp_path_factory) -> xr.Dataset:
+    report = runner.run_study(study, tmp_path_factory.mktemp("reference"), jobs=1, plots=False)
+    return answer(report.results)
+
+
+@pytest.fixture(scope="module")
+def finished(study, tmp_path_factory) -> Path:
+    """A results file of the tiny study (no figures)."""
+    return runner.run_study(study, tmp_path_factory.mktemp("finished"), jobs=1, plots=False).results
+
+
+def _wait_for(predicate, timeout: float = 120.0) -> None:
+    end = time.monotonic() + timeout
+    while not predicate():
+        assert time.monotonic() < end, "timed out"
+        time.sleep(0.05)
+
+
+def _started(study: Path, out: Path, *args: str, fault: str) -> subprocess.Popen:
+    env = dict(os.environ, MPLBACKEND="Agg", TCE_FAULT=fault)
+    env["PYTHONPATH"] = os.pathsep.join([str(Path(__file__).parent / "hook"), *filter(None, [env.get("PYTHONPATH")])])
+    cmd = [sys.executable, "-m", "tce.cli", "run", str(study), "--out", str(out), "--no-plots", *args]
+    return subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+
+
+@pytest.mark.parametrize("jobs", ["1", "2"])
+def test_sigterm_stops_a_run_as_ctrl_c_does(study, reference, tmp_path: Path, jobs: str) -> None:
+    """SIGTERM to the main process (as a scheduler or ``kill`` sends it) while the last
+    scenario is held: exit 143, one line, three scenarios kept, a rerun equals a full run."""
+    out, gate = tmp_path / "out", tmp_path / "gate"
+    run = _started(write(tmp_path), out, "--jobs", jobs, fault=f"hold:{NAMES[-1]}:{gate}")
+    _wait_for(lambda: sum(files(study, out).values()) == 3)
+    time.sleep(0.3)  # the parent is waiting for the held scenario
+    run.send_signal(signal.SIGTERM)
+    _, err = run.communicate(timeout=60)
+    assert run.returncode == 143
+    clean(err)
+    assert "interrupted (SIGTERM)" in err and "run the same command again to resume" in err
+    assert files(study, out) == {n: n != NAMES[-1] for n in NAMES} and not leftovers(out)
+    resume_equals(study, reference, out, reused=3)
+
+
+def test_sigkill_of_the_main_process_leaves_workers_silent(study, reference, tmp_path: Path) -> None:
+    """``kill -9`` of ``tce run``: its workers end within seconds without a traceback (one of
+    them is held inside a scenario), every finished scenario is kept, a rerun resumes."""
+    out, gate = tmp_path / "out", tmp_path / "gate"
+    run = _started(write(tmp_path), out, "--jobs", "2", fault=f"hold:{NAMES[-1]}:{gate}")
+    _wait_for(lambda: sum(files(study, out).values()) == 3)
+    run.send_signal(signal.SIGKILL)
+    _, err = run.communicate(timeout=60)  # the pipes close when the workers have ended too
+    assert run.returncode == -signal.SIGKILL
+    assert "Traceback" not in err and "Error" not in err, err
+    assert files(study, out) == {n: n != NAMES[-1] for n in NAMES}
+    assert [p.name for p in leftovers(out)] == [results.LOCK_NAME]  # stale: the rerun takes it over
+    resume_equals(study, reference, out, reused=3)
+
+
+def test_ctrl_c_while_tce_imports_its_modules(tmp_path: Path) -> None:
+    """The tce program handles Ctrl-C from ``import tce`` on: one line, exit 130."""
+    code = (
+        "import os, signal, sys, time\n"
+        "sys.argv[0] = 'tce'\n"
+        "import tce\n"
+        "os.kill(os.getpid(), signal.SIGINT)\n"
+        "import xarray\n"
+        "time.sleep(30)\n"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 130
+    assert run.stderr == "tce: interrupted (SIGINT)\n"
+
+
+def test_a_closed_output_pipe_ends_quietly(finished: Path) -> None:
+    """``tce show RESULTS | head``: the reader went away before tce wrote."""
+    read, write_end = os.pipe()
+    os.close(read)
+    try:
+        run = subprocess.run([sys.executable, "-m", "tce.cli", "show", str(finished)], stdout=write_end,
+                             stderr=subprocess.PIPE, text=True, timeout=120)
+    finally:
+        os.close(write_end)
+    assert run.returncode == 141 and run.stderr == ""
+
+
+def test_a_disk_that_fills_while_figures_are_drawn(tmp_path: Path, monkeypatch, capsys) -> None:
+    out = tmp_path / "out"
+    savefig = matplotlib.figure.Figure.savefig
+    drawn = []
+
+    def full(self, fname, *args, **kwargs):
+        drawn.append(fname)
+        if len(drawn) == 2:
+            raise OSError(errno.ENOSPC, "No space left on device", str(fname))
+        return savefig(self, fname, *args, **kwargs)
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", full)
+    text = TINY.replace("[sweep]\nfriction = [0.8, 2.0]", "[material]\nfriction = 0.8")
+    assert main(["run", str(write(tmp_path, text)), "--out", str(out), "--jobs", "1"]) == 3
+    err = capsys.readouterr().err
+    clean(err)
+    (line,) = errors(err)
+    assert "no space left on the device" in line and str(drawn[1]) in line
+    assert (out / "tiny" / "results.nc").exists() and "tce plot" in err and not leftovers(out)
+
+
+@pytest.fixture
+def results_copy(finished: Path, tmp_path: Path) -> Path:
+    path = tmp_path / "results.nc"
+    path.write_bytes(finished.read_bytes())
+    return path
+
+
+@pytest.mark.parametrize("command", [["plot"], ["view"], ["export", "--vtk"]])
+def test_out_at_a_file(command: list[str], results_copy: Path, capsys) -> None:
+    target = results_copy.parent / "taken"
+    target.write_text("keep me")
+    argv = [command[0], str(results_copy), *command[1:], "--out", str(target if command[0] != "view" else target / "v.html")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    clean(err)
+    (line,) = errors(err)
+    assert "--out" in line and str(target) in line and "is a file" in line
+    assert target.read_text() == "keep me"
+    assert sorted(p.name for p in results_copy.parent.iterdir()) == ["results.nc", "taken"]
+
+
+def test_read_only_results(finished: Path, tmpfs: Path) -> None:  # noqa: F811
+    (tmpfs / "results.nc").write_bytes(finished.read_bytes())
+    subprocess.run(["mount", "-o", "remount,ro", str(tmpfs)], check=True)
+    for command in (["plot"], ["view"], ["export", "--vtk"]):
+        run = subprocess.run([sys.executable, "-m", "tce.cli", command[0], str(tmpfs / "results.nc"), *command[1:]],
+                             capture_output=True, text=True, timeout=300, env=dict(os.environ, MPLBACKEND="Agg"))
+        assert run.returncode == 2, run.stderr
+        clean(run.stderr)
+        (line,) = errors(run.stderr)
+        assert "cannot write" in line and str(tmpfs) in line
+
+
+@pytest.mark.parametrize("command", [["show"], ["plot"], ["view"], ["export", "--vtk"]])
+@pytest.mark.parametrize("kind", ["foreign", "older", "not netCDF"])
+def test_foreign_and_older_files(kind: str, command: list[str], finished: Path, tmp_path: Path, capsys) -> None:
+    path = tmp_path / "other.nc"
+    if kind == "foreign":
+        xr.Dataset({"t": ("x", np.arange(3.0))}, attrs={"title": "a model"}).to_netcdf(path)
+    elif kind == "older":  # what tce wrote before it stored outcomes
+        xr.load_dataset(finished).drop_vars(["outcome"]).to_netcdf(path)
+    else:
+        path.write_text("lambda_max = 1\n")
+    assert main([command[0], str(path), *command[1:]]) == 2
+    err = capsys.readouterr().err
+    clean(err)
+    (line,) = errors(err)
+    words = {"foreign": "not a results file written by tce", "older": "written by an older tce",
+             "not netCDF": "not a readable results file"}[kind]
+    assert str(path) in line and words in line
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["other.nc"]
+
+
+def test_a_full_disk_when_the_lock_is_taken_leaves_no_lock(tmp_path: Path, monkeypatch, capsys) -> None:
+    def full(fd, data, offset):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(results.os, "pwrite", full)
+    assert main(["run", str(write(tmp_path)), "--out", str(tmp_path / "out"), "--no-plots"]) == 2
+    err = capsys.readouterr().err
+    clean(err)
+    (line,) = errors(err)
+    assert results.LOCK_NAME in line and "no space left" in line
+    assert not leftovers(tmp_path / "out")
