@@ -219,7 +219,8 @@ WORK = {
     "1,000 x 1,000 sweep": (("sweep",), {"magnitude": _many(1000, 1.0), "friction": _many(1000, 0.1)},
                             ["x 1000 values of sweep.magnitude", "scenarios, more than MAX_SCENARIOS"]),
     "5,000 drawn steps": (("plots", "steps"), _many(5000), ["plots.steps", "MAX_DRAWN_STATES"]),
-    "100,000 load steps": (("loads", "lambda_step"), 0.001, ["loads", "MAX_INCREMENTS"]),
+    "100,000 load steps": (("loads",), {"lambda_step": 0.001, "lambda_cap": 100.0, "tolerance": 1e-3, "alpha": [0.0]},
+                           ["loads", "MAX_INCREMENTS"]),  # a path anchored on its limit needs a cap to be long
     "5,000 scenarios of 5,000 steps": (
         ("sweep",), {"magnitude": _many(2500, 1.0), "lambda_step": None}, ["loads", "solves at most", "MAX_SOLVES"]
     ),
