@@ -110,7 +110,8 @@ def report_html(ds: xr.Dataset, results: Path, figures: list[Path]) -> str:
     from .drawing import structure_figure
 
     content = report_content(ds, results)
-    content.structure["drawing"] = _data_uri(_figure_png(structure_figure(content.structure.pop("assembly"))))
+    for geometry in content.structure["geometries"]:
+        geometry["drawing"] = _data_uri(_figure_png(structure_figure(geometry.pop("assembly"))))
     content.figures = _figures(figures)
     env = jinja2.Environment(loader=jinja2.PackageLoader("tce.report", "templates"),
                              autoescape=jinja2.select_autoescape(["html", "j2"]), undefined=jinja2.StrictUndefined)

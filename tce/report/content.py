@@ -24,8 +24,9 @@ import xarray as xr
 
 from .. import __version__
 from ..core.material import Material
-from ..plot.data import assembly
+from ..plot.data import assembly, geometry_groups, scenarios
 from ..study.positions import critical_positions
+from ..study.schema import GEOMETRY_SWEEPS
 
 __all__ = ["SHOW_COLUMNS", "Content", "fmt", "report_content"]
 
@@ -76,14 +77,19 @@ def _table(section: object) -> list[tuple[str, str]]:
     return [(k, v if isinstance(v, str) else json.dumps(v)) for k, v in section.items()]
 
 
-def _structure(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
-    asm = assembly(ds)
+def _geometry(ds: xr.Dataset, names: list[str], section: dict) -> dict[str, Any]:
+    """One structure of the study: the scenarios ``names`` solved on it, its ``[structure]``
+    parameters with the swept ones at that structure's values, its counts, weight and extent."""
+    asm = assembly(ds, names[0])
+    k = ds.indexes["scenario"].get_loc(names[0])
+    swept = [key for key in GEOMETRY_SWEEPS if key in ds.coords and ds[key].dims == ("scenario",)]
+    section = {**section, **{key: None for key in swept if key not in section}}
     weights = sorted({round(float(b.unit_weight), 9) for b in asm.blocks})
     dx, dy, dz = asm.extent
-    section = dict(toml.get("structure", {}))
     return {
-        "type": section.pop("type", "?"),
-        "parameters": _table(section),
+        "scenarios": ", ".join(names),
+        "parameters": [(f"{key} (swept)" if key in swept else key,
+                        fmt(ds[key].values[k]) if key in swept else value) for key, value in _table(section)],
         "blocks": len(asm.blocks),
         "free_blocks": len(asm.free_indices),
         "supports": ", ".join(asm.support_names),
@@ -93,6 +99,15 @@ def _structure(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
         "extent": f"{dx:.4g} × {dy:.4g} × {dz:.4g} m (x × y × z)",
         "assembly": asm,
     }
+
+
+def _structure(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
+    """The structure type and one :func:`_geometry` per structure the scenarios were solved on
+    (several for a geometry sweep, in order of first appearance)."""
+    section = dict(toml.get("structure", {}))
+    kind = section.pop("type", "?")
+    return {"type": kind,
+            "geometries": [_geometry(ds, names, section) for names in geometry_groups(ds, scenarios(ds))]}
 
 
 def _material(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
