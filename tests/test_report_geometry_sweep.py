@@ -21,29 +21,9 @@ from tce.plot.data import assembly  # noqa: E402
 from tce.report import write_report  # noqa: E402
 from tce.study import load_study  # noqa: E402
 from tce.study.runner import run_study  # noqa: E402
+from test_geometry_sweep import STUDY as GEOMETRY_SWEEP  # noqa: E402
 
-STUDY = """
-[study]
-name = "sweep_t"
-
-[structure]
-type = "semicircular_arch"
-inner_radius = 1.0
-thickness = 0.2
-depth = 0.25
-voussoirs = 8
-unit_weight = 20.0
-
-[material]
-
-[loads]
-lambda_step = 0.1
-
-[sweep]
-thickness = [0.2, 0.3, 0.4]
-
-[scenarios.none]
-"""
+STUDY = GEOMETRY_SWEEP.split("\n[plots]")[0]  # the thickness sweep of test_geometry_sweep, without its figures
 
 
 @pytest.fixture(scope="module")
