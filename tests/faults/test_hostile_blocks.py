@@ -208,3 +208,14 @@ def test_a_plain_json_list_is_named(tmp_path: Path, capsys) -> None:
     assert main(["run", str(study), "--out", str(tmp_path / "out")]) == 2
     (line,) = errors(capsys.readouterr().err)
     assert "got a JSON list" in line and "tce assembly" in line and "COMPAS" in line
+
+
+def test_the_block_cap_refuses_before_building() -> None:
+    """check_blocks itself (issue 25): one block past MAX_BLOCKS is refused naming how the count
+    follows from the parameters, the cap passes. Without it the generator tests of
+    test_hostile_studies.py do not fail: they build ten million blocks and run out of memory."""
+    from tce.structures.params import MAX_BLOCKS, check_blocks
+
+    check_blocks(MAX_BLOCKS, "voussoirs + 2")
+    with pytest.raises(ValueError, match=rf"voussoirs \+ 2 = {MAX_BLOCKS + 1} blocks, more than MAX_BLOCKS"):
+        check_blocks(MAX_BLOCKS + 1, "voussoirs + 2")

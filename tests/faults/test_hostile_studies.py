@@ -238,3 +238,16 @@ def test_unbounded_work_is_refused_with_its_estimate(case: str, tmp_path: Path, 
     path.write_text(toml(doc))
     _refused(["run", str(path), "--out", str(tmp_path / "out")], capsys, *words)
     assert not (tmp_path / "out").exists()
+
+
+def test_drawn_states_are_counted_before_anything_runs() -> None:
+    """MAX_DRAWN_STATES is checked at parse time (issue 25): one step past the cap is refused
+    with its count, the cap itself parses; without the check, "5,000 drawn steps" would only
+    be caught by the run's timeout."""
+    drawn = len(parse_study(toml(VALID), "s.toml").scenarios())  # every scenario is drawn by default
+    steps = guards.MAX_DRAWN_STATES // drawn
+    parse_study(toml(study_with(("plots", "steps"), _many(steps))), "s.toml")
+    with pytest.raises(StudyError) as exc:
+        parse_study(toml(study_with(("plots", "steps"), _many(steps + 1))), "s.toml")
+    msg = str(exc.value)
+    assert "plots.steps" in msg and f"{drawn * (steps + 1)} drawn states" in msg and "MAX_DRAWN_STATES" in msg, msg
