@@ -156,10 +156,6 @@ def semicircular_arch(
     if joints not in JOINTS:
         raise ValueError(f"joints must be one of {', '.join(JOINTS)}, got {joints!r}")
     height = thickness if support_height is None else support_height
-    if joints == "vertical":
-        return _vertical_joint_arch(float(inner_radius), float(thickness), float(depth), n, float(unit_weight),
-                                    float(height))
-    ji, je = semicircle_joints(inner_radius, inner_radius + thickness, np.linspace(np.pi, 0.0, n + 1))
     meta = dict(
         generator="semicircular_arch",
         inner_radius=float(inner_radius),
@@ -169,6 +165,10 @@ def semicircular_arch(
         unit_weight=float(unit_weight),
         support_height=float(height),
     )
+    if joints == "vertical":
+        return _vertical_joint_arch(float(inner_radius), float(thickness), float(depth), n, float(unit_weight),
+                                    float(height), {**meta, "joints": "vertical"})
+    ji, je = semicircle_joints(inner_radius, inner_radius + thickness, np.linspace(np.pi, 0.0, n + 1))
     return arch_from_joints(ji, je, depth, unit_weight, height, meta)
 
 
@@ -176,13 +176,15 @@ def semicircular_arch(
 JOINTS = ("radial", "vertical")
 
 
-def _vertical_joint_arch(ri: float, t: float, depth: float, n: int, unit_weight: float, height: float) -> Assembly:
+def _vertical_joint_arch(ri: float, t: float, depth: float, n: int, unit_weight: float, height: float,
+                         meta: dict) -> Assembly:
     """The semicircular ring cut by vertical joints (``semicircular_arch(..., joints="vertical")``).
 
     Joint ``k`` (``0 < k < n``) is the vertical segment at ``x_k = ri cos(pi (1 - k / n))``
     from the intrados up to the extrados; joints 0 and ``n`` are the horizontal springing
     joints. Voussoirs 2 .. n-1 have chord intrados and extrados faces (as the radial ones);
-    the two end voussoirs follow the extrados arc down to the springing line.
+    the two end voussoirs follow the extrados arc down to the springing line; ``meta`` is
+    the generator's record (:func:`semicircular_arch`).
     """
     if n < 2:
         raise ValueError(f"vertical joints need voussoirs >= 2, got {n}")
@@ -193,16 +195,6 @@ def _vertical_joint_arch(ri: float, t: float, depth: float, n: int, unit_weight:
     je[0], je[-1] = [-re, 0.0], [re, 0.0]
     # exact mirror images (the crown joint, for even n, on x = 0)
     ji, je = _mirror_joints(ji[: n // 2 + 1], n), _mirror_joints(je[: n // 2 + 1], n)
-    meta = dict(
-        generator="semicircular_arch",
-        inner_radius=ri,
-        thickness=t,
-        depth=depth,
-        voussoirs=n,
-        unit_weight=unit_weight,
-        support_height=height,
-        joints="vertical",
-    )
     asm = arch_from_joints(ji, je, depth, unit_weight, height, meta)
     # the end voussoirs: base, the short intrados chord, the vertical joint, the extrados arc
     top = math.atan2(je[1, 1], -je[1, 0])  # extrados angle of joint 1, measured from -x
