@@ -201,15 +201,6 @@ class ArchBridgeStructure(_Strict):
     pier_height: Positive = 3.0
     piers: Literal["free", "fixed"] = "free"
 
-    @model_validator(mode="after")
-    def _not_too_many_blocks(self) -> ArchBridgeStructure:
-        if self.spans * (self.voussoirs + 2) + 1 > MAX_BLOCKS:
-            raise ValueError(
-                f"spans x (voussoirs + 2) + 1 = {self.spans * (self.voussoirs + 2) + 1} blocks, more than "
-                f"MAX_BLOCKS = {MAX_BLOCKS}; fix: use fewer spans or voussoirs"
-            )
-        return self
-
     def build(self) -> Assembly:
         """The assembly this section describes."""
         from ..structures.bridge import arch_bridge
@@ -268,15 +259,6 @@ class DomeStructure(_Strict):
     oculus: Annotated[float, Field(ge=0, lt=90)] = 0.0
     unit_weight: Positive = 20.0
     support_height: Positive | None = None
-
-    @model_validator(mode="after")
-    def _not_too_many_blocks(self) -> DomeStructure:
-        if self.sectors * (self.courses + 1) > MAX_BLOCKS:
-            raise ValueError(
-                f"sectors x (courses + 1) = {self.sectors * (self.courses + 1)} blocks, more than "
-                f"MAX_BLOCKS = {MAX_BLOCKS}; fix: use fewer sectors or courses"
-            )
-        return self
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
