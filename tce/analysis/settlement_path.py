@@ -230,8 +230,8 @@ class _Scene:
         return self.kin.dim + self.kin.nrot
 
 
-def _scene(assembly: Assembly, settlements: Mapping[str, ArrayLike]) -> _Scene:
-    plane = find_plane(assembly)
+def _scene(assembly: Assembly, settlements: Mapping[str, ArrayLike], model: str = "auto") -> _Scene:
+    plane = find_plane(assembly) if model == "auto" else None
     kin: _Planar | _Spatial = _Planar(plane) if plane is not None else _Spatial()
     names = assembly.support_names
     sett = check_settlements(names, settlements)
@@ -503,7 +503,11 @@ def _snap(
 
 
 def _checked(
-    assembly: Assembly, material: Material | None, settlements: Mapping[str, ArrayLike], alpha: float | None
+    assembly: Assembly,
+    material: Material | None,
+    settlements: Mapping[str, ArrayLike],
+    alpha: float | None,
+    model: str = "auto",
 ) -> tuple[_Scene, NDArray[np.float64]]:
     """The scene of a path and the lateral direction in its coordinates (zero without
     ``alpha``), checked (:func:`check_path_scene`)."""
@@ -513,7 +517,9 @@ def _checked(
             "settlement_path follows rigid blocks of a Heyman material (no friction limit, cohesion, "
             "strengths or stiffness): sliding and crushing are not followed"
         )
-    sc = _scene(assembly.validate(), settlements)
+    if model not in ("auto", "spatial"):
+        raise ValueError(f"model must be 'auto' or 'spatial', got {model!r}")
+    sc = _scene(assembly.validate(), settlements, model)
     if alpha is None:
         return sc, np.zeros(sc.dim)
     d = lateral_direction(alpha)
@@ -651,6 +657,7 @@ def settlement_path(
     gap_tol: float = 1e-7,
     snap_ratio: float = 1e3,
     snap_limit: float = 0.3,
+    model: str = "auto",
 ) -> SettlementPathResult:
     """Follow the support motion ``s * settlements`` from ``s = 0`` until nothing stands.
 
@@ -687,6 +694,11 @@ def settlement_path(
         an open joint closes (a snap, after which the path goes on); a fall in which some
         block turns by more than ``snap_limit`` rad, or moves by more than ``snap_limit``
         times the assembly's size, before any joint closes is a collapse.
+    model : {"auto", "spatial"}
+        ``"auto"`` follows a planar assembly in its plane (two contact points per interface,
+        three dofs per block) and any other in space; ``"spatial"`` follows every assembly
+        in space (the polygon vertices, six dofs per block): the same path, the check of
+        the spatial kinematics on a planar structure.
 
     Returns
     -------
@@ -700,7 +712,7 @@ def settlement_path(
     atol = increment / 64 if atol is None else float(atol)
     if not (math.isfinite(atol) and atol > 0):
         raise ValueError(f"atol must be a finite number > 0, got {atol!r}")
-    sc, direction = _checked(assembly, material, settlements, alpha if lam else None)
+    sc, direction = _checked(assembly, material, settlements, alpha if lam else None, model)
     gtol = gap_tol * sc.size
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in settlements.items()}
     n_solves = 0
