@@ -462,11 +462,18 @@ def _snap(
     taken as quasi-static with perfectly inelastic impacts: the energy released is
     dissipated when the joint closes. Returns the standing configuration, its closed
     contacts and its program, or None when no contact closes before some block has turned
-    by ``limit`` rad or moved by ``limit`` times the size (a collapse), or the program fails.
+    by ``reach`` rad or moved by ``reach`` times the size (a collapse), or the program
+    fails. ``reach`` is ``limit`` or, if larger, twice the widest opening of a joint open
+    at the start of the fall (the relative rotation of its blocks): a snap closes an open
+    joint by turning its blocks back by that joint's opening, so a path whose hinges have
+    opened wide must be followed as far to find the closure.
     """
     b = _weights(sc)
     bounds = ([(-1.0, 1.0)] * sc.dim + [(-1.0 / sc.size, 1.0 / sc.size)] * sc.kin.nrot) * len(sc.free)
     start = cf
+    ajar = np.bincount(sc.ci, weights=(~closed).astype(float), minlength=len(sc.ia)) > 0
+    rel = sc.kin.angles(cf.R[sc.ib[ajar]] @ np.swapaxes(cf.R[sc.ia[ajar]], -1, -2))
+    reach = max(limit, 2.0 * float(np.linalg.norm(rel, axis=-1).max(initial=0.0)))
     everything = np.ones(closed.shape, dtype=bool)
     for _ in range(2000):
         Gn, Gt, *_ = _operators(sc, cf, closed)
@@ -488,7 +495,7 @@ def _snap(
         new = _project(sc, new, keep)
         moved = np.abs(new.c - start.c).max() / sc.size
         turned = np.linalg.norm(sc.kin.angles(new.R @ np.swapaxes(start.R, -1, -2)), axis=-1).max()
-        if max(moved, turned) > limit:
+        if max(moved, turned) > reach:
             return None
         _, _, gap = _contacts(sc, new)
         now = gap <= gtol
@@ -693,7 +700,9 @@ def settlement_path(
         Where nothing stands, the structure's fall with the supports held is followed until
         an open joint closes (a snap, after which the path goes on); a fall in which some
         block turns by more than ``snap_limit`` rad, or moves by more than ``snap_limit``
-        times the assembly's size, before any joint closes is a collapse.
+        times the assembly's size, before any joint closes is a collapse. The limit is
+        raised to twice the widest opening of an open joint when that is larger (a snap
+        turns the blocks back by the opening of the joint it closes).
     model : {"auto", "spatial"}
         ``"auto"`` follows a planar assembly in its plane (two contact points per interface,
         three dofs per block) and any other in space; ``"spatial"`` follows every assembly
