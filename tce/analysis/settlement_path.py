@@ -1,12 +1,16 @@
 """Finite settlements: a support motion followed in increments, the geometry updated as it moves.
 
-For a planar assembly (an arch in its own plane: :func:`tce.core.model.find_plane`), rigid
-blocks and a Heyman material (no tension, no sliding, unlimited compressive strength), the
-support motion ``s * U`` (``U`` the scenario's settlement vectors, ``s`` the magnitude, a
-multiple of ``U``) grows from ``s = 0``. At every configuration the contact points are the
-ends of the interfaces (the two ends of each joint's trace in the plane, carried by both of
-its blocks); an end is *closed* when its two copies meet (the gap, measured along block A's
-normal, is within ``gap_tol``) and *open* otherwise. On the closed ends, the Total
+For rigid blocks of a Heyman material (no tension, no sliding, unlimited compressive
+strength), the support motion ``s * U`` (``U`` the scenario's settlement vectors, ``s`` the
+magnitude, a multiple of ``U``) grows from ``s = 0``. A planar assembly (an arch in its own
+plane: :func:`tce.core.model.find_plane`) is followed in its plane, with three dofs per block;
+any other (domes, vaults, block files) in space, with six; one code path serves both
+(:class:`_Planar` and :class:`_Spatial` hold the only differences: the moment arm, the
+rotation update and the tangent directions). At every configuration the contact points are
+those of the interfaces, carried by both of their blocks: in the plane the two ends of each
+joint's trace, in space the vertices of its polygon. A point is *closed* when its two copies
+meet (the gap, measured along block A's
+normal, is within ``gap_tol``) and *open* otherwise. On the closed points, the Total
 Complementary Energy of the rigid problem (the paper, eq. (11), ``D = 0``)::
 
     minimise    sum_j f_j . h_j                     (= -sum_s R_s . U_s)
@@ -16,7 +20,7 @@ and its dual, the kinematic problem of the blocks driven by the support velocity
 
     maximise    b . v
     subject to  G_n v + h_n >= 0   (no interpenetration: the closed ends may open)
-                G_t v + h_t  = 0   (no sliding at the closed ends)
+                G_t v + h_t  = 0   (no sliding at the closed ends: every tangent)
 
 are one linear program, solved with HiGHS (:func:`scipy.optimize.linprog`): its primal ``v``
 is the mechanism (block velocities per unit magnitude, about the current centroids: blocks
@@ -25,8 +29,9 @@ program is bounded exactly when an admissible force state exists on the current 
 (weak and strong duality), infeasible when the motion cannot be accommodated without
 interpenetration (``incompatible``), unbounded when nothing stands (collapse).
 
-An increment ``ds`` moves every block rigidly by ``v ds`` (a rotation about its centroid and
-a translation; the supports exactly by ``ds U``), then projects the configuration back onto
+An increment ``ds`` moves every block rigidly by ``v ds`` (a rotation about its centroid,
+composed with the block's rotation by Rodrigues' formula in space, and a translation; the
+supports exactly to ``(s + ds) U``), then projects the configuration back onto
 the contacts that stayed closed (one Gauss-Newton step on their relative displacements, so
 that the hinges of a long path do not drift apart), reclassifies every end (a joint that
 hinged has one closed end; a joint whose rotation reverses closes again; a new hinge forms
@@ -46,11 +51,14 @@ apart), ``no_collapse`` (still standing at ``s_max``), ``infeasible`` (nothing s
 interpenetrate, or more than :data:`MAX_STEPS` increments were needed). The ``message``
 says which.
 
-Sign conventions: in-plane coordinates ``(x, z)`` with ``x`` along the plane's horizontal
-direction ``e`` (:attr:`tce.core.model.Plane.e`), rotations positive counter-clockwise
-from ``e`` towards ``+z`` (the rotation vector ``-theta m``). Reactions are the wrench
-``(Rx, Rz, M)`` that the support exerts on the structure (kN, kN m), the moment about the
-support's current centroid.
+Sign conventions: in the plane, coordinates ``(x, z)`` with ``x`` along the plane's
+horizontal direction ``e`` (:attr:`tce.core.model.Plane.e`), rotations positive
+counter-clockwise from ``e`` towards ``+z`` (the rotation vector ``-theta m``); reactions are
+the wrench ``(Rx, Rz, M)`` that the support exerts on the structure (kN, kN m), the moment
+about the support's current centroid. In space, global ``(x, y, z)``, rotation vectors
+(rad) and wrenches ``(Fx, Fy, Fz, Mx, My, Mz)``. A support's motion at magnitude ``s`` is the
+translation ``s (ux, uy, uz)`` and the rotation by the vector ``s (rx, ry, rz)`` about its
+centroid.
 
 References
 ----------
@@ -58,6 +66,8 @@ Ochsendorf J.A. (2002), *Collapse of masonry structures*, PhD thesis, University
 (2006) The masonry arch on spreading supports, *The Structural Engineer* 84(2), 27-34.
 Coccia S., Di Carlo F., Rinaldi Z. (2015), Collapse displacements for a mechanism of spreading-
 induced supports in a masonry arch, *International Journal of Advanced Structural Engineering* 7.
+Zessin J., Lau W., Ochsendorf J. (2010), Equilibrium of cracked masonry domes, *Proceedings of
+the ICE - Engineering and Computational Mechanics* 163(3), 135 ff.
 Livesley R.K. (1978), Limit analysis of structures formed from rigid blocks, *IJNME* 12.
 """
 
@@ -445,7 +455,7 @@ def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     pb = cf.place(sc.ib[sc.ci[kc]], sc.points[kc], sc)
     mis = np.einsum("kd,kjd->jk", pb - pa, dirs).ravel()  # normal rows, then tangent by tangent
     J = sp.vstack([Gn, Gt]).tocsr()
-    dq = lsqr(J, -mis, atol=1e-15, btol=1e-15, iter_lim=100 * J.shape[1])[0].reshape(-1, sc.ndof)  # least norm
+    dq = lsqr(J, -mis, atol=1e-12, btol=1e-12, iter_lim=100 * J.shape[1])[0].reshape(-1, sc.ndof)  # least norm
     return cf.turned(sc, dq, sc.free)
 
 
