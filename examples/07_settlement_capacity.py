@@ -6,7 +6,7 @@ increase as a fraction of the centreline span. The path is run with the incremen
 (convergence: the capacities differ by less than 1e-3) and printed as a Markdown table, with
 the haunch hinge's angle above the springing. ``docs/settlements.md`` shows the table made by
 
-    python examples/07_settlement_capacity.py 0.11,0.12,0.13,0.15,0.175,0.2,0.225,0.25 36,72,144 0.001
+    python examples/07_settlement_capacity.py 0.11,0.12,0.13,0.15,0.175,0.2,0.225,0.25 36,72,144 0.004
 
 Run with no arguments for one quick row.
 """

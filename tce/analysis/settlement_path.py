@@ -239,6 +239,12 @@ class _Scene:
     def ndof(self) -> int:
         return self.kin.dim + self.kin.nrot
 
+    @property
+    def scale(self) -> NDArray[np.float64]:
+        """Per dof of a block, the factor of its scaled velocity: 1 for a translation, the
+        size for a rotation (:func:`_operators`)."""
+        return np.array([1.0] * self.kin.dim + [self.size] * self.kin.nrot)
+
 
 def _scene(assembly: Assembly, settlements: Mapping[str, ArrayLike], model: str = "auto") -> _Scene:
     plane = find_plane(assembly) if model == "auto" else None
@@ -333,7 +339,9 @@ class _Step:
 
 def _operators(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]):
     """Compatibility rows of the closed contacts: ``(Gn, Gt, hn, ht, kc, p, dirs)`` with
-    ``G`` (sparse) over the free blocks' velocities ``(v, w)`` (``ndof`` each), ``Gn`` one
+    ``G`` (sparse) over the free blocks' scaled velocities ``(v, w L)`` (``ndof`` each; ``L``
+    the assembly's size, so that every column is a length per unit magnitude and the
+    programs do not depend on the unit of length: :func:`_unscale`), ``Gn`` one
     row per closed contact, ``Gt`` one per closed contact and tangent (tangent by tangent),
     ``h`` the supports' part, ``kc`` the closed contacts, ``p`` their points and ``dirs``
     (nk, dim, dim) their directions ``(n, t...)``."""
@@ -356,7 +364,7 @@ def _operators(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]):
             # velocity of the point on block blk along d per unit (v, w): d, and (w x r) . d
             coef = sign * np.column_stack([d, sc.kin.moment(pt - cf.c[blk], d)])
             free = col[blk] >= 0
-            vals.append(coef[free].ravel())
+            vals.append((coef[free] / sc.scale).ravel())
             ri.append(np.repeat(rows[free], nd))
             cj.append((nd * col[blk][free, None] + np.arange(nd)).ravel())
             h[~free] += np.einsum("ij,ij->i", coef[~free], vsup[blk[~free]])
@@ -366,6 +374,11 @@ def _operators(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]):
     Gt = sp.vstack([g for g, _ in out[1:]]).tocsr()
     ht = np.concatenate([h for _, h in out[1:]])
     return Gn, Gt, hn, ht, kc, pt, dirs
+
+
+def _unscale(sc: _Scene, x: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Free blocks' velocities ``(nf, ndof)`` from the scaled ones of :func:`_operators`."""
+    return x.reshape(-1, sc.ndof) / sc.scale
 
 
 def _weights(sc: _Scene) -> NDArray[np.float64]:
@@ -380,7 +393,8 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
     docstring); the equilibrium of the duals is checked."""
     Gn, Gt, hn, ht, kc, p, dirs = _operators(sc, cf, closed)
     b = _weights(sc)
-    res = linprog(-b, A_ub=-Gn, b_ub=hn, A_eq=Gt, b_eq=-ht, bounds=(None, None), method="highs")
+    V = np.abs(sc.velocity).max(initial=0.0) or 1.0  # velocities in units of the supports' largest
+    res = linprog(-b, A_ub=-Gn, b_ub=hn / V, A_eq=Gt, b_eq=-ht / V, bounds=(None, None), method="highs")
     if res.status == 2:
         return _Step("infeasible", message="the support motion needs interpenetration: " + res.message)
     if res.status == 3:
@@ -394,13 +408,13 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
         return _Step("numerical", message=f"equilibrium residual {np.abs(resid).max():.2e} of the dual state")
     nd = sc.ndof
     v = np.zeros((len(sc.weights), nd))
-    v[sc.free] = res.x.reshape(-1, nd)
+    v[sc.free] = V * _unscale(sc, res.x)
     v[sc.support] = sc.velocity
     total = sc.weights[sc.free].sum()
     fn = np.zeros(closed.shape)
     fn[kc] = fn_ * total
     dn = np.zeros(closed.shape)
-    dn[kc] = Gn @ res.x + hn
+    dn[kc] = V * (Gn @ res.x) + hn
     # the force at each closed contact (global in-frame components), +f on B and -f on A
     comps = np.column_stack([fn_, ft_.reshape(sc.dim - 1, -1).T]) * total if len(kc) else np.zeros((0, sc.dim))
     f = np.einsum("kj,kjd->kd", comps, dirs)
@@ -455,8 +469,8 @@ def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     pb = cf.place(sc.ib[sc.ci[kc]], sc.points[kc], sc)
     mis = np.einsum("kd,kjd->jk", pb - pa, dirs).ravel()  # normal rows, then tangent by tangent
     J = sp.vstack([Gn, Gt]).tocsr()
-    dq = lsqr(J, -mis, atol=1e-12, btol=1e-12, iter_lim=100 * J.shape[1])[0].reshape(-1, sc.ndof)  # least norm
-    return cf.turned(sc, dq, sc.free)
+    dq = lsqr(J, -mis, atol=1e-12, btol=1e-12, iter_lim=100 * J.shape[1])[0]  # least norm
+    return cf.turned(sc, _unscale(sc, dq), sc.free)
 
 
 def _snap(
@@ -479,7 +493,7 @@ def _snap(
     opened wide must be followed as far to find the closure.
     """
     b = _weights(sc)
-    bounds = ([(-1.0, 1.0)] * sc.dim + [(-1.0 / sc.size, 1.0 / sc.size)] * sc.kin.nrot) * len(sc.free)
+    bounds = (-1.0, 1.0)  # scaled velocities (:func:`_operators`)
     start = cf
     ajar = np.bincount(sc.ci, weights=(~closed).astype(float), minlength=len(sc.ia)) > 0
     rel = sc.kin.angles(cf.R[sc.ib[ajar]] @ np.swapaxes(cf.R[sc.ia[ajar]], -1, -2))
@@ -491,7 +505,7 @@ def _snap(
         if res.status != 0 or -res.fun <= _FEAS:
             return None
         d = np.zeros((len(sc.weights), sc.ndof))
-        d[sc.free] = res.x.reshape(-1, sc.ndof)
+        d[sc.free] = _unscale(sc, res.x)
         GnA, *_ = _operators(sc, cf, everything)
         rate = GnA @ res.x  # opening rate of every contact along d
         _, _, gap = _contacts(sc, cf)
