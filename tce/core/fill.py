@@ -25,9 +25,25 @@ fixed loads (part of ``b_fixed``), and it adds no strength of its own.
   plan area is ``-k0 sigma_v (n_x, n_y) / n_z``; it is proportional to the column's weight
   density, so its resultant ``-k0 (n_x, n_y) / n_z * W`` acts at the same point as the
   weight, exactly. It pushes each haunch towards the crown.
-- **Passive restraint** (the extra resistance the fill offers to a haunch moving into it,
-  up to ``k_p sigma_v``) is not modelled: it depends on the mechanism's direction, which a
-  fixed load cannot follow. Leaving it out is on the safe side.
+- **Passive restraint** (``kp`` > 0; 0, the default, switches it off): the fill resists a
+  voussoir that moves into it with a horizontal pressure up to the passive one, ``kp
+  sigma_v`` (Rankine: ``kp = (1 + sin(phi)) / (1 - sin(phi))``). It is not a fixed load: each
+  exposed piece gets a horizontal force ``p`` of its own, pointing from the fill into the
+  ring (as the at-rest pressure does), ``0 <= p <= (kp - k0) |n_h| / n_z * W`` (the pressure
+  between at rest and passive over the piece's vertical projection; ``W`` its column's
+  weight as above, ``n_h`` the horizontal part of the outward normal), an unknown of the
+  direct limit analysis (:mod:`tce.core.passive`). Dually, a mechanism pays ``p_max`` times
+  the velocity with which the piece moves into the fill, and nothing where it moves away: the
+  fill resists, never drives. This is how mechanism programs for arch bridges model the
+  backfill's restraint, "specified separately" from the live load's spread and independent
+  of the mode of response (Gilbert, Smith, Melbourne and Wang, "Experimental study of
+  soil-arch interaction in masonry bridges", abstract; M. A. Crisfield and A. J. Packham,
+  "A mechanism program for computing the strength of masonry arch bridges", TRRL Research
+  Report 124, 1987; M. Gilbert, *RING 1.5 Theory and Modelling Guide*, University of
+  Sheffield, 2005, "Modelling backfill"), here with the full passive pressure and no wall friction;
+  a partly mobilised pressure is a smaller ``kp`` (e.g. ``k0 + m (Kp - k0)``, ``m`` the
+  mobilisation). Only the direct limit (and what uses it: the critical position, the adequacy
+  factor) carries it: the load path's TCE states do not.
 """
 
 from __future__ import annotations
@@ -42,7 +58,7 @@ import shapely
 from ..structures.assembly import Assembly
 from .surface import LoadError, _upward_faces, _vector, top_surface
 
-__all__ = ["DISPERSION_2_TO_1", "Fill", "fill_forces", "road_level"]
+__all__ = ["DISPERSION_2_TO_1", "Fill", "fill_columns", "fill_forces", "passive_bounds", "road_level"]
 
 #: the 2:1 method's spread angle from the vertical (degrees): atan(1/2)
 DISPERSION_2_TO_1 = math.degrees(math.atan(0.5))
@@ -67,6 +83,9 @@ class Fill:
     k0 : float
         Coefficient of horizontal pressure at rest (>= 0, < 1 as soils have it); 0
         (default): no horizontal pressure.
+    kp : float
+        Coefficient of passive pressure (0, the default: no passive restraint; else >= 1 and
+        > ``k0``), the bound of the fill's resistance to a voussoir moving into it.
     """
 
     depth: float
@@ -74,12 +93,14 @@ class Fill:
     weight: bool = True
     dispersion: float = DISPERSION_2_TO_1
     k0: float = 0.0
+    kp: float = 0.0
 
     def __post_init__(self) -> None:
         (depth,) = _vector([self.depth], 1, "depth", "m")
         (gamma,) = _vector([self.unit_weight], 1, "unit_weight", "kN/m^3")
         (angle,) = _vector([self.dispersion], 1, "dispersion", "degrees from the vertical")
         (k0,) = _vector([self.k0], 1, "k0", "-")
+        (kp,) = _vector([self.kp], 1, "kp", "-")
         if depth < 0:
             raise LoadError("depth", f"{depth:g} m", "give a depth of fill over the crown >= 0 (m)")
         if not gamma > 0:
@@ -88,15 +109,18 @@ class Fill:
             raise LoadError("dispersion", f"{angle:g} degrees", "give a spread angle from 0 to 60 degrees from the vertical")
         if not 0 <= k0 < 1:
             raise LoadError("k0", f"{k0:g}", "give a coefficient at rest from 0 to below 1 (Jaky: 1 - sin(phi))")
+        if kp != 0.0 and not (kp >= 1.0 and kp > k0):
+            raise LoadError("kp", f"{kp:g}", "give 0 (no passive restraint) or a passive coefficient >= 1 and above k0 "
+                            "(Rankine: (1 + sin(phi)) / (1 - sin(phi)))")
         if not isinstance(self.weight, bool):
             raise LoadError("weight", f"not true or false ({self.weight!r})", "write true or false")
-        for key, v in (("depth", depth), ("unit_weight", gamma), ("dispersion", angle), ("k0", k0)):
+        for key, v in (("depth", depth), ("unit_weight", gamma), ("dispersion", angle), ("k0", k0), ("kp", kp)):
             object.__setattr__(self, key, v)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data, the keys of a ``[loads.fill]`` table."""
         return {"depth": self.depth, "unit_weight": self.unit_weight, "weight": self.weight,
-                "dispersion": self.dispersion, "k0": self.k0}
+                "dispersion": self.dispersion, "k0": self.k0, "kp": self.kp}
 
     def spread(self, h: float) -> float:
         """How far a load spreads on each side through ``h`` m of fill (m)."""
@@ -122,13 +146,40 @@ def _triangles(poly: shapely.Polygon) -> list[np.ndarray]:
 
 def fill_forces(assembly: Assembly, fill: Fill) -> list[tuple[int, np.ndarray, np.ndarray]]:
     """``(block, point, force)`` of the fill's weight and at-rest pressure on every exposed
-    top-surface piece of a free block (kN, m); empty when both are switched off.
+    top-surface piece of a free block (kN, m); empty when both are switched off."""
+    if not fill.weight and fill.k0 == 0.0:
+        return []
+    out = []
+    for block, point, W, n in fill_columns(assembly, fill):
+        force = np.array([-fill.k0 * n[0] / n[2] * W, -fill.k0 * n[1] / n[2] * W, -W if fill.weight else 0.0])
+        out.append((block, point, force))
+    return out
+
+
+def passive_bounds(assembly: Assembly, fill: Fill) -> list[tuple[int, np.ndarray, np.ndarray, float]]:
+    """``(block, point, direction, capacity)`` of the passive restraint on every exposed
+    top-surface piece of a free block whose face is not horizontal: the unit horizontal
+    direction from the fill into the ring and the largest extra force ``(kp - k0) |n_h| / n_z
+    W`` (kN; module docstring); empty when ``kp`` is 0."""
+    if fill.kp == 0.0:
+        return []
+    out = []
+    for block, point, W, n in fill_columns(assembly, fill):
+        nh = math.hypot(n[0], n[1])
+        if nh <= 1e-12:
+            continue
+        out.append((block, point, np.array([-n[0] / nh, -n[1] / nh, 0.0]), (fill.kp - fill.k0) * nh / n[2] * W))
+    return out
+
+
+def fill_columns(assembly: Assembly, fill: Fill) -> list[tuple[int, np.ndarray, float, np.ndarray]]:
+    """``(block, point, W, normal)`` of the fill column over every exposed top-surface piece
+    of a free block: its weight ``W = gamma * integral of (road - z) dA`` (kN, > 0), the
+    point on the face under the column's plan centroid (m), the face's outward unit normal.
 
     The column integrals are exact for plane faces: edge-midpoint quadrature on a
     triangulation of each piece (exact for the quadratic ``x (road - z)``).
     """
-    if not fill.weight and fill.k0 == 0.0:
-        return []
     faces = _upward_faces(assembly)
     road = road_level(assembly, fill)
     out = []
@@ -145,8 +196,6 @@ def fill_forces(assembly: Assembly, fill: Fill) -> list[tuple[int, np.ndarray, n
         if vol <= 0.0:
             continue
         c = moment / vol
-        W = fill.unit_weight * vol
-        n = faces.normal[face]
-        force = np.array([-fill.k0 * n[0] / n[2] * W, -fill.k0 * n[1] / n[2] * W, -W if fill.weight else 0.0])
-        out.append((block, np.array([c[0], c[1], float(faces.z(face, c[0], c[1]))]), force))
+        out.append((block, np.array([c[0], c[1], float(faces.z(face, c[0], c[1]))]), fill.unit_weight * vol,
+                    np.asarray(faces.normal[face], dtype=float)))
     return out
