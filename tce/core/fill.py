@@ -17,7 +17,18 @@ fixed loads (part of ``b_fixed``), and it adds no strength of its own.
   1 horizontal to 2 vertical), is the "2:1 method" of soil mechanics (e.g. Holtz & Kovacs,
   *An Introduction to Geotechnical Engineering*, 1981, stress distribution under a loaded
   area); 0 switches it off (the wheel load is applied at the extrados as declared).
-  Boussinesq's elastic distribution is not implemented.
+- **Boussinesq dispersion** (``dispersion = "boussinesq"``): each wheel (a point, or its
+  patch as 4 x 4 equal point loads at the centres of its cells) spreads as in an elastic
+  half-space under a vertical point load ``Q`` at its surface (Boussinesq, *Application des
+  potentiels*, 1885): the vertical stress on a horizontal plane at depth ``h`` is
+  ``sigma_z = 3 Q h^3 / (2 pi (r^2 + h^2)^(5/2))`` (e.g. Holtz & Kovacs 1981, stresses from a
+  point load). ``h`` is the fill under the wheel's centre, as for the spread angle; each
+  exposed top-surface piece takes the integral of ``sigma_z`` over its plan (the extrados
+  projected onto that plane) at the stress's centroid, both in closed form over the piece's
+  plan rectangle (the integral over a rectangle is Newmark's corner influence factor, 1935);
+  the part beyond the deck (the stress has an infinite tail) or over a support is dropped with
+  a note. Pieces must be rectangles in plan (any orientation), as every top face of the arch
+  and bridge generators is; it needs ``depth`` > 0.
 - **Horizontal pressure at rest** (``k0`` > 0): the fill presses on each exposed piece with
   the vertical stress ``sigma_v = gamma (road - z)`` and the horizontal stress ``k0 sigma_v``
   (at rest; Jaky 1944: ``k0 = 1 - sin(phi)`` for a normally consolidated soil of friction
@@ -58,10 +69,14 @@ import shapely
 from ..structures.assembly import Assembly
 from .surface import LoadError, _upward_faces, _vector, top_surface
 
-__all__ = ["DISPERSION_2_TO_1", "Fill", "fill_columns", "fill_forces", "passive_bounds", "road_level"]
+__all__ = ["BOUSSINESQ", "DISPERSION_2_TO_1", "Fill", "boussinesq_parts", "boussinesq_rectangle", "fill_columns", "fill_forces", "passive_bounds", "road_level"]
 
 #: the 2:1 method's spread angle from the vertical (degrees): atan(1/2)
 DISPERSION_2_TO_1 = math.degrees(math.atan(0.5))
+#: the ``dispersion`` of Boussinesq's elastic distribution
+BOUSSINESQ = "boussinesq"
+#: a wheel's patch is this many x this many equal point loads under Boussinesq's distribution
+PATCH_POINTS = 4
 
 
 @dataclass(frozen=True)
@@ -77,9 +92,10 @@ class Fill:
         Unit weight of the fill (kN/m^3, > 0).
     weight : bool
         Apply the weight of the fill columns (default true).
-    dispersion : float
+    dispersion : float or "boussinesq"
         Spread angle of wheel loads through the fill, degrees from the vertical, in
-        ``[0, 60]``; default :data:`DISPERSION_2_TO_1`; 0: no dispersion.
+        ``[0, 60]``; default :data:`DISPERSION_2_TO_1`; 0: no dispersion; or
+        ``"boussinesq"``: Boussinesq's elastic distribution (module docstring).
     k0 : float
         Coefficient of horizontal pressure at rest (>= 0, < 1 as soils have it); 0
         (default): no horizontal pressure.
@@ -91,21 +107,29 @@ class Fill:
     depth: float
     unit_weight: float
     weight: bool = True
-    dispersion: float = DISPERSION_2_TO_1
+    dispersion: float | str = DISPERSION_2_TO_1
     k0: float = 0.0
     kp: float = 0.0
 
     def __post_init__(self) -> None:
         (depth,) = _vector([self.depth], 1, "depth", "m")
         (gamma,) = _vector([self.unit_weight], 1, "unit_weight", "kN/m^3")
-        (angle,) = _vector([self.dispersion], 1, "dispersion", "degrees from the vertical")
+        if isinstance(self.dispersion, str):
+            if self.dispersion != BOUSSINESQ:
+                raise LoadError("dispersion", repr(self.dispersion), f"give a spread angle (degrees) or {BOUSSINESQ!r}")
+            if not depth > 0:
+                raise LoadError("dispersion", f"{BOUSSINESQ!r} under {depth:g} m of fill",
+                                "give a positive depth (a point load at the surface has no spread)")
+            angle = BOUSSINESQ
+        else:
+            (angle,) = _vector([self.dispersion], 1, "dispersion", "degrees from the vertical")
         (k0,) = _vector([self.k0], 1, "k0", "-")
         (kp,) = _vector([self.kp], 1, "kp", "-")
         if depth < 0:
             raise LoadError("depth", f"{depth:g} m", "give a depth of fill over the crown >= 0 (m)")
         if not gamma > 0:
             raise LoadError("unit_weight", f"{gamma:g} kN/m^3", "give a positive unit weight (kN/m^3)")
-        if not 0 <= angle <= 60:
+        if angle != BOUSSINESQ and not 0 <= angle <= 60:
             raise LoadError("dispersion", f"{angle:g} degrees", "give a spread angle from 0 to 60 degrees from the vertical")
         if not 0 <= k0 < 1:
             raise LoadError("k0", f"{k0:g}", "give a coefficient at rest from 0 to below 1 (Jaky: 1 - sin(phi))")
@@ -123,7 +147,10 @@ class Fill:
                 "dispersion": self.dispersion, "k0": self.k0, "kp": self.kp}
 
     def spread(self, h: float) -> float:
-        """How far a load spreads on each side through ``h`` m of fill (m)."""
+        """How far a load spreads on each side through ``h`` m of fill (m), by the spread
+        angle (0 with Boussinesq's distribution, which has no edge)."""
+        if self.dispersion == BOUSSINESQ:
+            return 0.0
         return max(h, 0.0) * math.tan(math.radians(self.dispersion))
 
 
@@ -199,3 +226,83 @@ def fill_columns(assembly: Assembly, fill: Fill) -> list[tuple[int, np.ndarray, 
         out.append((block, np.array([c[0], c[1], float(faces.z(face, c[0], c[1]))]), fill.unit_weight * vol,
                     np.asarray(faces.normal[face], dtype=float)))
     return out
+
+
+def boussinesq_rectangle(u1: float, u2: float, v1: float, v2: float, h: float) -> tuple[float, float, float]:
+    """``(fraction, Mu, Mv)``: the integral of Boussinesq's ``sigma_z / Q`` over the plan
+    rectangle ``[u1, u2] x [v1, v2]`` (m, the point load at the origin) on the plane ``h`` m
+    below it, and its first moments about the origin (m).
+
+    The fraction is Newmark's corner factor ``F(a, b) = (a b h (a^2 + b^2 + 2 h^2) /
+    ((a^2 + h^2)(b^2 + h^2) R) + atan(a b / (h R))) / (2 pi)``, ``R^2 = a^2 + b^2 + h^2`` (odd
+    in ``a`` and ``b``), at the four corners; the moments integrate ``u sigma_z`` first in
+    ``u``, then in ``v`` with ``int dv / (v^2 + k^2)^(3/2) = v / (k^2 sqrt(v^2 + k^2))``.
+    """
+    def F(a: float, b: float) -> float:
+        R = math.sqrt(a * a + b * b + h * h)
+        return (a * b * h * (a * a + b * b + 2 * h * h) / ((a * a + h * h) * (b * b + h * h) * R)
+                + math.atan(a * b / (h * R))) / (2.0 * math.pi)
+
+    def G(t: float, k2: float) -> float:
+        return t / (k2 * math.sqrt(t * t + k2))
+
+    def M(a1: float, a2: float, b1: float, b2: float) -> float:
+        k1, k2 = a1 * a1 + h * h, a2 * a2 + h * h
+        return h**3 / (2.0 * math.pi) * ((G(b2, k1) - G(b1, k1)) - (G(b2, k2) - G(b1, k2)))
+
+    frac = F(u2, v2) - F(u1, v2) - F(u2, v1) + F(u1, v1)
+    return frac, M(u1, u2, v1, v2), M(v1, v2, u1, u2)
+
+
+def boussinesq_parts(
+    assembly: Assembly, x: float, y: float, patch: tuple[float, float] | None, h: float,
+) -> tuple[list[tuple[int, tuple[float, float, float], float]], float]:
+    """``(block, point, fraction of the wheel load)`` on each exposed top-surface piece of a
+    free block under Boussinesq's distribution of a wheel at plan ``(x, y)`` through ``h`` m
+    of fill (its ``patch``, ``(l, w)`` m or None, as :data:`PATCH_POINTS` squared point loads),
+    and the fraction off the deck (module docstring).
+
+    Raises
+    ------
+    LoadError
+        A piece that is not a rectangle in plan.
+    """
+    if patch is None:
+        sources = [(x, y, 1.0)]
+    else:
+        n = PATCH_POINTS
+        off = (np.arange(n) + 0.5) / n - 0.5
+        sources = [(x + a * patch[0], y + b * patch[1], 1.0 / n**2) for a in off for b in off]
+    faces = _upward_faces(assembly)
+    parts, on = [], 0.0
+    for block, face, poly in top_surface(assembly):
+        if assembly.blocks[block].support:
+            continue
+        o, e1, e2, (L1, L2) = _plan_rectangle(poly, assembly.names[block])
+        frac, mu, mv = 0.0, 0.0, 0.0
+        for sx, sy, w in sources:
+            du, dv = (sx - o[0]) * e1[0] + (sy - o[1]) * e1[1], (sx - o[0]) * e2[0] + (sy - o[1]) * e2[1]
+            f, a, b = boussinesq_rectangle(-du, L1 - du, -dv, L2 - dv, h)
+            frac += w * f
+            mu += w * (a + du * f)  # first moments about the rectangle's corner o
+            mv += w * (b + dv * f)
+        if frac <= 1e-15:
+            continue
+        c = o + (mu / frac) * e1 + (mv / frac) * e2
+        parts.append((block, (float(c[0]), float(c[1]), float(faces.z(face, c[0], c[1]))), frac))
+        on += frac
+    return parts, max(0.0, 1.0 - on)
+
+
+def _plan_rectangle(poly: shapely.Polygon, name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[float, float]]:
+    """Corner ``o``, unit edge directions ``e1``, ``e2`` and side lengths of a plan polygon
+    that is a rectangle (any orientation)."""
+    rect = shapely.minimum_rotated_rectangle(poly)
+    if not (rect.area > 0 and abs(rect.area - poly.area) <= 1e-9 * rect.area):
+        raise LoadError("dispersion", f"{BOUSSINESQ!r} on block {name!r}, whose top face is not a rectangle in plan",
+                        "use a spread angle for this structure")
+    c = np.asarray(rect.exterior.coords)[:4]
+    d1, d2 = c[1] - c[0], c[3] - c[0]
+    L1, L2 = float(np.hypot(*d1)), float(np.hypot(*d2))
+    e1, e2 = d1 / L1, d2 / L2
+    return c[0], e1, e2, (L1, L2)

@@ -389,7 +389,7 @@ class FillSection(_Strict):
     depth: NonNegative
     unit_weight: Positive
     weight: bool = True
-    dispersion: Annotated[float, Field(ge=0, le=60)] = DISPERSION_2_TO_1
+    dispersion: Annotated[float, Field(ge=0, le=60)] | Literal["boussinesq"] = DISPERSION_2_TO_1
     k0: Annotated[float, Field(ge=0, lt=1)] = 0.0
     kp: NonNegative = 0.0
 
