@@ -223,3 +223,15 @@ def test_search_in_workers_and_resumed_gives_the_same_dataset(run, tmp_path) -> 
         other = xr.load_dataset(tmp_path / "out" / "vehicle" / "results.nc")
         for name in ("critical_x", "critical_lambda", "lambda_max", "scan_x", "scan_lambda"):
             np.testing.assert_array_equal(other[name].values, ds[name].values)
+
+
+def test_boussinesq_on_a_dome_exits_2_naming_the_key(tmp_path, capsys) -> None:
+    # Boussinesq's closed forms need plan rectangles; a dome's top faces are not
+    text = ('[study]\nname = "dome_bq"\n[structure]\ntype = "dome"\n[loads]\nlateral = false\n'
+            '[loads.fill]\ndepth = 0.3\nunit_weight = 18.0\ndispersion = "boussinesq"\n'
+            '[[loads.vehicle]]\naxles = [[0.3, 1.0]]\n[scenarios.none]\n')
+    path = write(tmp_path, text)
+    code = main(["run", str(path), "--out", str(tmp_path / "out"), "--jobs", "1", "--no-plots"])
+    err = capsys.readouterr().err
+    assert code == 2 and f"{path}: loads.fill.dispersion" in err and "not a rectangle in plan" in err
+    assert not (tmp_path / "out").exists()

@@ -299,7 +299,7 @@ def _plan_rectangle(poly: shapely.Polygon, name: str) -> tuple[np.ndarray, np.nd
     that is a rectangle (any orientation)."""
     rect = shapely.minimum_rotated_rectangle(poly)
     if not (rect.area > 0 and abs(rect.area - poly.area) <= 1e-9 * rect.area):
-        raise LoadError("dispersion", f"{BOUSSINESQ!r} on block {name!r}, whose top face is not a rectangle in plan",
+        raise LoadError("fill.dispersion", f"{BOUSSINESQ!r} on block {name!r}, whose top face is not a rectangle in plan",
                         "use a spread angle for this structure")
     c = np.asarray(rect.exterior.coords)[:4]
     d1, d2 = c[1] - c[0], c[3] - c[0]
