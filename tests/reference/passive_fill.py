@@ -29,6 +29,7 @@ import numpy as np
 from scipy.optimize import linprog
 
 from reference.funicular import joints
+from reference.moving_load import joint_matrix, voussoir_weights
 
 
 class FilledRing:
@@ -44,16 +45,7 @@ class FilledRing:
         u = (self.ji - centre) / R
         self.nrm = np.column_stack([u[:, 1], -u[:, 0]])  # normal of joint j, from voussoir j-1 into j
         self.tan = u
-        self.weight = np.zeros(n)
-        self.centroid = np.zeros((n, 2))
-        for k in range(n):
-            poly = np.array([self.ji[k], self.je[k], self.je[k + 1], self.ji[k + 1]])
-            x, z = poly[:, 0], poly[:, 1]
-            xs, zs = np.roll(x, -1), np.roll(z, -1)
-            cross = x * zs - xs * z
-            area = cross.sum() / 2.0
-            self.centroid[k] = [((x + xs) * cross).sum() / (6 * area), ((z + zs) * cross).sum() / (6 * area)]
-            self.weight[k] = gamma * d * abs(area)
+        self.weight, self.centroid = voussoir_weights(self.ji, self.je, gamma, d)
         road = self.je[:, 1].max() + depth
         # fill columns over the extrados chords: W, point, fixed horizontal, passive bound and sign
         self.fill = []
@@ -82,16 +74,8 @@ class FilledRing:
         n = self.n
         nj = 4 * (n + 1)
         nv = nj + n + 1
-        A = np.zeros((3 * n, nv))
+        A = joint_matrix(self.ji, self.je, self.nrm, self.tan, nv)
         b = np.zeros(3 * n)
-        for j in range(n + 1):
-            for v, p in enumerate((self.ji[j], self.je[j])):
-                for c, e in enumerate((self.nrm[j], self.tan[j])):
-                    col = 4 * j + 2 * v + c
-                    m = p[0] * e[1] - p[1] * e[0]
-                    for k, sign in ((j, 1.0), (j - 1, -1.0)):
-                        if 0 <= k < n:
-                            A[3 * k:3 * k + 3, col] += sign * np.array([e[0], e[1], m])
         for k in range(n):
             cx, cz = self.centroid[k]
             W, xc, zc, H0, _, sgn = self.fill[k]
