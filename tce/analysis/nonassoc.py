@@ -75,6 +75,7 @@ from ..core.clarabel_solver import solve_once
 from ..core.conic import ConeRows, cone_rows, cone_violation
 from ..core.limit import LimitResult, LimitSolver, Mechanism
 from ..core.loads import LoadPattern, as_pattern, scene_vectors
+from ..core.passive import refuse_passive
 from ..core.material import Material
 from ..core.model import Model
 from ..core.problem import least_violation_problem
@@ -222,6 +223,7 @@ class NonAssocSolver:
         loads of the pattern ``loads``; ``start`` is the associative answer when the caller
         has it (:meth:`tce.core.analysis.Analysis.limit`)."""
         pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
+        refuse_passive(pattern, "the non-associative estimate")
         return self.solve_loads(b_fixed, b_live, pattern.direction, start)
 
     def solve_loads(
