@@ -22,9 +22,12 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
 from reference import continuous_arch as ref  # noqa: E402
+from reference import continuous_dome as dome_ref  # noqa: E402
 
 from tce import Analysis, Material, semicircular_arch  # noqa: E402
-from tce.quality.validation import CASES, crown_thrust, friction_bound, min_ratio, stress_block_column  # noqa: E402
+from tce.quality.validation import (  # noqa: E402
+    CASES, crown_thrust, dome_min_ratio, friction_bound, min_ratio, stress_block_column,
+)
 
 IMG = ROOT / "docs" / "img"
 PUBLISHED = {c.name: c.published for c in CASES}
@@ -156,7 +159,38 @@ def stress_block() -> None:
     _save(fig, "validation_stress_block.png")
 
 
+def dome_convergence() -> None:
+    """Heyman's hemisphere: least t/R against the courses, tce against the axisymmetric LP."""
+    courses = [3, 4, 6, 8, 12, 16, 24, 32]
+    tce_values = [dome_min_ratio(4, c, 1e-6) for c in courses]  # the sectors do not matter
+    facets = [dome_ref.minimum_thickness(c, lo=0.02, hi=0.08, tol=1e-8, shell="facets") for c in courses]
+    sphere = [dome_ref.minimum_thickness(c, tol=1e-8) for c in courses]
+    limit = dome_ref.minimum_thickness(200, tol=1e-8)
+    print("courses   ", courses)
+    print("tce       ", [f"{v:.7f}" for v in tce_values])
+    print("LP facets ", [f"{v:.7f}" for v in facets])
+    print("LP sphere ", [f"{v:.7f}" for v in sphere], "200 courses", f"{limit:.7f}")
+    fig, ax = plt.subplots(figsize=(7.5, 4.6))
+    ax.plot(courses, tce_values, "o", ms=8, mfc="none", color="C0", label="tce, 4 sectors (any number gives the same)")
+    ax.plot(courses, facets, "-", color="C0", lw=1, label="axisymmetric LP, the same facetted courses")
+    ax.plot(courses, sphere, "s--", color="C2", ms=4, lw=1, label="axisymmetric LP, spherical courses")
+    ax.axhline(limit, color="k", ls=":", label=f"LP, 200 courses: {limit:.5f} (R mid-surface)")
+    ax.axhline(PUBLISHED["heyman_dome"], color="C3", ls="--", label="Heyman 1977 (cited): 0.042")
+    ax.axhline(limit / (1 + limit / 2), color="grey", ls="-.", lw=0.8,
+               label=f"the same against the extrados radius: {limit / (1 + limit / 2):.5f}")
+    ax.set_xlabel("courses (crown to base)")
+    ax.set_ylabel("least thickness t/R")
+    ax.set_title("Hemispherical dome under self-weight: least thickness against the courses")
+    ax.legend(fontsize=7.5, loc="lower right")
+    ax.grid(alpha=0.3)
+    _save(fig, "validation_dome.png")
+
+
+STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence)
+
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)
-    for step in (thickness_convergence, friction_curve, paper_cases, stress_block):
-        step()
+    chosen = sys.argv[1:]  # names of steps to run (default: all)
+    for step in STEPS:
+        if not chosen or step.__name__ in chosen:
+            step()
