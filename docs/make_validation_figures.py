@@ -23,6 +23,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from reference import continuous_arch as ref  # noqa: E402
 from reference import continuous_dome as dome_ref  # noqa: E402
+from reference import lateral_arch as lateral_ref  # noqa: E402
 
 from tce import Analysis, Material, semicircular_arch  # noqa: E402
 from tce.quality.validation import (  # noqa: E402
@@ -186,7 +187,35 @@ def dome_convergence() -> None:
     _save(fig, "validation_dome.png")
 
 
-STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence)
+def lateral_capacity() -> None:
+    """The semicircular arch under a horizontal acceleration: lambda_max against t/R."""
+    ts = [0.11, 0.12, 0.135, 0.15, 0.175, 0.2, 0.25, 0.3, 0.4, 0.5]
+    dense = np.linspace(0.108, 0.5, 60)
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    for n, colour in ((14, "C1"), (40, "C0")):
+        lam = [Analysis(semicircular_arch(1 - t / 2, t, 0.25, n), Material()).limit(0.0).lambda_max for t in ts]
+        lp = [lateral_ref.capacity(t, n, "facets") for t in ts]
+        print(f"n={n:<3} tce", [f"{v:.6f}" for v in lam])
+        print(f"n={n:<3} LP ", [f"{v:.6f}" for v in lp])
+        ax.plot(ts, lam, "o", mfc="none", ms=8, color=colour, label=f"tce, {n} voussoirs")
+        ax.plot(dense, [lateral_ref.capacity(t, n, "facets") for t in dense], "-", lw=1, color=colour,
+                label=f"LP over the same {n} voussoirs")
+    ring = [lateral_ref.capacity(t, 2000) for t in dense]
+    print("t/R", ts)
+    print("ring", [f"{lateral_ref.capacity(t, 2000):.6f}" for t in ts])
+    ax.plot(dense, ring, "k:", label="LP, continuous ring (2000 cuts)")
+    ax.axvline(0.107478, color="grey", lw=0.8, ls="--", label="least thickness under self-weight, 0.1075")
+    ax.set_xlabel("thickness ratio t/R")
+    ax.set_ylabel("lambda_max = horizontal acceleration / g")
+    ax.set_title("Semicircular arch under a horizontal acceleration (no sliding)")
+    right = ax.secondary_yaxis("right", functions=(lambda v: np.degrees(np.arctan(v)), lambda d: np.tan(np.radians(d))))
+    right.set_ylabel("tilt of a tilting table, atan(lambda) (deg)")
+    ax.legend(fontsize=7.5, loc="upper left")
+    ax.grid(alpha=0.3)
+    _save(fig, "validation_lateral.png")
+
+
+STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity)
 
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)
