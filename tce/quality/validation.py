@@ -45,6 +45,7 @@ __all__ = [
     "CASES",
     "ValidationCase",
     "block_on_strips",
+    "arch_in_strips",
     "crown_thrust",
     "dome_min_ratio",
     "format_validation",
@@ -179,6 +180,33 @@ def _stress_block_closed_form(b: float = 0.4, d: float = 0.3, h: float = 1.0, fc
                               unit_weight: float = 20.0) -> float:
     w = unit_weight * b * d * h
     return (b - w / (fc * d)) / h
+
+
+def arch_in_strips(assembly: Assembly, strips: int) -> Assembly:
+    """The same blocks with every interface cut into ``strips`` equal strips across the joint.
+
+    Each interface of an arch spanning x (depth along y) is a quadrilateral whose two edges
+    normal to y run from the intrados to the extrados; both are cut into ``strips`` equal
+    parts and joined across the depth, so a compressive strength bounds each strip's force and
+    the joint approaches the rigid-plastic stress block as the strips are refined (the single
+    block of :func:`block_on_strips` reaches it exactly).
+    """
+    faces = []
+    for face in assembly.interfaces:
+        p = np.asarray(face.points, dtype=float)
+        if len(p) != 4:
+            raise ValueError(f"interface {face.a}-{face.b} has {len(p)} vertices, not 4")
+        # the edges 0-1 and 3-2, or 1-2 and 0-3, that lie in planes of constant y
+        if abs(p[1, 1] - p[0, 1]) < 1e-12 and abs(p[2, 1] - p[3, 1]) < 1e-12:
+            front, back = (p[0], p[1]), (p[3], p[2])
+        else:
+            front, back = (p[1], p[2]), (p[0], p[3])
+        s = np.linspace(0.0, 1.0, strips + 1)[:, None]
+        f = front[0] + s * (front[1] - front[0])
+        b = back[0] + s * (back[1] - back[0])
+        faces += [Interface(face.a, face.b, np.array([f[k], f[k + 1], b[k + 1], b[k]]), face.normal, face.stiffness)
+                  for k in range(strips)]
+    return Assembly(assembly.blocks, tuple(faces), dict(assembly.meta, strips=strips))
 
 
 # ------------------------------------------------------------------------------ dome cases

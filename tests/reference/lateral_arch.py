@@ -17,7 +17,11 @@ moments ``Sx = int x dW``, ``Sz = int z dW``) onto the rest the force
 
 ``shell="ring"``: ``m`` cuts, each part an annular sector (its centroid at radius
 ``(2/3)(re^3 - ri^3)/(re^2 - ri^2) sin(b/2)/(b/2)`` on its bisector): the continuous arch as
-``m`` grows. ``shell="facets"``: the ``m + 1`` joints of ``m`` voussoirs with straight intrados
+``m`` grows. With a finite compressive strength ``f = fc / (gamma R)`` (dimensionless) every
+joint is a rigid-plastic stress block: the compressed zone ``N / f`` is centred on the pressure
+point, so ``ri + N / (2 f) <= rho <= re - N / (2 f)``, i.e.
+``N^2 / (2 f) <= Sx + lam Sz - M0 - ri N`` and ``N^2 / (2 f) <= re N - (Sx + lam Sz - M0)``: convex,
+solved as a second-order cone program (cvxpy). ``shell="facets"``: the ``m + 1`` joints of ``m`` voussoirs with straight intrados
 and extrados chords (quadrilaterals; polygon moments), as a block model's voussoirs. Written
 from the statement of the problem (Heyman, *The Stone Skeleton*, 1995; Oppenheim 1992;
 Ochsendorf 2002), independently of tce: it imports nothing from it.
@@ -26,6 +30,7 @@ Ochsendorf 2002), independently of tce: it imports nothing from it.
 from __future__ import annotations
 
 import numpy as np
+import cvxpy as cp
 from scipy.optimize import linprog
 
 #: HiGHS's feasibility tolerances (its default 1e-7 is absolute, on rows the size of t)
@@ -58,16 +63,27 @@ def _moments(t: float, m: int, shell: str) -> tuple[np.ndarray, ...]:
     return b, np.cumsum(area), np.cumsum(sx), np.cumsum(sz)
 
 
-def capacity(t: float, m: int = 2000, shell: str = "ring") -> float | None:
+def capacity(t: float, m: int = 2000, shell: str = "ring", strength: float | None = None) -> float | None:
     """Largest ``lam`` (horizontal acceleration / g) the arch of thickness ratio ``t`` carries
-    (None if it does not stand under self-weight)."""
+    (None if it does not stand under self-weight); ``strength``: ``fc / (gamma R)``, None for
+    unlimited."""
     ri, re = 1.0 - t / 2.0, 1.0 + t / 2.0
     b, w, sx, sz = _moments(t, m, shell)
     s, c = np.sin(b), np.cos(b)
-    # variables (Rx, Rz, M0, lam); N = s (Rx + lam W) + c (Rz - W)
-    n_rows = np.column_stack([s, c, np.zeros_like(b), s * w])
-    n_rhs = c * w  # N = n_rows . x - n_rhs
-    mom = np.column_stack([np.zeros_like(b), np.zeros_like(b), -np.ones_like(b), sz])  # Sx + lam Sz - M0 = mom.x + sx
+    zero = np.zeros_like(b)
+    # variables x = (Rx, Rz, M0, lam): N = n_rows x - n_rhs; rho N = Sx + lam Sz - M0 = mom x + sx
+    n_rows = np.column_stack([s, c, zero, s * w])
+    n_rhs = c * w
+    mom = np.column_stack([zero, zero, -np.ones_like(b), sz])
+    if strength is not None:
+        x = cp.Variable(4)
+        normal = n_rows @ x - n_rhs
+        moment = mom @ x + sx
+        block = cp.square(normal) / (2.0 * strength)  # N^2 / (2 f): half the compressed zone times N
+        problem = cp.Problem(cp.Maximize(x[3]), [normal >= 0, x[3] >= 0, block <= moment - ri * normal,
+                                                 block <= re * normal - moment])
+        problem.solve(solver=cp.CLARABEL)
+        return float(x.value[3]) if problem.status == cp.OPTIMAL else None
     a_ub = np.vstack([ri * n_rows - mom, mom - re * n_rows, -n_rows])
     b_ub = np.concatenate([ri * n_rhs + sx, -sx - re * n_rhs, -n_rhs])
     r = linprog([0, 0, 0, -1.0], A_ub=a_ub, b_ub=b_ub, bounds=[(None, None)] * 3 + [(0, None)],
