@@ -27,7 +27,7 @@ from reference import lateral_arch as lateral_ref  # noqa: E402
 
 from tce import Analysis, Material, semicircular_arch  # noqa: E402
 from tce.quality.validation import (  # noqa: E402
-    CASES, crown_thrust, dome_min_ratio, friction_bound, min_ratio, stress_block_column,
+    CASES, arch_in_strips, crown_thrust, dome_min_ratio, friction_bound, min_ratio, stress_block_column,
 )
 
 IMG = ROOT / "docs" / "img"
@@ -215,7 +215,50 @@ def lateral_capacity() -> None:
     _save(fig, "validation_lateral.png")
 
 
-STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity)
+def crushing_arch() -> None:
+    """The arch with fc: lambda_max against fc / (gamma R), and against the strips per joint."""
+    t, n, unit_weight = 0.15, 14, 20.0
+    arch = semicircular_arch(1 - t / 2, t, 0.25, n)
+
+    def tce_capacity(strips: int, fc: float) -> float:
+        return Analysis(arch_in_strips(arch, strips), Material(compressive_strength=fc)).limit(0.0).lambda_max
+
+    fs = [5, 6, 7.5, 10, 15, 25, 50, 100]
+    dense = np.geomspace(4.6, 100, 50)  # the arch stands from about 4.0 (voussoirs), 4.3 (ring)
+    lp = [lateral_ref.capacity(t, n, "facets", f) for f in dense]
+    ring = [lateral_ref.capacity(t, 500, "ring", f) for f in dense]
+    lam64 = [tce_capacity(64, f * unit_weight) for f in fs]
+    print("fc/(gamma R)", fs)
+    print("tce 64 strips", [f"{v:.6f}" for v in lam64])
+    print("LP voussoirs ", [f"{lateral_ref.capacity(t, n, 'facets', f):.6f}" for f in fs])
+    strips = [1, 2, 4, 8, 16, 32, 64, 128]
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.6))
+    a.semilogx(fs, lam64, "o", mfc="none", ms=8, color="C0", label="tce, 14 voussoirs, joints in 64 strips")
+    a.semilogx(dense, lp, "-", color="C0", lw=1, label="stress blocks at the same joints (convex program)")
+    a.semilogx(dense, ring, "k:", label="stress blocks, continuous ring (500 cuts)")
+    a.axhline(lateral_ref.capacity(t, n, "facets"), color="grey", ls="--", lw=0.8, label="unlimited fc (14 voussoirs)")
+    a.set_xlabel("fc / (gamma R)")
+    a.set_ylabel("lambda_max")
+    a.set_title("Arch t/R = 0.15 under lateral load: crushing")
+    a.legend(fontsize=7.5)
+    a.grid(alpha=0.3)
+    for f, colour in ((5.0, "C3"), (12.5, "C2")):
+        reference = lateral_ref.capacity(t, n, "facets", f)
+        lam = [tce_capacity(k, f * unit_weight) for k in strips]
+        print(f"fc/(gamma R) = {f}: reference {reference:.6f}; strips {strips}:", [f"{v:.6f}" for v in lam])
+        b.semilogx(strips, lam, "o-", color=colour, label=f"tce, fc/(gamma R) = {f:g}")
+        b.axhline(reference, color=colour, ls=":", label=f"stress blocks: {reference:.5f}")
+    b.set_xticks(strips, [str(k) for k in strips])
+    b.minorticks_off()
+    b.set_xlabel("strips per joint")
+    b.set_ylabel("lambda_max")
+    b.set_title("Convergence with the strips (from above)")
+    b.legend(fontsize=7.5)
+    b.grid(alpha=0.3)
+    _save(fig, "validation_crushing_arch.png")
+
+
+STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity, crushing_arch)
 
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)
