@@ -42,6 +42,15 @@ def _save(fig, name: str) -> None:
     print(f"wrote docs/img/{name}")
 
 
+def _decorate(ax, xlabel: str, ylabel: str, title: str, **legend) -> None:
+    """Axis labels, title, legend (``legend``: its keyword arguments) and a light grid."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(**{"fontsize": 7.5, **legend})
+    ax.grid(alpha=0.3)
+
+
 def thickness_convergence() -> None:
     """t/R against the number of voussoirs, radial and vertical joints (Heyman material)."""
     ns = [10, 20, 40, 80, 160, 320, 640]
@@ -179,11 +188,8 @@ def dome_convergence() -> None:
     ax.axhline(PUBLISHED["heyman_dome"], color="C3", ls="--", label="Heyman 1977 (cited): 0.042")
     ax.axhline(limit / (1 + limit / 2), color="grey", ls="-.", lw=0.8,
                label=f"the same against the extrados radius: {limit / (1 + limit / 2):.5f}")
-    ax.set_xlabel("courses (crown to base)")
-    ax.set_ylabel("least thickness t/R")
-    ax.set_title("Hemispherical dome under self-weight: least thickness against the courses")
-    ax.legend(fontsize=7.5, loc="lower right")
-    ax.grid(alpha=0.3)
+    _decorate(ax, "courses (crown to base)", "least thickness t/R",
+              "Hemispherical dome under self-weight: least thickness against the courses", loc="lower right")
     _save(fig, "validation_dome.png")
 
 
@@ -205,13 +211,10 @@ def lateral_capacity() -> None:
     print("ring", [f"{lateral_ref.capacity(t, 2000):.6f}" for t in ts])
     ax.plot(dense, ring, "k:", label="LP, continuous ring (2000 cuts)")
     ax.axvline(0.107478, color="grey", lw=0.8, ls="--", label="least thickness under self-weight, 0.1075")
-    ax.set_xlabel("thickness ratio t/R")
-    ax.set_ylabel("lambda_max = horizontal acceleration / g")
-    ax.set_title("Semicircular arch under a horizontal acceleration (no sliding)")
+    _decorate(ax, "thickness ratio t/R", "lambda_max = horizontal acceleration / g",
+              "Semicircular arch under a horizontal acceleration (no sliding)", loc="upper left")
     right = ax.secondary_yaxis("right", functions=(lambda v: np.degrees(np.arctan(v)), lambda d: np.tan(np.radians(d))))
     right.set_ylabel("tilt of a tilting table, atan(lambda) (deg)")
-    ax.legend(fontsize=7.5, loc="upper left")
-    ax.grid(alpha=0.3)
     _save(fig, "validation_lateral.png")
 
 
@@ -237,11 +240,7 @@ def crushing_arch() -> None:
     a.semilogx(dense, lp, "-", color="C0", lw=1, label="stress blocks at the same joints (convex program)")
     a.semilogx(dense, ring, "k:", label="stress blocks, continuous ring (500 cuts)")
     a.axhline(lateral_ref.capacity(t, n, "facets"), color="grey", ls="--", lw=0.8, label="unlimited fc (14 voussoirs)")
-    a.set_xlabel("fc / (gamma R)")
-    a.set_ylabel("lambda_max")
-    a.set_title("Arch t/R = 0.15 under lateral load: crushing")
-    a.legend(fontsize=7.5)
-    a.grid(alpha=0.3)
+    _decorate(a, "fc / (gamma R)", "lambda_max", "Arch t/R = 0.15 under lateral load: crushing")
     for f, colour in ((5.0, "C3"), (12.5, "C2")):
         reference = lateral_ref.capacity(t, n, "facets", f)
         lam = [tce_capacity(k, f * unit_weight) for k in strips]
@@ -250,11 +249,7 @@ def crushing_arch() -> None:
         b.axhline(reference, color=colour, ls=":", label=f"stress blocks: {reference:.5f}")
     b.set_xticks(strips, [str(k) for k in strips])
     b.minorticks_off()
-    b.set_xlabel("strips per joint")
-    b.set_ylabel("lambda_max")
-    b.set_title("Convergence with the strips (from above)")
-    b.legend(fontsize=7.5)
-    b.grid(alpha=0.3)
+    _decorate(b, "strips per joint", "lambda_max", "Convergence with the strips (from above)")
     _save(fig, "validation_crushing_arch.png")
 
 

@@ -190,7 +190,27 @@ def arch_in_strips(assembly: Assembly, strips: int) -> Assembly:
     parts and joined across the depth, so a compressive strength bounds each strip's force and
     the joint approaches the rigid-plastic stress block as the strips are refined (the single
     block of :func:`block_on_strips` reaches it exactly).
+
+    Parameters
+    ----------
+    assembly : Assembly
+        Blocks and quadrilateral interfaces (an arch of :func:`semicircular_arch`).
+    strips : int
+        Strips per interface (>= 1).
+
+    Returns
+    -------
+    Assembly
+        The same blocks; ``strips`` interfaces in place of each, with its normal and stiffness;
+        ``meta["strips"]`` records the number.
+
+    Raises
+    ------
+    ValueError
+        ``strips`` is not a whole number >= 1, or an interface is not a quadrilateral.
     """
+    if isinstance(strips, bool) or not isinstance(strips, (int, np.integer)) or strips < 1:
+        raise ValueError(f"strips must be a whole number >= 1, got {strips!r}")
     faces = []
     for face in assembly.interfaces:
         p = np.asarray(face.points, dtype=float)
@@ -291,7 +311,7 @@ CASES: tuple[ValidationCase, ...] = (
         "heyman_dome", "Heyman 1977", "cited (page not read)", "least thickness t/R, hemispherical dome, no hoop tension",
         0.042, dome_min_ratio, f"{DOME_SECTORS} sectors x {DOME_COURSES} courses", 1e-3,
         "printed to 2 digits; tce equals the independent LP of the same facetted courses "
-        "(0.042219 at 8 courses) and converges with the courses on the spherical shell's LP, "
+        "(0.0422201 at 8 courses) and converges with the courses on the spherical shell's LP, "
         "0.04284 (R the mid-surface radius; 0.04194 against the extrados radius)",
     ),
     ValidationCase(

@@ -53,3 +53,9 @@ def test_weak_arch_does_not_stand():
     r = Analysis(arch_in_strips(semicircular_arch(1.0 - T / 2.0, T, 0.25, N), 16),
                  Material(compressive_strength=40.0)).solve(0.0)
     assert r.status == "infeasible"
+
+
+@pytest.mark.parametrize("strips", [0, 2.5, True])
+def test_strips_must_be_a_whole_number(strips):
+    with pytest.raises(ValueError, match="strips must be a whole number"):
+        arch_in_strips(semicircular_arch(), strips)
