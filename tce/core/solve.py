@@ -473,12 +473,11 @@ class TCESolver:
         if status != "optimal":
             F = res = None
         elif self.formulation.D is None and self.options.canonical:
-            can = self._canonical_solver().state(b, self._q(U), F)
+            can = self._canonical_solver().state(b, self._q(U), F, lambda Fc: self.formulation.residuals_scaled(Fc, b_eq))
             stime += can.solve_time
             setup += can.setup_time
-            res_c = None if can.forces is None else self.formulation.residuals_scaled(can.forces, b_eq)
-            if res_c is not None and self._passes(res_c):
-                F, res, unique = can.forces, res_c, can.unique
+            if can.forces is not None and can.residuals is not None:
+                F, res, unique = can.forces, can.residuals, can.unique
             else:
                 notes.append("canonical state not found: the solver's state kept")
         return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,
