@@ -220,3 +220,25 @@ def test_search_in_workers_and_resumed_gives_the_same_dataset(run, tmp_path) -> 
         other = xr.load_dataset(tmp_path / "out" / "vehicle" / "results.nc")
         for name in ("critical_x", "critical_lambda", "lambda_max", "scan_x", "scan_lambda"):
             np.testing.assert_array_equal(other[name].values, ds[name].values)
+
+
+def test_capacity_figure_has_no_empty_legend_band(run) -> None:
+    """capacity.png kept a band of 22 % of its height under the axes for a legend of one or
+    two rows, mostly white (seen on arch_vehicle and arch_point_load). The legend now stands
+    in the right-hand column under the critical positions, the axes reach down to 12 %, and
+    nothing overlaps or leaves the figure."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from tce.plot.capacity import influence_line
+
+    _, ds = run
+    fig = influence_line(ds)
+    ax = fig.axes[0]
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    (box,) = [t for t in fig.texts if t.get_text().startswith("critical position")]
+    (legend,) = fig.legends
+    to_fig = fig.transFigure.inverted().transform
+    a, b, g = (to_fig(x.get_window_extent(renderer)) for x in (ax, box, legend))
+    assert a[0, 1] <= 0.15  # the axes' bottom edge: no band below them
+    assert g[0, 0] > a[1, 0] and g[1, 1] < b[0, 1]  # right of the axes, under the box
+    assert g[0, 1] >= 0.0 and g[1, 0] <= 1.0  # within the figure
