@@ -225,6 +225,28 @@ def test_search_in_workers_and_resumed_gives_the_same_dataset(run, tmp_path) -> 
             np.testing.assert_array_equal(other[name].values, ds[name].values)
 
 
+def test_capacity_figure_has_no_empty_legend_band(run) -> None:
+    """capacity.png kept a band of 22 % of its height under the axes for a legend of one or
+    two rows, mostly white (seen on arch_vehicle and arch_point_load). The legend now stands
+    in the right-hand column under the critical positions, the axes reach down to 12 %, and
+    nothing overlaps or leaves the figure."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from tce.plot.capacity import influence_line
+
+    _, ds = run
+    fig = influence_line(ds)
+    ax = fig.axes[0]
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    (box,) = [t for t in fig.texts if t.get_text().startswith("critical position")]
+    (legend,) = fig.legends
+    to_fig = fig.transFigure.inverted().transform
+    a, b, g = (to_fig(x.get_window_extent(renderer)) for x in (ax, box, legend))
+    assert a[0, 1] <= 0.15  # the axes' bottom edge: no band below them
+    assert g[0, 0] > a[1, 0] and g[1, 1] < b[0, 1]  # right of the axes, under the box
+    assert g[0, 1] >= 0.0 and g[1, 0] <= 1.0  # within the figure
+
+
 def test_boussinesq_on_a_dome_exits_2_naming_the_key(tmp_path, capsys) -> None:
     # Boussinesq's closed forms need plan rectangles; a dome's top faces are not
     text = ('[study]\nname = "dome_bq"\n[structure]\ntype = "dome"\n[loads]\nlateral = false\n'
