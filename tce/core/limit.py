@@ -41,7 +41,8 @@ from .conic import ConeRows, law_violation, matvec
 from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import EZ, Model
-from .problem import Formulation, LimitProblems, lateral_ray_problem, phase1_problem
+from .passive import Restraint, passive_restraint
+from .problem import Formulation, LimitProblems, lateral_ray_problem, phase1_problem, restrained_limit_problem
 from .. import display
 from .result import DOFS, Result
 
@@ -184,6 +185,9 @@ class LimitResult(Result):
     iterations : int
     setup_time : float
         Wall time of the solver set-up (s).
+    restraint_forces : (k,) ndarray or None
+        The bounded extra forces of a restrained problem at the limit (kN; the fill's
+        passive restraint, :mod:`tce.core.passive`); None without them, NaN unless optimal.
     """
 
     HEADLINE = ("lambda_max", "alpha", "model", "lambda_kinematic", "certificate_gap")
@@ -200,6 +204,7 @@ class LimitResult(Result):
     model: str = "spatial"
     iterations: int = 0
     setup_time: float = 0.0
+    restraint_forces: NDArray[np.float64] | None = field(default=None, repr=False)
 
     def _arrays(self) -> tuple[dict[str, tuple], dict[str, Any]]:
         """The collapse mechanism (``mechanism``: dims ``(block, dof)``, blocks in assembly order)."""
@@ -265,7 +270,8 @@ class LimitSolver:
         else:
             pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
             self._vectors_last = (key, (pattern, b_fixed, b_live))
-        return self.solve_loads(b_fixed, b_live, pattern.direction, pattern, mechanism=mechanism)
+        return self.solve_loads(b_fixed, b_live, pattern.direction, pattern, mechanism=mechanism,
+                                restraint=passive_restraint(self.model, pattern.fill))
 
     def solve_loads(
         self,
@@ -274,10 +280,13 @@ class LimitSolver:
         alpha: float = float("nan"),
         loads: LoadPattern | None = None,
         mechanism: bool = True,
+        restraint: Restraint | None = None,
     ) -> LimitResult:
         """Largest multiplier of the live loads ``b_live`` with ``b_fixed`` always applied
         (both in ``A_eq``'s row layout, kN and kN m); ``alpha`` and ``loads`` are recorded in
-        the result.
+        the result. With ``restraint``, its bounded forces are unknowns of the problem too
+        (:func:`tce.core.problem.restrained_limit_problem`; :meth:`solve` takes the fill's
+        passive restraint from the pattern) and the result carries their values.
 
         The mechanism (:func:`mechanism_from_velocities`, a fifth of the whole call on the
         paper's arch) is classified only when ``mechanism`` is True; the result carries the
@@ -286,17 +295,21 @@ class LimitSolver:
         t0 = time.perf_counter()
         model, f = self.model, self.formulation
         m = f.A_eq.shape[0]
-        problem = self._problems(b_fixed, b_live)
+        if restraint is None:
+            problem = self._problems(b_fixed, b_live)
+        else:
+            problem = restrained_limit_problem(f, b_fixed, b_live, restraint.G, restraint.capacity)
         rhs_scaled = problem.b[:m]
         # without iterative refinement first (0.6x the time on a 10,100-block dome, lambda
         # within 1e-10); an answer that is not clean is solved again with it
         sol = solve_once(problem, self._settings[0])
         retried, spent = "", (0.0, 0.0)
-        checked = self._checked(sol, rhs_scaled, b_live)
+        checked = self._checked(sol, rhs_scaled, b_live, restraint)
         if sol.status not in ("PrimalInfeasible", "DualInfeasible") and checked is None:
             retried, spent = f" (after {sol.status} without iterative refinement)", (sol.solve_time, sol.setup_time)
             sol = solve_once(problem, self._settings[1])
-            checked = self._checked(sol, rhs_scaled, b_live)
+            checked = self._checked(sol, rhs_scaled, b_live, restraint)
+        no_restraint = None if restraint is None else np.full(restraint.size, np.nan)
         common = dict(alpha=alpha, loads=loads, model=model.kind, solve_time=sol.solve_time + spent[0],
                       setup_time=sol.setup_time + spent[1],
                       iterations=sol.iterations)
@@ -306,28 +319,32 @@ class LimitSolver:
             v = sol.z[:m] / f.row_div
             mech = mechanism_from_velocities(model, _block_velocities(model, v)) if np.any(v) else None
             return LimitResult(status="infeasible", forces=self._no_forces(), mechanism=mech, row_velocities=v,
-                               message=f"clarabel: {sol.status}", wall_time=time.perf_counter() - t0, **common)
+                               message=f"clarabel: {sol.status}", wall_time=time.perf_counter() - t0,
+                               restraint_forces=no_restraint, **common)
         if sol.status == "DualInfeasible":
             return LimitResult(status="unbounded", lambda_max=float("inf"), forces=self._no_forces(), message=f"clarabel: {sol.status}",
-                               wall_time=time.perf_counter() - t0, **common)
+                               wall_time=time.perf_counter() - t0,
+                               restraint_forces=no_restraint, **common)
         if checked is None and (proof := self._unbounded_proof(b_fixed, b_live)):
             return LimitResult(status="unbounded", lambda_max=float("inf"), forces=self._no_forces(),
-                               message=f"clarabel: {sol.status}{retried}; {proof}", wall_time=time.perf_counter() - t0, **common)
+                               message=f"clarabel: {sol.status}{retried}; {proof}", wall_time=time.perf_counter() - t0,
+                               restraint_forces=no_restraint, **common)
         if checked is None:
             eq = f.residuals_scaled(f.forces(sol.x), rhs_scaled - float(sol.x[-1]) * b_live / f.row_div)[0]
             return LimitResult(status="numerical", forces=self._no_forces(), message=f"clarabel: {sol.status}{retried}; residual {eq:.3g}",
-                               wall_time=time.perf_counter() - t0, **common)
-        lam, F = checked
+                               wall_time=time.perf_counter() - t0, restraint_forces=no_restraint, **common)
+        lam, F, p = checked
         v = sol.z[:m] / f.row_div  # virtual velocities per equilibrium row, v . b_live = 1
-        # power of the fixed loads plus what the law's offsets dissipate (cohesion, tension,
-        # crushing: h . y with y the law rows' multipliers; zero for the paper's laws)
-        lam_kin = float((-(v @ b_fixed) + f.law_h @ sol.z[m:]) / (v @ b_live))
+        # power of the fixed loads plus what the offsets of the other rows dissipate (the
+        # law's cohesion, tension, crushing: h . y with y the law rows' multipliers, zero for
+        # the paper's laws; a restraint's capacities times its upper-bound rows' multipliers)
+        lam_kin = float((-(v @ b_fixed) + problem.b[m:] @ sol.z[m:]) / (v @ b_live))
         gap = abs(lam_kin - lam) / max(abs(lam), 1e-12)
         mech, adm = self._mechanism(v) if mechanism else (None, float("nan"))
         return LimitResult(
             status="optimal", lambda_max=lam, lambda_kinematic=lam_kin, certificate_gap=gap, admissibility=adm,
             forces=F.reshape(model.n_contacts, model.dim), mechanism=mech, row_velocities=v,
-            message=f"clarabel: {sol.status}{retried}", wall_time=time.perf_counter() - t0, **common,
+            message=f"clarabel: {sol.status}{retried}", wall_time=time.perf_counter() - t0, restraint_forces=p, **common,
         )
 
     def _no_forces(self) -> NDArray[np.float64]:
@@ -350,17 +367,28 @@ class LimitSolver:
         return mech, self._dual_cone_violation(self._rel_times(v))
 
     def _checked(
-        self, sol: Solution, rhs_scaled: NDArray[np.float64], b_live: NDArray[np.float64]
-    ) -> tuple[float, NDArray[np.float64]] | None:
-        """``(lam, F)`` of a limit solve that passes the residual checks (1e-8 of W and W L),
-        else None; ``rhs_scaled`` is the fixed loads' scaled right-hand side (``b[:m_eq]``)."""
+        self, sol: Solution, rhs_scaled: NDArray[np.float64], b_live: NDArray[np.float64],
+        restraint: Restraint | None = None,
+    ) -> tuple[float, NDArray[np.float64], NDArray[np.float64] | None] | None:
+        """``(lam, F, p)`` of a limit solve that passes the residual checks (1e-8 of W and W
+        L; a restraint's forces within their bounds to 1e-8 of W), else None; ``rhs_scaled``
+        is the fixed loads' scaled right-hand side (``b[:m_eq]``); ``p`` the restraint's
+        forces (kN; None without one)."""
         if not sol.solved:
             return None
         f = self.formulation
         lam = float(sol.x[-1])
         F = f.forces(sol.x)
-        eq, law = f.residuals_scaled(F, rhs_scaled - lam * b_live / f.row_div)
-        return (lam, F) if eq <= 1e-8 and law <= 1e-8 else None
+        rhs = rhs_scaled - lam * b_live / f.row_div
+        p = None
+        if restraint is not None:
+            W = f.scaling.force
+            p = sol.x[f.n : f.n + restraint.size] * W
+            rhs = rhs - restraint.G @ p / f.row_div
+            if np.any(p < -1e-8 * W) or np.any(p > restraint.capacity + 1e-8 * W):
+                return None
+        eq, law = f.residuals_scaled(F, rhs)
+        return (lam, F, p) if eq <= 1e-8 and law <= 1e-8 else None
 
     def _dual_cone_violation(self, rel: NDArray[np.float64]) -> float:
         """Violation of ``dn >= mu ||dt||`` (tangential free of constraint for mu = 0; no sliding
