@@ -51,3 +51,20 @@ def test_modes_and_the_closed_bracket(mu, mode_sliding):
     assert r.lambda_nonassoc == pytest.approx(r.lambda_assoc, rel=1e-6)
     below = Analysis(_arch(t * 0.999, GCA_VOUSSOIRS), Material(mu, flow="non-associative"))
     assert below.solve(0.0).status == "infeasible"
+
+
+def test_an_open_bracket_gives_no_value(monkeypatch):
+    """tce's value is the non-associative least thickness only when the bracket is closed at
+    1.001 times it: an estimate below the associative limit there gives NaN (never ok)."""
+    from dataclasses import replace
+
+    from tce.quality import validation
+
+    real = validation.nonassociative_limit
+
+    def lower(*args, **kwargs):
+        r = real(*args, **kwargs)
+        return replace(r, lambda_nonassoc=r.lambda_assoc * (1 - 1e-4))
+
+    monkeypatch.setattr(validation, "nonassociative_limit", lower)
+    assert validation.nonassoc_min_ratio(0.35) != validation.nonassoc_min_ratio(0.35)  # NaN
