@@ -72,6 +72,7 @@ __all__ = [
     "phase1_b",
     "phase1_problem",
     "recession_problem",
+    "restrained_limit_problem",
     "tce_b",
     "tce_problem",
 ]
@@ -412,6 +413,45 @@ class LimitProblems:
             self._rows = rows
         b = np.concatenate([f.b_eq(b_fixed), f.law_h])
         return ConicProblem("limit", self.P, self.q, self._A, b, self.cones)
+
+
+def restrained_limit_problem(
+    f: Formulation, b_fixed: NDArray[np.float64], b_live: NDArray[np.float64],
+    G: NDArray[np.float64], capacity: NDArray[np.float64],
+) -> ConicProblem:
+    """:func:`limit_problem` with ``k`` bounded extra forces ``0 <= p <= capacity`` (kN) whose
+    unit wrenches are the columns of ``G`` (``(m_eq, k)``, ``A_eq``'s row layout)::
+
+        max lam  s.t.  A_eq F + G p + b_fixed + lam b_live = 0,  F admissible,  0 <= p <= capacity
+
+    (the passive restraint of a fill, :mod:`tce.core.passive`). Unknowns ``(x, p / W, lam)``
+    (n + k + 1); rows: ``m_eq`` equalities and the law's zero rows; the law's nonnegative
+    rows, then ``p >= 0`` and ``capacity - p >= 0`` (k rows each); the law's cones. The
+    multipliers of the equality rows are the virtual velocities, as in :func:`limit_problem`.
+    """
+    law = f.law
+    m, n = f.A_eq.shape
+    k = G.shape[1]
+    W = f.scaling.force
+    C = f.constraints
+    top = m + law.n_zero + law.n_nonneg
+    eye = sp.identity(k, format="csr")
+    Gs = sp.csr_matrix(G * (W / f.row_div)[:, None])
+    live = sp.csr_matrix((b_live / f.row_div)[:, None])
+    A = sp.bmat([
+        [C[:m], Gs, live],
+        [C[m:top], None, None],
+        [None, -eye, None],
+        [None, eye, None],
+        [C[top:], None, None],
+    ], format="csc", dtype=float)
+    h = f.law_h
+    n_lin = law.n_zero + law.n_nonneg
+    b = np.concatenate([f.b_eq(b_fixed), h[:n_lin], np.zeros(k), np.asarray(capacity, dtype=float) / W, h[n_lin:]])
+    q = np.zeros(n + k + 1)
+    q[-1] = -1.0
+    cones = _cones(("zero", m + law.n_zero), ("nonneg", law.n_nonneg + 2 * k), n_soc=law.n_soc)
+    return ConicProblem("limit", sp.csc_matrix((n + k + 1, n + k + 1)), q, A, b, cones)
 
 
 def least_violation_problem(

@@ -184,7 +184,7 @@ def wheel_loads(
     loads: list[VehicleLoad] = []
     notes: list[str] = []
     road = None
-    if fill is not None and fill.dispersion > 0.0:
+    if fill is not None and fill.dispersion != 0.0:
         from .fill import road_level
 
         road = road_level(assembly, fill)
@@ -192,6 +192,21 @@ def wheel_loads(
         source = f"{key}.axle[{a}].wheel[{w}]"
         where = f"{key} ({vehicle.label}) axle {a + 1} wheel {w + 1} at x = {x:.4g} m, y = {y:.4g} m"
         patch = vehicle.patch
+        if road is not None and fill is not None and isinstance(fill.dispersion, str):
+            from .fill import boussinesq_parts
+
+            try:
+                _, p = _on_top(assembly, (x, y))
+            except LoadError:
+                notes.append(f"{where}: off the deck (no block under it), dropped")
+                continue
+            parts, off = boussinesq_parts(assembly, x, y, patch, road - float(p[2]))
+            if off > 1e-9:
+                notes.append(f"{where}: {100.0 * off:.3g}% of its load, spread by Boussinesq's distribution, "
+                             "beyond the deck or over a support, dropped")
+            if parts:
+                loads.append(VehicleLoad(source, tuple((i, p, -load * frac) for i, p, frac in parts)))
+            continue
         if road is not None and fill is not None:
             try:
                 _, p = _on_top(assembly, (x, y))
