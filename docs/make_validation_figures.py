@@ -277,21 +277,14 @@ def gilbert_arch() -> None:
     ax.plot(pts_mu, pts_t, "kD", ms=6, label="Gilbert et al. 2006, read off their figure (+-0.0011)")
     ax.axvline(read["gca_mu_ms"], color="k", ls=":", lw=0.9, label=f"their mode III line ({read['gca_mu_ms']})")
     ax.axvline(mu_ms, color="C0", ls=":", lw=0.9, label=f"tce's least mu, 27 voussoirs ({mu_ms:.4f})")
-    ax.set_xlabel("friction coefficient mu")
-    ax.set_ylabel("least thickness t/R")
     ax.set_ylim(0.09, 0.21)
-    ax.set_title("27-block semicircular arch under self-weight, joints sliding without opening")
-    ax.legend(fontsize=7.5)
-    ax.grid(alpha=0.3)
+    _decorate(ax, "friction coefficient mu", "least thickness t/R",
+              "27-block semicircular arch under self-weight, joints sliding without opening")
     diff = [nonassoc_min_ratio(mu) - t for mu, t in zip(pts_mu, pts_t)]
     print("tce 27 - read", [f"{d:+.5f}" for d in diff])
     dx.errorbar(pts_mu, diff, yerr=0.0011, fmt="kD", ms=5, capsize=3, label="tce (27) - read value, +-1 px")
     dx.axhline(0.0, color="grey", lw=0.8)
-    dx.set_xlabel("friction coefficient mu")
-    dx.set_ylabel("difference in t/R")
-    dx.set_title("tce against the read points")
-    dx.legend(fontsize=7.5)
-    dx.grid(alpha=0.3)
+    _decorate(dx, "friction coefficient mu", "difference in t/R", "tce against the read points")
     _save(fig, "validation_gilbert_arch.png")
 
 

@@ -28,7 +28,7 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from functools import cache
+from functools import cache, partial
 
 import numpy as np
 import pandas as pd
@@ -360,32 +360,20 @@ _GCA_READ = ("tolerance: the reading; read off the figure (centreline radius 10 
              "t/R 0.1072) to +-1 px: +-0.0011 in t/R")
 
 NONASSOC_CASES: tuple[ValidationCase, ...] = (
-    ValidationCase(
-        "gca_eta_mode1", _GCA, _GCA_WHERE, "least t/R, 27 blocks, mode I (mu > 0.396), non-associative", 0.1072,
-        lambda: nonassoc_min_ratio(0.8), f"{_GCA_ARCH}, mu = 0.8", 1.1e-3,
-        f"{_GCA_READ}; tce 0.106721 (associative and non-associative alike: six hinges, nothing slides)",
-    ),
-    ValidationCase(
-        "gca_eta_0375", _GCA, _GCA_WHERE, "least t/R, 27 blocks, mu 0.375 (mode II), non-associative", 0.1265,
-        lambda: nonassoc_min_ratio(0.375), f"{_GCA_ARCH}, mu = 0.375", 1.1e-3,
-        f"{_GCA_READ}; the sliding joints of mode II are statically determinate, so the bracket is "
-        "closed and the non-associative least thickness is the associative one (tce 0.125967)",
-    ),
-    ValidationCase(
-        "gca_eta_035", _GCA, _GCA_WHERE, "least t/R, 27 blocks, mu 0.35 (mode II), non-associative", 0.1517,
-        lambda: nonassoc_min_ratio(0.35), f"{_GCA_ARCH}, mu = 0.35", 1.1e-3,
-        f"{_GCA_READ}; tce 0.151185, bracket closed",
-    ),
-    ValidationCase(
-        "gca_eta_0325", _GCA, _GCA_WHERE, "least t/R, 27 blocks, mu 0.325 (mode II), non-associative", 0.1785,
-        lambda: nonassoc_min_ratio(0.325), f"{_GCA_ARCH}, mu = 0.325", 1.1e-3,
-        f"{_GCA_READ}; tce 0.178207, bracket closed",
-    ),
-    ValidationCase(
-        "gca_eta_0311", _GCA, _GCA_WHERE, "least t/R, 27 blocks, at their least mu (0.3109), non-associative", 0.1954,
-        lambda: nonassoc_min_ratio(0.3109), f"{_GCA_ARCH}, mu = 0.3109", 1.1e-3,
-        f"{_GCA_READ} (mu of the leftmost point +-0.0007: t/R moves by 0.0015 per 0.001 of mu "
-        "there); tce 0.194868, bracket closed",
+    *(
+        ValidationCase(
+            f"gca_eta_{key}", _GCA, _GCA_WHERE, f"least t/R, 27 blocks, mu {mu} ({mode}), non-associative", read,
+            partial(nonassoc_min_ratio, mu), f"{_GCA_ARCH}, mu = {mu}", 1.1e-3, f"{_GCA_READ}; tce {note}",
+        )
+        for key, mu, mode, read, note in (
+            ("mode1", 0.8, "mode I", 0.1072, "0.106721 (associative and non-associative alike: six hinges, nothing slides)"),
+            ("0375", 0.375, "mode II", 0.1265, "0.125966; the sliding joints of mode II are statically determinate, "
+             "so the bracket is closed and the non-associative least thickness is the associative one"),
+            ("035", 0.35, "mode II", 0.1517, "0.151185, bracket closed"),
+            ("0325", 0.325, "mode II", 0.1785, "0.178207, bracket closed"),
+            ("0311", 0.3109, "their least mu", 0.1954, "0.194868, bracket closed (mu of the leftmost point +-0.0007: "
+             "t/R moves by 0.0015 per 0.001 of mu there)"),
+        )
     ),
     ValidationCase(
         "gca_mu_rm", _GCA, _GCA_WHERE, "friction below which sliding joins the hinges (mode I / II), 27 blocks",
