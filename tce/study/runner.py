@@ -8,7 +8,8 @@ default; workers are forked from a fork server that imported tce once, see
 :func:`_context`), or on a Dask distributed cluster through joblib's ``dask`` backend. Each worker
 keeps the :class:`tce.analysis.Analysis` of the structures and materials it has met, so
 operators are built once per worker and reused; the structure itself is built once per
-run (when the study is validated) and sent to the workers. The answer of a scenario does
+run (when the study is validated) and sent to a worker only when its next scenario has
+another structure than its last one. The answer of a scenario does
 not depend on where or in which order it runs.
 
 Faults (``docs/studies.md``, "Faults and resuming"):
