@@ -852,10 +852,10 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
       of processes (:func:`critical_cpu`);
     - :data:`FIGURE_STUDIES` with ``--no-plots``, with figures (``--no-report``) and as the
       default (figures and the calculation report with its PDF);
-    - the share of CPU in solving of each paper study, and of a 3,000-scenario sweep (every
-      tenth scenario's load path timed alone, times ten).
+    - the share of CPU in solving of each paper study (the 3,000-scenario sweep's is section
+      ``sweep3000``).
 
-    ``--quick``: a 60-scenario sweep and Fig. 7-8, one repeat, no 3,000-scenario sweep.
+    ``--quick``: a 60-scenario sweep and Fig. 7-8, one repeat.
     """
     import tempfile
 
@@ -915,18 +915,32 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
                              time_s=g["wall"], solver_time_s=solving, cpu_s=g["cpu"],
                              note=f"CPU {g['cpu']:.2f} s, the load paths {solving:.2f} s: solving {solving / g['cpu']:.1%} "
                                   f"of the CPU; recorded solve_time {g['solver']:.3f} s (wall); {_load([g])}"))
-        if not quick:
-            big = Path(tmp) / "sweep3000.toml"
-            big.write_text(SWEEP_300.replace('name = "sweep300"', 'name = "sweep3000"').replace(
-                "[0.5, 1.0, 1.5, 2.0, 3.0]", MAGNITUDES_3000))
-            g = measured_run(big, Path(tmp) / "out", ["--no-plots"])
-            solving = solving_cpu(big, every=10)
-            rows.append(_row("sweeps", f"sweep of {g['scenarios']} scenarios (arch, no figures)",
-                             "default: share of CPU in solving", n_solves=1, time_s=g["wall"], solver_time_s=solving,
-                             cpu_s=g["critical"],
-                             note=f"CPU {g['cpu']:.1f} s, the load paths {solving:.1f} s (every 10th timed, x10): "
-                                  f"solving {solving / g['cpu']:.0%} of the CPU, {g['cpu'] / solving:.2f}x; longest "
-                                  f"chain {g['critical']:.1f} CPU-s; {_load([g])}"))
+    return rows
+
+
+def _sweep3000(quick: bool) -> list[dict[str, Any]]:
+    """The share of CPU in solving of a 3,000-scenario sweep of the paper's arch (10 frictions
+    x 50 settlement magnitudes x 6 cases, no figures; one fresh ``tce run`` with the default
+    jobs, :func:`measured_run`): the CPU of every process against the load paths of every
+    tenth scenario timed alone in this process (:func:`solving_cpu`), times ten. ``--quick``:
+    nothing (the run takes minutes)."""
+    import tempfile
+
+    rows: list[dict[str, Any]] = []
+    if quick:
+        return rows
+    with tempfile.TemporaryDirectory() as tmp:
+        big = Path(tmp) / "sweep3000.toml"
+        big.write_text(SWEEP_300.replace('name = "sweep300"', 'name = "sweep3000"').replace(
+            "[0.5, 1.0, 1.5, 2.0, 3.0]", MAGNITUDES_3000))
+        g = measured_run(big, Path(tmp) / "out", ["--no-plots"])
+        solving = solving_cpu(big, every=10)
+        rows.append(_row("sweeps", f"sweep of {g['scenarios']} scenarios (arch, no figures)",
+                         "default: share of CPU in solving", n_solves=1, time_s=g["wall"], solver_time_s=solving,
+                         cpu_s=g["critical"],
+                         note=f"CPU {g['cpu']:.1f} s, the load paths {solving:.1f} s (every 10th timed, x10): "
+                              f"solving {solving / g['cpu']:.0%} of the CPU, {g['cpu'] / solving:.2f}x; longest "
+                              f"chain {g['critical']:.1f} CPU-s; {_load([g])}"))
     return rows
 
 
@@ -1266,6 +1280,7 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "scaling": _scaling,
     "runs": _runs,
     "sweeps": _sweeps,
+    "sweep3000": _sweep3000,
     "reduction": _reduction,
     "plotting": _plotting,
 }
