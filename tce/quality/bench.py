@@ -23,8 +23,10 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     The direct lambda_max of the paper's arch (3D and planar; without and with its
     mechanism) against one raw Clarabel set-up + solve of the same problem, and the planar
     load path (1 mm spreading, step 0.02, atol 1e-6, direct bracket, no mechanism) against a
-    hand-written bisection on a warm raw Clarabel solver of the same TCE data, interleaved
-    call by call, CPU time, medians; the ratio in ``note``.
+    hand-written bisection on a warm raw Clarabel solver of the same TCE data: without
+    canonical states (the same work), and as the path runs by default, with the canonical
+    state of every optimal step, against the raw bisection solving that QP too
+    (:func:`_raw_canonical`); interleaved call by call, CPU time, medians; the ratio in ``note``.
 ``load_path``
     Number of solves and time of the load path against the bisection tolerance, against
     the direct lambda_max.
@@ -44,11 +46,16 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     Fig. 10 also the default choice of jobs against ``--jobs 1`` and ``--jobs 2``, and dask
     kept out against dask importable (variants interleaved, medians of repeats).
 ``sweeps``
-    The 300-scenario sweep of the paper's arch (no figures) with ``--jobs 1``, ``--jobs 2``
-    and the default, interleaved, each a fresh ``tce run`` (:func:`measured_run`): wall time,
-    the CPU time of every process of the run (fork server and workers included) against the
-    CPU time of the same load paths alone in this process (:func:`solving_cpu`); the share of
-    CPU in solving of each paper study.
+    Whole runs, each a fresh ``tce run --fresh`` (:func:`measured_run`: wall, CPU of every
+    process, CPU per process, load average), variants interleaved, medians of three: the
+    300-scenario sweep of the paper's arch (no figures) with ``--jobs 1``, ``--jobs 2`` and
+    the default, against the CPU of the same load paths alone in this process
+    (:func:`solving_cpu`) and by the CPU on the longest chain of processes
+    (:func:`critical_cpu`); Fig. 7-8, 9 and 10 with ``--no-plots``, with figures
+    (``--no-report``) and as the default (figures, report and its PDF); the share of CPU in
+    solving of each paper study.
+``sweep3000``
+    The share of CPU in solving of a 3,000-scenario sweep of the arch (one run).
 ``reduction``
     What the planar model, dropping the cone (Heyman) and dropping the quadratic term
     (rigid) save, each with its effect on the answer.
