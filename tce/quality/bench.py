@@ -849,6 +849,16 @@ def _load(gs: Sequence[dict[str, Any]]) -> str:
     return f"load average {statistics.median(loads):.1f} ({min(loads):.1f}-{max(loads):.1f})"
 
 
+def _interleaved(study: Path, out: Path, variants: dict[str, list[str]], repeats: int) -> dict[str, list[dict[str, Any]]]:
+    """``repeats`` measured runs (:func:`measured_run`) of each variant (``label -> tce run
+    arguments``), interleaved, every other round in reverse order."""
+    got: dict[str, list[dict[str, Any]]] = {k: [] for k in variants}
+    for i in range(repeats):
+        for label in (list(variants) if i % 2 == 0 else list(variants)[::-1]):
+            got[label].append(measured_run(study, out, variants[label]))
+    return got
+
+
 def _sweeps(quick: bool) -> list[dict[str, Any]]:
     """Whole runs, each a fresh ``tce run --fresh`` (:func:`measured_run`), variants
     interleaved, medians of repeats, wall and CPU (of every process) with the load average:
@@ -876,10 +886,7 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
         sweep.write_text(text)
         variants = {"--jobs 1": ["--no-plots", "--jobs", "1"], "--jobs 2": ["--no-plots", "--jobs", "2"],
                     "default": ["--no-plots"]}
-        got: dict[str, list[dict[str, Any]]] = {k: [] for k in variants}
-        for i in range(repeats):
-            for label in (list(variants) if i % 2 == 0 else list(variants)[::-1]):
-                got[label].append(measured_run(sweep, Path(tmp) / "out", variants[label]))
+        got = _interleaved(sweep, Path(tmp) / "out", variants, repeats)
         base = statistics.median(g["wall"] for g in got["--jobs 1"])
         base_cpu = statistics.median(g["cpu"] for g in got["--jobs 1"])
         solving = solving_cpu(sweep)
@@ -901,10 +908,7 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
                 continue
             kinds = {"--no-plots": ["--no-plots"], "figures (--no-report)": ["--no-report"],
                      "figures and report (default)": []}
-            runs: dict[str, list[dict[str, Any]]] = {k: [] for k in kinds}
-            for i in range(repeats):
-                for label in (list(kinds) if i % 2 == 0 else list(kinds)[::-1]):
-                    runs[label].append(measured_run(study, Path(tmp) / "out", kinds[label]))
+            runs = _interleaved(study, Path(tmp) / "out", kinds, repeats)
             plain_cpu = statistics.median(g["cpu"] for g in runs["--no-plots"])
             plain_wall = statistics.median(g["wall"] for g in runs["--no-plots"])
             for label, gs in runs.items():
