@@ -71,8 +71,6 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import scipy.sparse as sp
-from scipy.optimize import linprog
-from scipy.sparse.linalg import lsqr
 
 from ..core.material import Material
 from ..core.model import EZ, Plane, find_plane, lateral_direction
@@ -112,6 +110,21 @@ class _Scene:
     def to2d(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
         q = np.asarray(p, dtype=float) - self.plane.origin
         return np.stack([q @ self.plane.e, q @ EZ], axis=-1)
+
+
+def _linprog(*args, **kwargs):
+    """:func:`scipy.optimize.linprog`, imported on first use: scipy.optimize costs 0.2-0.3 CPU-s
+    to import, which every run paid before, with or without a settlement path."""
+    from scipy.optimize import linprog
+
+    return linprog(*args, **kwargs)
+
+
+def _lsqr(*args, **kwargs):
+    """:func:`scipy.sparse.linalg.lsqr`, imported on first use (as :func:`_linprog`)."""
+    from scipy.sparse.linalg import lsqr
+
+    return lsqr(*args, **kwargs)
 
 
 def _rot(theta: NDArray[np.float64] | float) -> NDArray[np.float64]:
@@ -242,7 +255,7 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
     w = sc.weights / sc.weights[sc.free].sum()  # scaled: forces in units of the free weight
     b = np.zeros(3 * nf)
     b[1::3] = -w[sc.free]
-    res = linprog(-b, A_ub=-Gn, b_ub=hn, A_eq=Gt, b_eq=-ht, bounds=(None, None), method="highs")
+    res = _linprog(-b, A_ub=-Gn, b_ub=hn, A_eq=Gt, b_eq=-ht, bounds=(None, None), method="highs")
     if res.status == 2:
         return _Step("infeasible", message="the support motion needs interpenetration: " + res.message)
     if res.status == 3:
@@ -292,7 +305,7 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: float)
     c = np.zeros(nn + nt + 1)
     c[-1] = -1.0
     bounds = [(0, None)] * nn + [(None, None)] * nt + [(None, None)]
-    res = linprog(c, A_eq=A, b_eq=-b, bounds=bounds, method="highs")
+    res = _linprog(c, A_eq=A, b_eq=-b, bounds=bounds, method="highs")
     if res.status == 0:
         return "optimal", float(res.x[-1])
     return {2: "infeasible", 3: "unbounded"}.get(res.status, "numerical"), float("nan")
@@ -322,7 +335,7 @@ def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     d = pb[kk, ee] - pa[kk, ee]
     mis = np.concatenate([np.einsum("ij,ij->i", d, n[kk]), np.einsum("ij,ij->i", d, _perp(n[kk]))])
     J = sp.vstack([Gn, Gt]).tocsr()
-    dq = lsqr(J, -mis, atol=1e-15, btol=1e-15, iter_lim=100 * J.shape[1])[0].reshape(-1, 3)  # least norm
+    dq = _lsqr(J, -mis, atol=1e-15, btol=1e-15, iter_lim=100 * J.shape[1])[0].reshape(-1, 3)  # least norm
     c = cf.c.copy()
     theta = cf.theta.copy()
     c[sc.free] += dq[:, :2]
@@ -354,7 +367,7 @@ def _snap(
     everything = np.ones(closed.shape, dtype=bool)
     for _ in range(2000):
         Gn, Gt, *_ = _operators(sc, cf, closed)
-        res = linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
+        res = _linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
         if res.status != 0 or -res.fun <= _FEAS:
             return None
         d = np.zeros((len(sc.weights), 3))
