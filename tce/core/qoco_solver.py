@@ -69,11 +69,10 @@ STATUS = {
 #: adds Ruiz equilibration (off by default); the third a smaller static regularisation of the
 #: constraint block (default 1e-8). With QOCO's defaults at ``tol`` 1e-10, 6 of 12 spatial
 #: battery problems (limits and TCE minima of arches, vaults and the dome) failed tce's
-#: residual checks (equilibrium 1e-9 to 6e-8); each later set solves a problem the earlier
-#: ones leave "inaccurate" (a pointed arch's TCE: gap stalled at 2.5e-10; a dome's limit with
-#: a compressive strength), and the third alone stops short of the optimum elsewhere
-#: (lambda_max 2e-7 low on an arch on piers), hence the order (measured 2026-11-24 on
-#: tests/test_qoco_backend.py's scenes)
+#: residual checks (equilibrium 1e-9 to 6e-8). On tests/test_qoco_backend.py's 90 scenes, each
+#: set alone leaves some "inaccurate" or short: the first 1 scene (the dome with a compressive
+#: strength, its limit), the second 3, the third 3 (among them lambda_max 2e-7 low on an arch
+#: on piers with cohesion); in turn, none (measured 2026-11-24)
 SETTINGS: tuple[dict[str, float], ...] = (
     {"ir_tol": 1e-12, "max_ir_iters": 20},
     {"ir_tol": 1e-12, "max_ir_iters": 20, "ruiz_iters": 10},

@@ -764,6 +764,74 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
     return rows
 
 
+
+# ---------------------------------------------------------------- past one machine: Dask
+#: a sweep whose scenarios carry about a CPU-second of solving each: a dome of 16 sectors x 10
+#: courses (176 blocks, 3D SOCP) under 6 frictions x 2 lateral directions x 2 settlement cases
+DASK_DOME_SWEEP = """
+[study]
+name = "dask_dome"
+[structure]
+type = "dome"
+sectors = 16
+courses = 10
+[material]
+friction = 0.8
+[loads]
+alpha = [0.0, 11.25]
+lambda_step = 0.05
+tolerance = 1e-4
+[sweep]
+friction = [0.6, 0.7, 0.8, 0.9, 1.0, 1.2]
+[scenarios.none]
+[scenarios.one_outward]
+s01 = [0.001, 0, 0, 0, 0, 0]
+"""
+
+#: the variants of the dask section: label -> ``tce run`` arguments (``--no-plots`` added)
+DASK_VARIANTS = {
+    "in-process (--jobs 1)": ["--jobs", "1"],
+    "loky, 2 workers": ["--jobs", "2"],
+    "dask LocalCluster, 1 worker": ["--backend", "dask", "--jobs", "1"],
+    "dask LocalCluster, 2 workers": ["--backend", "dask", "--jobs", "2"],
+}
+
+
+def _dask(quick: bool) -> list[dict[str, Any]]:
+    """Throughput against workers on the Dask route (``tce run --backend dask --jobs N``, a
+    LocalCluster of N single-threaded worker processes) against the fork-server pool and the
+    in-process run: a light sweep (the 60-scenario arch sweep of ``sweeps --quick``, about 10
+    ms of solving a scenario) and a heavy one (:data:`DASK_DOME_SWEEP`, 24 dome scenarios);
+    each run a fresh ``tce run --fresh --no-plots``, CPU of every process counted (cluster
+    included), variants interleaved, medians (``--quick``: the heavy sweep only, one repeat)."""
+    import importlib.util
+    import tempfile
+
+    if importlib.util.find_spec("distributed") is None:
+        return [_row("dask", "dask not installed", "", note="pip install 'tce[dask]'")]
+    rows: list[dict[str, Any]] = []
+    repeats = 1 if quick else 3
+    light = SWEEP_300.replace("[0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.2, 1.4, 1.7, 2.0]", "[0.5, 0.8]")
+    sweeps = {"dome": DASK_DOME_SWEEP} if quick else {"arch": light, "dome": DASK_DOME_SWEEP}
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, text in sweeps.items():
+            study = Path(tmp) / f"{name}.toml"
+            study.write_text(text)
+            got: dict[str, list[dict[str, float]]] = {k: [] for k in DASK_VARIANTS}
+            for _ in range(repeats):
+                for label, args in DASK_VARIANTS.items():
+                    got[label].append(measured_run(study, Path(tmp) / "out", ["--no-plots", *args]))
+            solving = solving_cpu(study)
+            base = statistics.median(g["wall"] for g in got["in-process (--jobs 1)"])
+            for label, gs in got.items():
+                wall, cpu = statistics.median(g["wall"] for g in gs), statistics.median(g["cpu"] for g in gs)
+                n = gs[0]["scenarios"]
+                rows.append(_row("dask", f"{name} sweep of {n} scenarios (no figures)", label, n_solves=len(gs),
+                                 time_s=wall, time_min_s=min(g["wall"] for g in gs), solver_time_s=solving,
+                                 note=f"{n / wall:.2f} scenarios per wall s, {base / wall:.2f}x in-process; CPU "
+                                      f"{cpu:.2f} s, {cpu - solving:.2f} s beyond the load paths' {solving:.2f} s"))
+    return rows
+
 # ---------------------------------------------------------------- model reduction
 def _reduction(quick: bool) -> list[dict[str, Any]]:
     arch = semicircular_arch().validate()
@@ -1083,6 +1151,7 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "scaling": _scaling,
     "runs": _runs,
     "sweeps": _sweeps,
+    "dask": _dask,
     "reduction": _reduction,
     "plotting": _plotting,
 }
