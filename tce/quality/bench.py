@@ -765,6 +765,37 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
 
 
 
+
+# ---------------------------------------------------------------- scale: one large model, stage by stage
+#: dome sizes (sectors = courses) of the scale section: 992 and 20,306 blocks (--quick: 992)
+SCALE_SIZES, QUICK_SCALE_SIZES = (31, 142), (31,)
+
+
+def _scale(quick: bool) -> list[dict[str, Any]]:
+    """Memory and CPU of each stage of building and solving one large dome's lambda_max
+    (:func:`tce.quality.scale.dome_stages`), each size in a fresh process, once (the 50k and
+    100k rows of docs/scaling.md were run the same way, by hand, under an address-space limit)."""
+    rows: list[dict[str, Any]] = []
+    root = str(Path(__file__).resolve().parent.parent.parent)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
+    for n in QUICK_SCALE_SIZES if quick else SCALE_SIZES:
+        done = subprocess.run([sys.executable, "-m", "tce.quality.scale", str(n)], capture_output=True, text=True,
+                              env=env, timeout=7200)
+        if done.returncode != 0:
+            rows.append(_row("scale", f"dome {n} x {n}", "stages", note=f"failed: {done.stderr[-300:]}"))
+            continue
+        r = json.loads(done.stdout.strip().splitlines()[-1])
+        solve = next(st for st in r["stages"] if st["stage"] == "Clarabel solved")
+        build = sum(st["cpu_s"] for st in r["stages"][1:3])
+        for st in r["stages"]:
+            rows.append(_row("scale", f"dome {r['n_blocks']} blocks", st["stage"], solver="CLARABEL", model="spatial",
+                             n_blocks=r["n_blocks"], time_s=st["cpu_s"], peak_mem_mb=1e3 * st["peak_gb"],
+                             note=f"resident {st['rss_gb']:.2f} GB, peak {st['peak_gb']:.2f} GB; {r['n_contacts']} "
+                                  f"contacts, {r['n_vars']} unknowns, {r['rows']} rows, nnz(A) {r['nnz_A']}; "
+                                  f"{r['status']} in {r['iterations']} it; build {build:.1f} CPU-s, "
+                                  f"solve {solve['cpu_s']:.1f} CPU-s"))
+    return rows
+
 # ---------------------------------------------------------------- past one machine: Dask
 #: a sweep whose scenarios carry about half a CPU-second of solving each: a dome of 12 sectors x
 #: 6 courses (84 blocks, 3D SOCP) under 6 frictions x 2 settlement cases
@@ -1165,6 +1196,7 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "runs": _runs,
     "sweeps": _sweeps,
     "dask": _dask,
+    "scale": _scale,
     "reduction": _reduction,
     "plotting": _plotting,
 }
