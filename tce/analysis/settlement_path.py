@@ -81,8 +81,6 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import scipy.sparse as sp
-from scipy.optimize import linprog
-from scipy.sparse.linalg import lsqr
 
 from ..core.material import Material
 from ..core.model import EZ, Plane, find_plane, lateral_direction
@@ -100,6 +98,21 @@ MAX_STEPS = 20_000
 MAX_SNAPS = 100
 
 _FEAS = 1e-9  # relative tolerance of the equilibrium residual and of "velocity is zero"
+
+
+def _linprog(*args, **kwargs):
+    """:func:`scipy.optimize.linprog`, imported on first use: scipy.optimize costs 0.2-0.3 CPU-s
+    to import, which every run paid before, with or without a settlement path."""
+    from scipy.optimize import linprog
+
+    return linprog(*args, **kwargs)
+
+
+def _lsqr(*args, **kwargs):
+    """:func:`scipy.sparse.linalg.lsqr`, imported on first use (as :func:`_linprog`)."""
+    from scipy.sparse.linalg import lsqr
+
+    return lsqr(*args, **kwargs)
 
 
 def rotation_matrices(w: ArrayLike) -> NDArray[np.float64]:
@@ -394,7 +407,7 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
     Gn, Gt, hn, ht, kc, p, dirs = _operators(sc, cf, closed)
     b = _weights(sc)
     V = np.abs(sc.velocity).max(initial=0.0) or 1.0  # velocities in units of the supports' largest
-    res = linprog(-b, A_ub=-Gn, b_ub=hn / V, A_eq=Gt, b_eq=-ht / V, bounds=(None, None), method="highs")
+    res = _linprog(-b, A_ub=-Gn, b_ub=hn / V, A_eq=Gt, b_eq=-ht / V, bounds=(None, None), method="highs")
     if res.status == 2:
         return _Step("infeasible", message="the support motion needs interpenetration: " + res.message)
     if res.status == 3:
@@ -442,7 +455,7 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
     c = np.zeros(nn + nt + 1)
     c[-1] = -1.0
     bounds = [(0, None)] * nn + [(None, None)] * nt + [(None, None)]
-    res = linprog(c, A_eq=A, b_eq=-b, bounds=bounds, method="highs")
+    res = _linprog(c, A_eq=A, b_eq=-b, bounds=bounds, method="highs")
     if res.status == 0:
         return "optimal", float(res.x[-1])
     return {2: "infeasible", 3: "unbounded"}.get(res.status, "numerical"), float("nan")
@@ -469,7 +482,7 @@ def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     pb = cf.place(sc.ib[sc.ci[kc]], sc.points[kc], sc)
     mis = np.einsum("kd,kjd->jk", pb - pa, dirs).ravel()  # normal rows, then tangent by tangent
     J = sp.vstack([Gn, Gt]).tocsr()
-    dq = lsqr(J, -mis, atol=1e-12, btol=1e-12, iter_lim=100 * J.shape[1])[0]  # least norm
+    dq = _lsqr(J, -mis, atol=1e-12, btol=1e-12, iter_lim=100 * J.shape[1])[0]  # least norm
     return cf.turned(sc, _unscale(sc, dq), sc.free)
 
 
@@ -501,7 +514,7 @@ def _snap(
     everything = np.ones(closed.shape, dtype=bool)
     for _ in range(2000):
         Gn, Gt, *_ = _operators(sc, cf, closed)
-        res = linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
+        res = _linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
         if res.status != 0 or -res.fun <= _FEAS:
             return None
         d = np.zeros((len(sc.weights), sc.ndof))

@@ -389,8 +389,21 @@ class FillSection(_Strict):
     depth: NonNegative
     unit_weight: Positive
     weight: bool = True
-    dispersion: Annotated[float, Field(ge=0, le=60)] = DISPERSION_2_TO_1
+    dispersion: Annotated[float, Field(ge=0, le=60)] | Literal["boussinesq"] = DISPERSION_2_TO_1
     k0: Annotated[float, Field(ge=0, lt=1)] = 0.0
+    kp: NonNegative = 0.0
+
+    @field_validator("kp")
+    @classmethod
+    def _passive_not_in_load_paths(cls, v: float) -> float:
+        # tce.core.fill: only the direct limit carries the passive restraint
+        if v != 0.0:
+            raise ValueError(
+                "passive restraint is carried by the direct limit analysis only (Analysis.limit, "
+                "critical_position, adequacy_factor in Python); a study's load path does not carry it and would "
+                "report a second, lower collapse load; fix: remove kp here and use the Python API (docs/studies.md, Fill)"
+            )
+        return v
 
 
 class LoadsSection(_Strict):
