@@ -22,9 +22,13 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
 from reference import continuous_arch as ref  # noqa: E402
+from reference import continuous_dome as dome_ref  # noqa: E402
+from reference import lateral_arch as lateral_ref  # noqa: E402
 
 from tce import Analysis, Material, semicircular_arch  # noqa: E402
-from tce.quality.validation import CASES, crown_thrust, friction_bound, min_ratio, stress_block_column  # noqa: E402
+from tce.quality.validation import (  # noqa: E402
+    CASES, arch_in_strips, crown_thrust, dome_min_ratio, friction_bound, min_ratio, stress_block_column,
+)
 
 IMG = ROOT / "docs" / "img"
 PUBLISHED = {c.name: c.published for c in CASES}
@@ -36,6 +40,15 @@ def _save(fig, name: str) -> None:
     fig.savefig(IMG / name, dpi=110)
     plt.close(fig)
     print(f"wrote docs/img/{name}")
+
+
+def _decorate(ax, xlabel: str, ylabel: str, title: str, **legend) -> None:
+    """Axis labels, title, legend (``legend``: its keyword arguments) and a light grid."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(**{"fontsize": 7.5, **legend})
+    ax.grid(alpha=0.3)
 
 
 def thickness_convergence() -> None:
@@ -156,7 +169,131 @@ def stress_block() -> None:
     _save(fig, "validation_stress_block.png")
 
 
+def dome_convergence() -> None:
+    """Heyman's hemisphere: least t/R against the courses, tce against the axisymmetric LP."""
+    courses = [3, 4, 6, 8, 12, 16, 24, 32]
+    tce_values = [dome_min_ratio(4, c, 1e-6) for c in courses]  # the sectors do not matter
+    facets = [dome_ref.minimum_thickness(c, lo=0.02, hi=0.08, tol=1e-8, shell="facets") for c in courses]
+    sphere = [dome_ref.minimum_thickness(c, tol=1e-8) for c in courses]
+    limit = dome_ref.minimum_thickness(200, tol=1e-8)
+    print("courses   ", courses)
+    print("tce       ", [f"{v:.7f}" for v in tce_values])
+    print("LP facets ", [f"{v:.7f}" for v in facets])
+    print("LP sphere ", [f"{v:.7f}" for v in sphere], "200 courses", f"{limit:.7f}")
+    fig, ax = plt.subplots(figsize=(7.5, 4.6))
+    ax.plot(courses, tce_values, "o", ms=8, mfc="none", color="C0", label="tce, 4 sectors (any number gives the same)")
+    ax.plot(courses, facets, "-", color="C0", lw=1, label="axisymmetric LP, the same facetted courses")
+    ax.plot(courses, sphere, "s--", color="C2", ms=4, lw=1, label="axisymmetric LP, spherical courses")
+    ax.axhline(limit, color="k", ls=":", label=f"LP, 200 courses: {limit:.5f} (R mid-surface)")
+    ax.axhline(PUBLISHED["heyman_dome"], color="C3", ls="--", label="Heyman 1977 (cited): 0.042")
+    ax.axhline(limit / (1 + limit / 2), color="grey", ls="-.", lw=0.8,
+               label=f"the same against the extrados radius: {limit / (1 + limit / 2):.5f}")
+    _decorate(ax, "courses (crown to base)", "least thickness t/R",
+              "Hemispherical dome under self-weight: least thickness against the courses", loc="lower right")
+    _save(fig, "validation_dome.png")
+
+
+def lateral_capacity() -> None:
+    """The semicircular arch under a horizontal acceleration: lambda_max against t/R."""
+    ts = [0.11, 0.12, 0.135, 0.15, 0.175, 0.2, 0.25, 0.3, 0.4, 0.5]
+    dense = np.linspace(0.108, 0.5, 60)
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    for n, colour in ((14, "C1"), (40, "C0")):
+        lam = [Analysis(semicircular_arch(1 - t / 2, t, 0.25, n), Material()).limit(0.0).lambda_max for t in ts]
+        lp = [lateral_ref.capacity(t, n, "facets") for t in ts]
+        print(f"n={n:<3} tce", [f"{v:.6f}" for v in lam])
+        print(f"n={n:<3} LP ", [f"{v:.6f}" for v in lp])
+        ax.plot(ts, lam, "o", mfc="none", ms=8, color=colour, label=f"tce, {n} voussoirs")
+        ax.plot(dense, [lateral_ref.capacity(t, n, "facets") for t in dense], "-", lw=1, color=colour,
+                label=f"LP over the same {n} voussoirs")
+    ring = [lateral_ref.capacity(t, 2000) for t in dense]
+    print("t/R", ts)
+    print("ring", [f"{lateral_ref.capacity(t, 2000):.6f}" for t in ts])
+    ax.plot(dense, ring, "k:", label="LP, continuous ring (2000 cuts)")
+    ax.axvline(0.107478, color="grey", lw=0.8, ls="--", label="least thickness under self-weight, 0.1075")
+    _decorate(ax, "thickness ratio t/R", "lambda_max = horizontal acceleration / g",
+              "Semicircular arch under a horizontal acceleration (no sliding)", loc="upper left")
+    right = ax.secondary_yaxis("right", functions=(lambda v: np.degrees(np.arctan(v)), lambda d: np.tan(np.radians(d))))
+    right.set_ylabel("tilt of a tilting table, atan(lambda) (deg)")
+    _save(fig, "validation_lateral.png")
+
+
+def crushing_arch() -> None:
+    """The arch with fc: lambda_max against fc / (gamma R), and against the strips per joint."""
+    t, n, unit_weight = 0.15, 14, 20.0
+    arch = semicircular_arch(1 - t / 2, t, 0.25, n)
+
+    def tce_capacity(strips: int, fc: float) -> float:
+        return Analysis(arch_in_strips(arch, strips), Material(compressive_strength=fc)).limit(0.0).lambda_max
+
+    fs = [5, 6, 7.5, 10, 15, 25, 50, 100]
+    dense = np.geomspace(4.6, 100, 50)  # the arch stands from about 4.0 (voussoirs), 4.3 (ring)
+    lp = [lateral_ref.capacity(t, n, "facets", f) for f in dense]
+    ring = [lateral_ref.capacity(t, 500, "ring", f) for f in dense]
+    lam64 = [tce_capacity(64, f * unit_weight) for f in fs]
+    print("fc/(gamma R)", fs)
+    print("tce 64 strips", [f"{v:.6f}" for v in lam64])
+    print("LP voussoirs ", [f"{lateral_ref.capacity(t, n, 'facets', f):.6f}" for f in fs])
+    strips = [1, 2, 4, 8, 16, 32, 64, 128]
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.6))
+    a.semilogx(fs, lam64, "o", mfc="none", ms=8, color="C0", label="tce, 14 voussoirs, joints in 64 strips")
+    a.semilogx(dense, lp, "-", color="C0", lw=1, label="stress blocks at the same joints (convex program)")
+    a.semilogx(dense, ring, "k:", label="stress blocks, continuous ring (500 cuts)")
+    a.axhline(lateral_ref.capacity(t, n, "facets"), color="grey", ls="--", lw=0.8, label="unlimited fc (14 voussoirs)")
+    _decorate(a, "fc / (gamma R)", "lambda_max", "Arch t/R = 0.15 under lateral load: crushing")
+    for f, colour in ((5.0, "C3"), (12.5, "C2")):
+        reference = lateral_ref.capacity(t, n, "facets", f)
+        lam = [tce_capacity(k, f * unit_weight) for k in strips]
+        print(f"fc/(gamma R) = {f}: reference {reference:.6f}; strips {strips}:", [f"{v:.6f}" for v in lam])
+        b.semilogx(strips, lam, "o-", color=colour, label=f"tce, fc/(gamma R) = {f:g}")
+        b.axhline(reference, color=colour, ls=":", label=f"stress blocks: {reference:.5f}")
+    b.set_xticks(strips, [str(k) for k in strips])
+    b.minorticks_off()
+    _decorate(b, "strips per joint", "lambda_max", "Convergence with the strips (from above)")
+    _save(fig, "validation_crushing_arch.png")
+
+
+def gilbert_arch() -> None:
+    """The 27-block arch of Gilbert, Casapulla & Ahmed 2006: least t/R against mu, the points
+    read off their figure, tce's non-associative values at 27 voussoirs (the associative least
+    thickness, its bracket checked closed) and at 160."""
+    from tce.quality.validation import GCA_VOUSSOIRS, NONASSOC_CASES, nonassoc_min_ratio
+
+    read = {c.name: c.published for c in NONASSOC_CASES}
+    pts_mu = [read["gca_mu_rm"], 0.375, 0.35, 0.325, 0.3109]
+    pts_t = [read["gca_eta_mode1"], read["gca_eta_0375"], read["gca_eta_035"], read["gca_eta_0325"], read["gca_eta_0311"]]
+    mus = [0.3091, 0.3095, 0.31, 0.3109, 0.315, 0.32, 0.325, 0.33, 0.34, 0.35, 0.36, 0.375, 0.38, 0.39, 0.395, 0.40,
+           0.45, 0.5, 0.6, 0.7, 0.8]
+    na27 = [nonassoc_min_ratio(mu) for mu in mus]
+    as160 = [min_ratio(160, mu, "radial", 1e-6) if mu > 0.3092 else np.nan for mu in mus]  # its mu_ms: 0.309183
+    mu_ms = friction_bound(0.25, n=GCA_VOUSSOIRS, lo=0.29, hi=0.33)
+    print("mu          ", mus)
+    print("tce 27 (na) ", [f"{v:.5f}" for v in na27])
+    print("tce 160     ", [f"{v:.5f}" for v in as160])
+    print("mu_ms 27    ", f"{mu_ms:.6f}")
+    fig, (ax, dx) = plt.subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [2, 1]})
+    ax.plot(mus, na27, "-", color="C0", label=f"tce, {GCA_VOUSSOIRS} voussoirs, non-associative (bracket closed)")
+    ax.plot(mus, as160, "--", color="C2", lw=0.9, label="tce, 160 voussoirs")
+    ax.plot(pts_mu, pts_t, "kD", ms=6, label="Gilbert et al. 2006, read off their figure (+-0.0011)")
+    ax.axvline(read["gca_mu_ms"], color="k", ls=":", lw=0.9, label=f"their mode III line ({read['gca_mu_ms']})")
+    ax.axvline(mu_ms, color="C0", ls=":", lw=0.9, label=f"tce's least mu, 27 voussoirs ({mu_ms:.4f})")
+    ax.set_ylim(0.09, 0.21)
+    _decorate(ax, "friction coefficient mu", "least thickness t/R",
+              "27-block semicircular arch under self-weight, joints sliding without opening")
+    diff = [nonassoc_min_ratio(mu) - t for mu, t in zip(pts_mu, pts_t)]
+    print("tce 27 - read", [f"{d:+.5f}" for d in diff])
+    dx.errorbar(pts_mu, diff, yerr=0.0011, fmt="kD", ms=5, capsize=3, label="tce (27) - read value, +-1 px")
+    dx.axhline(0.0, color="grey", lw=0.8)
+    _decorate(dx, "friction coefficient mu", "difference in t/R", "tce against the read points")
+    _save(fig, "validation_gilbert_arch.png")
+
+
+STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity, crushing_arch,
+         gilbert_arch)
+
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)
-    for step in (thickness_convergence, friction_curve, paper_cases, stress_block):
-        step()
+    chosen = sys.argv[1:]  # names of steps to run (default: all)
+    for step in STEPS:
+        if not chosen or step.__name__ in chosen:
+            step()

@@ -156,6 +156,9 @@ def test_notes_of_wheels_off_the_deck_are_shown(tmp_path, capsys) -> None:
         (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\n[scenarios.none]"), "loads.fill.unit_weight"),
         (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\nunit_weight = 18.0\nk0 = 1.0\n[scenarios.none]"),
          "loads.fill.k0"),
+        # passive restraint: the direct limit only (tce.core.fill), refused in study files
+        (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\nunit_weight = 18.0\nkp = 3.0\n[scenarios.none]"),
+         "loads.fill.kp"),
     ],
 )
 def test_bad_declarations_exit_2_naming_the_key(tmp_path, capsys, edit, key) -> None:
@@ -220,3 +223,37 @@ def test_search_in_workers_and_resumed_gives_the_same_dataset(run, tmp_path) -> 
         other = xr.load_dataset(tmp_path / "out" / "vehicle" / "results.nc")
         for name in ("critical_x", "critical_lambda", "lambda_max", "scan_x", "scan_lambda"):
             np.testing.assert_array_equal(other[name].values, ds[name].values)
+
+
+def test_capacity_figure_has_no_empty_legend_band(run) -> None:
+    """capacity.png kept a band of 22 % of its height under the axes for a legend of one or
+    two rows, mostly white (seen on arch_vehicle and arch_point_load). The legend now stands
+    in the right-hand column under the critical positions, the axes reach down to 12 %, and
+    nothing overlaps or leaves the figure."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from tce.plot.capacity import influence_line
+
+    _, ds = run
+    fig = influence_line(ds)
+    ax = fig.axes[0]
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    (box,) = [t for t in fig.texts if t.get_text().startswith("critical position")]
+    (legend,) = fig.legends
+    to_fig = fig.transFigure.inverted().transform
+    a, b, g = (to_fig(x.get_window_extent(renderer)) for x in (ax, box, legend))
+    assert a[0, 1] <= 0.15  # the axes' bottom edge: no band below them
+    assert g[0, 0] > a[1, 0] and g[1, 1] < b[0, 1]  # right of the axes, under the box
+    assert g[0, 1] >= 0.0 and g[1, 0] <= 1.0  # within the figure
+
+
+def test_boussinesq_on_a_dome_exits_2_naming_the_key(tmp_path, capsys) -> None:
+    # Boussinesq's closed forms need plan rectangles; a dome's top faces are not
+    text = ('[study]\nname = "dome_bq"\n[structure]\ntype = "dome"\n[loads]\nlateral = false\n'
+            '[loads.fill]\ndepth = 0.3\nunit_weight = 18.0\ndispersion = "boussinesq"\n'
+            '[[loads.vehicle]]\naxles = [[0.3, 1.0]]\n[scenarios.none]\n')
+    path = write(tmp_path, text)
+    code = main(["run", str(path), "--out", str(tmp_path / "out"), "--jobs", "1", "--no-plots"])
+    err = capsys.readouterr().err
+    assert code == 2 and f"{path}: loads.fill.dispersion" in err and "not a rectangle in plan" in err
+    assert not (tmp_path / "out").exists()

@@ -20,6 +20,7 @@ from __future__ import annotations
 from ..core.analysis import Analysis
 from ..core.limit import LimitResult, LimitSolver
 from ..core.loads import LoadPattern, load_vectors
+from ..core.passive import passive_restraint
 
 __all__ = ["adequacy_factor"]
 
@@ -38,5 +39,7 @@ def adequacy_factor(analysis: Analysis, loads: LoadPattern, dead_factor: float =
             raise ValueError(f"{name} must be a positive finite number, got {v!r}")
     model = analysis.model(analysis.model_kind(loads=loads))
     b_fixed, b_live = load_vectors(model, loads)
+    # the fill's passive restraint (a resistance of the soil) is not factored
     return LimitSolver(model, analysis.material).solve_loads(dead_factor * b_fixed, live_factor * b_live,
-                                                             loads.direction, loads)
+                                                             loads.direction, loads,
+                                                             restraint=passive_restraint(model, loads.fill))

@@ -62,6 +62,9 @@ DEFAULT_STEP = 0.02
 DEFAULT_CAP = 100.0
 #: relative tolerance on lambda_max of a study that gives no ``tolerance``
 DEFAULT_RTOL = 1e-6
+#: where a bracket closed on undecided steps is tried once more: ``hi - CLOSING * tolerance``,
+#: the multiplier furthest below the inadmissible end that still closes it
+CLOSING = 0.99
 
 
 @dataclass(frozen=True, eq=False, kw_only=True, repr=False)
@@ -380,8 +383,17 @@ def load_path(
                 outcome = "numerical"
                 break
         if outcome == "limit" and hi - lo > max(atol, rtol * abs(hi), math.ulp(hi)):
-            # the bracket closed on undecided steps: no optimal step lies within the
-            # tolerance of the limit, so the last optimal one is not the answer
+            # the bracket closed on undecided steps, which lie next to the limit: the
+            # admissible set thins to a point there, and the solver's accuracy goes with it
+            # (on the paper's arch with crushing, Clarabel stops `AlmostSolved` within
+            # ~5e-7 of lambda_direct = 4.4528840 and solves at ~9e-7). The multiplier
+            # furthest from the limit that still closes the bracket is solved once more.
+            lam = hi - CLOSING * max(atol, rtol * abs(hi))
+            if lo < lam < hi and run(lam).status == "optimal":
+                lo = lam
+        if outcome == "limit" and hi - lo > max(atol, rtol * abs(hi), math.ulp(hi)):
+            # no optimal step lies within the tolerance of the limit, so the last optimal
+            # one is not the answer
             outcome = "numerical"
     lam_max = lo if outcome == "limit" and lo is not None else float("nan")
     if outcome == "capped":

@@ -41,7 +41,8 @@ from .conic import ConeRows, law_violation, matvec
 from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import EZ, Model
-from .problem import Formulation, LimitProblems, lateral_ray_problem
+from .passive import Restraint, passive_restraint
+from .problem import Formulation, LimitProblems, lateral_ray_problem, phase1_problem, restrained_limit_problem
 from .. import display
 from .result import DOFS, Result
 
@@ -184,6 +185,9 @@ class LimitResult(Result):
     iterations : int
     setup_time : float
         Wall time of the solver set-up (s).
+    restraint_forces : (k,) ndarray or None
+        The bounded extra forces of a restrained problem at the limit (kN; the fill's
+        passive restraint, :mod:`tce.core.passive`); None without them, NaN unless optimal.
     """
 
     HEADLINE = ("lambda_max", "alpha", "model", "lambda_kinematic", "certificate_gap")
@@ -200,6 +204,7 @@ class LimitResult(Result):
     model: str = "spatial"
     iterations: int = 0
     setup_time: float = 0.0
+    restraint_forces: NDArray[np.float64] | None = field(default=None, repr=False)
 
     def _arrays(self) -> tuple[dict[str, tuple], dict[str, Any]]:
         """The collapse mechanism (``mechanism``: dims ``(block, dof)``, blocks in assembly order)."""
@@ -265,7 +270,8 @@ class LimitSolver:
         else:
             pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
             self._vectors_last = (key, (pattern, b_fixed, b_live))
-        return self.solve_loads(b_fixed, b_live, pattern.direction, pattern, mechanism=mechanism)
+        return self.solve_loads(b_fixed, b_live, pattern.direction, pattern, mechanism=mechanism,
+                                restraint=passive_restraint(self.model, pattern.fill))
 
     def solve_loads(
         self,
@@ -274,10 +280,13 @@ class LimitSolver:
         alpha: float = float("nan"),
         loads: LoadPattern | None = None,
         mechanism: bool = True,
+        restraint: Restraint | None = None,
     ) -> LimitResult:
         """Largest multiplier of the live loads ``b_live`` with ``b_fixed`` always applied
         (both in ``A_eq``'s row layout, kN and kN m); ``alpha`` and ``loads`` are recorded in
-        the result.
+        the result. With ``restraint``, its bounded forces are unknowns of the problem too
+        (:func:`tce.core.problem.restrained_limit_problem`; :meth:`solve` takes the fill's
+        passive restraint from the pattern) and the result carries their values.
 
         The mechanism (:func:`mechanism_from_velocities`, a fifth of the whole call on the
         paper's arch) is classified only when ``mechanism`` is True; the result carries the
@@ -286,17 +295,21 @@ class LimitSolver:
         t0 = time.perf_counter()
         model, f = self.model, self.formulation
         m = f.A_eq.shape[0]
-        problem = self._problems(b_fixed, b_live)
+        if restraint is None:
+            problem = self._problems(b_fixed, b_live)
+        else:
+            problem = restrained_limit_problem(f, b_fixed, b_live, restraint.G, restraint.capacity)
         rhs_scaled = problem.b[:m]
         # without iterative refinement first (0.6x the time on a 10,100-block dome, lambda
         # within 1e-10); an answer that is not clean is solved again with it
         sol = solve_once(problem, self._settings[0])
         retried, spent = "", (0.0, 0.0)
-        checked = self._checked(sol, rhs_scaled, b_live)
+        checked = self._checked(sol, rhs_scaled, b_live, restraint)
         if sol.status not in ("PrimalInfeasible", "DualInfeasible") and checked is None:
             retried, spent = f" (after {sol.status} without iterative refinement)", (sol.solve_time, sol.setup_time)
             sol = solve_once(problem, self._settings[1])
-            checked = self._checked(sol, rhs_scaled, b_live)
+            checked = self._checked(sol, rhs_scaled, b_live, restraint)
+        no_restraint = None if restraint is None else np.full(restraint.size, np.nan)
         common = dict(alpha=alpha, loads=loads, model=model.kind, solve_time=sol.solve_time + spent[0],
                       setup_time=sol.setup_time + spent[1],
                       iterations=sol.iterations)
@@ -306,25 +319,32 @@ class LimitSolver:
             v = sol.z[:m] / f.row_div
             mech = mechanism_from_velocities(model, _block_velocities(model, v)) if np.any(v) else None
             return LimitResult(status="infeasible", forces=self._no_forces(), mechanism=mech, row_velocities=v,
-                               message=f"clarabel: {sol.status}", wall_time=time.perf_counter() - t0, **common)
+                               message=f"clarabel: {sol.status}", wall_time=time.perf_counter() - t0,
+                               restraint_forces=no_restraint, **common)
         if sol.status == "DualInfeasible":
             return LimitResult(status="unbounded", lambda_max=float("inf"), forces=self._no_forces(), message=f"clarabel: {sol.status}",
-                               wall_time=time.perf_counter() - t0, **common)
+                               wall_time=time.perf_counter() - t0,
+                               restraint_forces=no_restraint, **common)
+        if checked is None and (proof := self._unbounded_proof(b_fixed, b_live)):
+            return LimitResult(status="unbounded", lambda_max=float("inf"), forces=self._no_forces(),
+                               message=f"clarabel: {sol.status}{retried}; {proof}", wall_time=time.perf_counter() - t0,
+                               restraint_forces=no_restraint, **common)
         if checked is None:
             eq = f.residuals_scaled(f.forces(sol.x), rhs_scaled - float(sol.x[-1]) * b_live / f.row_div)[0]
             return LimitResult(status="numerical", forces=self._no_forces(), message=f"clarabel: {sol.status}{retried}; residual {eq:.3g}",
-                               wall_time=time.perf_counter() - t0, **common)
-        lam, F = checked
+                               wall_time=time.perf_counter() - t0, restraint_forces=no_restraint, **common)
+        lam, F, p = checked
         v = sol.z[:m] / f.row_div  # virtual velocities per equilibrium row, v . b_live = 1
-        # power of the fixed loads plus what the law's offsets dissipate (cohesion, tension,
-        # crushing: h . y with y the law rows' multipliers; zero for the paper's laws)
-        lam_kin = float((-(v @ b_fixed) + f.law_h @ sol.z[m:]) / (v @ b_live))
+        # power of the fixed loads plus what the offsets of the other rows dissipate (the
+        # law's cohesion, tension, crushing: h . y with y the law rows' multipliers, zero for
+        # the paper's laws; a restraint's capacities times its upper-bound rows' multipliers)
+        lam_kin = float((-(v @ b_fixed) + problem.b[m:] @ sol.z[m:]) / (v @ b_live))
         gap = abs(lam_kin - lam) / max(abs(lam), 1e-12)
         mech, adm = self._mechanism(v) if mechanism else (None, float("nan"))
         return LimitResult(
             status="optimal", lambda_max=lam, lambda_kinematic=lam_kin, certificate_gap=gap, admissibility=adm,
             forces=F.reshape(model.n_contacts, model.dim), mechanism=mech, row_velocities=v,
-            message=f"clarabel: {sol.status}{retried}", wall_time=time.perf_counter() - t0, **common,
+            message=f"clarabel: {sol.status}{retried}", wall_time=time.perf_counter() - t0, restraint_forces=p, **common,
         )
 
     def _no_forces(self) -> NDArray[np.float64]:
@@ -347,17 +367,28 @@ class LimitSolver:
         return mech, self._dual_cone_violation(self._rel_times(v))
 
     def _checked(
-        self, sol: Solution, rhs_scaled: NDArray[np.float64], b_live: NDArray[np.float64]
-    ) -> tuple[float, NDArray[np.float64]] | None:
-        """``(lam, F)`` of a limit solve that passes the residual checks (1e-8 of W and W L),
-        else None; ``rhs_scaled`` is the fixed loads' scaled right-hand side (``b[:m_eq]``)."""
+        self, sol: Solution, rhs_scaled: NDArray[np.float64], b_live: NDArray[np.float64],
+        restraint: Restraint | None = None,
+    ) -> tuple[float, NDArray[np.float64], NDArray[np.float64] | None] | None:
+        """``(lam, F, p)`` of a limit solve that passes the residual checks (1e-8 of W and W
+        L; a restraint's forces within their bounds to 1e-8 of W), else None; ``rhs_scaled``
+        is the fixed loads' scaled right-hand side (``b[:m_eq]``); ``p`` the restraint's
+        forces (kN; None without one)."""
         if not sol.solved:
             return None
         f = self.formulation
         lam = float(sol.x[-1])
         F = f.forces(sol.x)
-        eq, law = f.residuals_scaled(F, rhs_scaled - lam * b_live / f.row_div)
-        return (lam, F) if eq <= 1e-8 and law <= 1e-8 else None
+        rhs = rhs_scaled - lam * b_live / f.row_div
+        p = None
+        if restraint is not None:
+            W = f.scaling.force
+            p = sol.x[f.n : f.n + restraint.size] * W
+            rhs = rhs - restraint.G @ p / f.row_div
+            if np.any(p < -1e-8 * W) or np.any(p > restraint.capacity + 1e-8 * W):
+                return None
+        eq, law = f.residuals_scaled(F, rhs)
+        return (lam, F, p) if eq <= 1e-8 and law <= 1e-8 else None
 
     def _dual_cone_violation(self, rel: NDArray[np.float64]) -> float:
         """Violation of ``dn >= mu ||dt||`` (tangential free of constraint for mu = 0; no sliding
@@ -379,6 +410,55 @@ class LimitSolver:
         else:
             viol = np.maximum(mu * dt - dn, 0.0)
         return float(viol.max(initial=0.0) / scale)
+
+    def _unbounded_proof(self, b_fixed: NDArray[np.float64], b_live: NDArray[np.float64]) -> str:
+        """Decide an undecided limit solve as unbounded, independently of Clarabel's certificate.
+
+        Clarabel's certificate of dual infeasibility (a ray ``(dF, dlam)`` of the limit
+        problem) is the last iterate of its homogeneous embedding. On the running-bond wall
+        under a live point load, turned by 88.96 degrees about z (the rotation fills ``A_eq``:
+        3389 non-zeros instead of 2857), its ray residual stalled at 3.7e-9 of ``|x|`` after 7
+        iterations, above Clarabel's full tolerance (1e-9) and below its reduced one, so the
+        answer was ``AlmostDualInfeasible``, which tce rightly does not take as a verdict.
+        The limit is unbounded when both of these hold (each a well-posed, bounded problem):
+
+        - a live-load ray: the least-force state carrying the unit live load alone under the
+          homogeneous law (:meth:`lateral_ray`'s problem), with equilibrium residual and law
+          violation below ``residual_tol`` (relative to ``W`` and ``W L``; 8e-14 on that wall
+          at every angle);
+        - an admissible state at ``lam = 0``: the phase-1 residual of the fixed loads
+          (:func:`tce.core.problem.phase1_problem`) is at most ``feas_tol``.
+
+        Then ``F0 + t dF`` is admissible at ``lam = t`` for every ``t >= 0``. Returns what
+        proved it, or ``""`` when either part fails (the answer stays ``numerical``).
+        """
+        ray = self._ray(b_live, np.ones(self.model.n_contacts, dtype=bool))
+        tol = self.options.residual_tol
+        if ray is None or ray[1] > tol or ray[2] > tol:
+            return ""
+        f = self.formulation
+        sol = solve_once(phase1_problem(f, b_fixed), self.options.settings(kkt=f.kkt))
+        if not (sol.solved and float(sol.x[-1]) <= self.options.feas_tol):
+            return ""
+        return (f"unbounded: the live load alone is carried (ray residuals {ray[1]:.2g}, {ray[2]:.2g}) "
+                f"and the fixed loads are (phase-1 residual {float(sol.x[-1]):.2g})")
+
+    def _ray(
+        self, b_live: NDArray[np.float64], allowed: NDArray[np.bool_]
+    ) -> tuple[NDArray[np.float64], float, float] | None:
+        """The least-force state carrying ``b_live`` alone on the ``allowed`` contacts
+        (:func:`tce.core.problem.lateral_ray_problem`), with its equilibrium residual
+        (relative to ``W``, ``W L``) and violation of the homogeneous law (over ``W``); None
+        when the solve fails."""
+        model, f = self.model, self.formulation
+        sol = solve_once(lateral_ray_problem(f, b_live, allowed), self.options.settings(kkt=f.kkt))
+        if not sol.solved:
+            return None
+        F = f.forces(sol.x)
+        F.reshape(model.n_contacts, model.dim)[~allowed] = 0.0
+        eq = float(np.abs((model.A_eq @ F + b_live) / f.row_div).max(initial=0.0))
+        law = law_violation(replace(f.law, h=None), F) / f.scaling.force  # the homogeneous law: a direction
+        return F, eq, law
 
     # ------------------------------------------------------------------------------------
     # Certificate of no finite limit (issue 15): the named problem
@@ -418,16 +498,9 @@ class LimitSolver:
             Contact forces (kN per unit lambda), or None when no such state exists (the limit
             is finite, or the allowed contacts cannot carry the load) or the solve fails.
         """
-        model, f = self.model, self.formulation
+        model = self.model
         allowed = np.ones(model.n_contacts, dtype=bool) if contacts is None else np.asarray(contacts, dtype=bool)
-        b_live = scene_vectors(model, alpha, loads)[2]
-        sol = solve_once(lateral_ray_problem(f, b_live, allowed), self.options.settings(kkt=f.kkt))
-        if not sol.solved:
+        ray = self._ray(scene_vectors(model, alpha, loads)[2], allowed)
+        if ray is None or ray[1] > 1e-7 or ray[2] > 1e-7:
             return None
-        F = f.forces(sol.x)
-        F.reshape(model.n_contacts, model.dim)[~allowed] = 0.0
-        eq = np.abs((model.A_eq @ F + b_live) / f.row_div).max(initial=0.0)
-        law = law_violation(replace(f.law, h=None), F)  # the homogeneous law: a direction
-        if eq > 1e-7 or law > 1e-7 * f.scaling.force:
-            return None
-        return F.reshape(model.n_contacts, model.dim)
+        return ray[0].reshape(model.n_contacts, model.dim)

@@ -57,6 +57,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .clarabel_solver import SOLVER_NAME, ClarabelSolver, Solution, SolverOptions, solve_once
 from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
+from .passive import refuse_passive
 from .material import Material
 from .model import InterfaceMap, Model
 from .canonical import CanonicalSolver
@@ -77,6 +78,11 @@ __all__ = [
 ]
 
 log = logging.getLogger(__name__)
+
+
+def _b_norm(b: NDArray[np.float64]) -> float:
+    """``max |b|`` of a scaled problem (:meth:`SolverOptions.settings`' ``b_norm``)."""
+    return float(np.abs(b).max(initial=0.0))
 
 
 def check_settlements(names: tuple[str, ...], settlements: Mapping[str, ArrayLike] | None) -> dict[str, NDArray[np.float64]]:
@@ -276,6 +282,7 @@ class TCESolver:
         last = self._vectors_last
         if last is not None and (last[0] is loads or last[0] == loads):
             return last[1]
+        refuse_passive(loads, "a TCE solve")
         v = load_vectors(self.model, loads)
         self._vectors_last = (loads, v)
         return v
@@ -308,10 +315,11 @@ class TCESolver:
         set up on the first call, then only its vectors are updated (``b`` alone while ``U`` is
         unchanged; iterative refinement as ``options.refine``)."""
         f, q = self.formulation, self._q(U)
-        if self._q_last[3]:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
-            return solve_once(tce_problem(f, b, U), self.options.settings(refine=self.options.refine, kkt=f.kkt))
-        if self._warm is None:
-            self._warm = ClarabelSolver(tce_problem(f, b, U), self.options.settings(refine=self.options.refine, kkt=f.kkt))
+        if self._q_last[3] or self._warm is None:
+            settings = self.options.settings(refine=self.options.refine, kkt=f.kkt, b_norm=_b_norm(b))
+            if self._q_last[3]:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
+                return solve_once(tce_problem(f, b, U), settings)
+            self._warm = ClarabelSolver(tce_problem(f, b, U), settings)
         elif q is self._warm_q:
             self._warm.update(b=b)
         else:
@@ -453,7 +461,8 @@ class TCESolver:
             for name, robust in (("rescaled", False), ("robust settings", True)):
                 if status != "numerical":
                     break
-                sol2 = solve_once(tce_problem(self.formulation, b, U), self.options.settings(robust=robust, kkt=self.formulation.kkt))
+                sol2 = solve_once(tce_problem(self.formulation, b, U), self.options.settings(
+                    robust=robust, kkt=self.formulation.kkt, b_norm=_b_norm(b)))
                 stime += sol2.solve_time
                 setup += sol2.setup_time
                 notes.append(f"{name} retry: {sol2.status}")
@@ -466,12 +475,11 @@ class TCESolver:
         if status != "optimal":
             F = res = None
         elif self.formulation.D is None and self.options.canonical:
-            can = self._canonical_solver().state(b, self._q(U), F)
+            can = self._canonical_solver().state(b, self._q(U), F, lambda Fc: self.formulation.residuals_scaled(Fc, b_eq))
             stime += can.solve_time
             setup += can.setup_time
-            res_c = None if can.forces is None else self.formulation.residuals_scaled(can.forces, b_eq)
-            if res_c is not None and self._passes(res_c):
-                F, res, unique = can.forces, res_c, can.unique
+            if can.forces is not None and can.residuals is not None:
+                F, res, unique = can.forces, can.residuals, can.unique
             else:
                 notes.append("canonical state not found: the solver's state kept")
         return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,

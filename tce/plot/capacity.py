@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
@@ -90,7 +91,7 @@ def influence_line(ds: xr.Dataset) -> Figure:
     search = "scan_x" in ds
     curves = _search_curves(ds) if search else _sweep_curves(ds)
     fig = Figure(figsize=(9.0, 5.0))
-    ax = fig.add_axes((0.08, 0.22, 0.60, 0.70))
+    ax = fig.add_axes((0.08, 0.12, 0.60, 0.80))
     ax.ticklabel_format(useOffset=False)
     handles, lines = [], []
     for i, c in enumerate(curves):
@@ -121,8 +122,8 @@ def influence_line(ds: xr.Dataset) -> Figure:
         handles.append(Line2D([], [], linestyle="none", marker="*", markersize=11, markerfacecolor="white",
                               markeredgecolor="grey", label="tied position (same λmax)"))
     title = "critical position" + (" (searched)" if search else " (of the positions run)")
-    fig.text(0.70, 0.92, title + "\n" + ("\n".join(lines) if lines else "none (no finite λmax)"), ha="left", va="top",
-             fontsize=8, bbox=dict(boxstyle="round", facecolor="white", edgecolor="#9a9a9a"))
+    box = fig.text(0.70, 0.92, title + "\n" + ("\n".join(lines) if lines else "none (no finite λmax)"), ha="left",
+                   va="top", fontsize=8, bbox=dict(boxstyle="round", facecolor="white", edgecolor="#9a9a9a"))
     finite = [v for c in curves for v in c.lam if math.isfinite(v)]
     ax.set_ylim(0.0, 1.15 * max(finite) if finite else 1.0)
     ax.set_xlabel("position x of the moving live load" + ("s' reference" if search else "") + " (m)")
@@ -130,6 +131,10 @@ def influence_line(ds: xr.Dataset) -> Figure:
     ax.set_title("capacity against load position" + (" (direct limit at each position)" if search else " (influence line)"),
                  fontsize=10)
     ax.grid(True, linewidth=0.3, alpha=0.6)
-    fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 0.0), ncols=min(len(handles), 3), fontsize=8,
+    # the legend in the right-hand column, under the critical positions (a band under the
+    # axes stayed mostly empty: one or two rows of entries)
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    below = fig.transFigure.inverted().transform(box.get_window_extent(renderer))[0, 1]
+    fig.legend(handles=handles, loc="upper left", bbox_to_anchor=(0.695, below - 0.02), ncols=1, fontsize=8,
                frameon=False)
     return fig

@@ -957,6 +957,118 @@ def _sweep3000(quick: bool) -> list[dict[str, Any]]:
     return rows
 
 
+
+
+# ---------------------------------------------------------------- scale: one large model, stage by stage
+#: dome sizes (sectors = courses) of the scale section: 992 and 20,306 blocks (--quick: 992)
+SCALE_SIZES, QUICK_SCALE_SIZES = (31, 142), (31,)
+
+
+def _scale(quick: bool) -> list[dict[str, Any]]:
+    """Memory and CPU of each stage of building and solving one large dome's lambda_max
+    (:func:`tce.quality.scale.dome_stages`), each size in a fresh process, once (the 50k and
+    100k rows of docs/scaling.md were run the same way, by hand, under an address-space limit)."""
+    rows: list[dict[str, Any]] = []
+    root = str(Path(__file__).resolve().parent.parent.parent)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
+    for n in QUICK_SCALE_SIZES if quick else SCALE_SIZES:
+        done = subprocess.run([sys.executable, "-m", "tce.quality.scale", str(n)], capture_output=True, text=True,
+                              env=env, timeout=7200)
+        if done.returncode != 0:
+            rows.append(_row("scale", f"dome {n} x {n}", "stages", note=f"failed: {done.stderr[-300:]}"))
+            continue
+        r = json.loads(done.stdout.strip().splitlines()[-1])
+        solve = next(st for st in r["stages"] if st["stage"] == "Clarabel solved")
+        build = sum(st["cpu_s"] for st in r["stages"][1:3])
+        for st in r["stages"]:
+            rows.append(_row("scale", f"dome {r['n_blocks']} blocks", st["stage"], solver="CLARABEL", model="spatial",
+                             n_blocks=r["n_blocks"], time_s=st["cpu_s"], peak_mem_mb=1e3 * st["peak_gb"],
+                             note=f"resident {st['rss_gb']:.2f} GB, peak {st['peak_gb']:.2f} GB; {r['n_contacts']} "
+                                  f"contacts, {r['n_vars']} unknowns, {r['rows']} rows, nnz(A) {r['nnz_A']}; "
+                                  f"{r['status']} in {r['iterations']} it; build {build:.1f} CPU-s, "
+                                  f"solve {solve['cpu_s']:.1f} CPU-s"))
+    return rows
+
+# ---------------------------------------------------------------- past one machine: Dask
+#: a sweep whose scenarios carry about half a CPU-second of solving each: a dome of 12 sectors x
+#: 6 courses (84 blocks, 3D SOCP) under 6 frictions x 2 settlement cases
+DASK_DOME_SWEEP = """
+[study]
+name = "dask_dome"
+[structure]
+type = "dome"
+sectors = 12
+courses = 6
+[material]
+friction = 0.8
+[loads]
+lambda_step = 0.05
+tolerance = 1e-4
+[sweep]
+friction = [0.6, 0.7, 0.8, 0.9, 1.0, 1.2]
+[scenarios.none]
+[scenarios.one_outward]
+s01 = [0.001, 0, 0, 0, 0, 0]
+"""
+
+#: the variants of the dask section: label -> ``tce run`` arguments (``--no-plots`` added)
+DASK_VARIANTS = {
+    "in-process (--jobs 1)": ["--jobs", "1"],
+    "loky, 2 workers": ["--jobs", "2"],
+    "dask LocalCluster, 1 worker": ["--backend", "dask", "--jobs", "1"],
+    "dask LocalCluster, 2 workers": ["--backend", "dask", "--jobs", "2"],
+}
+
+
+def _dask(quick: bool) -> list[dict[str, Any]]:
+    """Throughput against workers on the Dask route (``tce run --backend dask --jobs N``, a
+    LocalCluster of N single-threaded worker processes) against the fork-server pool and the
+    in-process run: a light sweep (the 60-scenario arch sweep of ``sweeps --quick``, about 10
+    ms of solving a scenario) and a heavier one (:data:`DASK_DOME_SWEEP`, 12 dome scenarios);
+    each run a fresh ``tce run --fresh --no-plots``, CPU of every process counted (cluster
+    included), variants interleaved, medians (``--quick``: the heavy sweep only, one repeat)."""
+    import importlib.util
+    import tempfile
+
+    from ..study.jobs import NO_DASK
+
+    if importlib.util.find_spec("distributed") is None:
+        return [_row("dask", "dask not installed", "", note="pip install 'tce[dask]'")]
+    # the runs must not inherit the bench program's block on importing dask
+    blocked = os.environ.pop(NO_DASK, None)
+    try:
+        return _dask_rows(quick)
+    finally:
+        if blocked is not None:
+            os.environ[NO_DASK] = blocked
+
+
+def _dask_rows(quick: bool) -> list[dict[str, Any]]:
+    import tempfile
+
+    rows: list[dict[str, Any]] = []
+    repeats = 1 if quick else 3
+    light = SWEEP_300.replace("[0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.2, 1.4, 1.7, 2.0]", "[0.5, 0.8]")
+    sweeps = {"dome": DASK_DOME_SWEEP} if quick else {"arch": light, "dome": DASK_DOME_SWEEP}
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, text in sweeps.items():
+            study = Path(tmp) / f"{name}.toml"
+            study.write_text(text)
+            got: dict[str, list[dict[str, float]]] = {k: [] for k in DASK_VARIANTS}
+            for _ in range(repeats):
+                for label, args in DASK_VARIANTS.items():
+                    got[label].append(measured_run(study, Path(tmp) / "out", ["--no-plots", *args]))
+            solving = solving_cpu(study)
+            base = statistics.median(g["wall"] for g in got["in-process (--jobs 1)"])
+            for label, gs in got.items():
+                wall, cpu = statistics.median(g["wall"] for g in gs), statistics.median(g["cpu"] for g in gs)
+                n = gs[0]["scenarios"]
+                rows.append(_row("dask", f"{name} sweep of {n} scenarios (no figures)", label, n_solves=len(gs),
+                                 time_s=wall, time_min_s=min(g["wall"] for g in gs), solver_time_s=solving,
+                                 note=f"{n / wall:.2f} scenarios per wall s, {base / wall:.2f}x in-process; CPU "
+                                      f"{cpu:.2f} s, {cpu - solving:.2f} s beyond the load paths' {solving:.2f} s"))
+    return rows
+
 # ---------------------------------------------------------------- model reduction
 def _reduction(quick: bool) -> list[dict[str, Any]]:
     arch = semicircular_arch().validate()
@@ -1294,6 +1406,8 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "runs": _runs,
     "sweeps": _sweeps,
     "sweep3000": _sweep3000,
+    "dask": _dask,
+    "scale": _scale,
     "reduction": _reduction,
     "plotting": _plotting,
 }

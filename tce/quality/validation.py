@@ -28,15 +28,17 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from functools import cache
+from functools import cache, partial
 
 import numpy as np
 import pandas as pd
 
-from ..analysis.thickness import arch_minimum_thickness
+from ..analysis.nonassoc import nonassociative_limit
+from ..analysis.thickness import arch_minimum_thickness, minimum_thickness
 from ..core.analysis import Analysis
 from ..core.material import Material
 from ..structures.arch import semicircular_arch
+from ..structures.dome import hemispherical_dome
 from ..structures.assembly import Assembly, Block, Interface
 from ..structures.geometry import box
 
@@ -44,9 +46,12 @@ __all__ = [
     "CASES",
     "ValidationCase",
     "block_on_strips",
+    "arch_in_strips",
     "crown_thrust",
+    "dome_min_ratio",
     "format_validation",
     "friction_bound",
+    "nonassoc_min_ratio",
     "run_validation",
     "stress_block_column",
 ]
@@ -179,6 +184,75 @@ def _stress_block_closed_form(b: float = 0.4, d: float = 0.3, h: float = 1.0, fc
     return (b - w / (fc * d)) / h
 
 
+def arch_in_strips(assembly: Assembly, strips: int) -> Assembly:
+    """The same blocks with every interface cut into ``strips`` equal strips across the joint.
+
+    Each interface of an arch spanning x (depth along y) is a quadrilateral whose two edges
+    normal to y run from the intrados to the extrados; both are cut into ``strips`` equal
+    parts and joined across the depth, so a compressive strength bounds each strip's force and
+    the joint approaches the rigid-plastic stress block as the strips are refined (the single
+    block of :func:`block_on_strips` reaches it exactly).
+
+    Parameters
+    ----------
+    assembly : Assembly
+        Blocks and quadrilateral interfaces (an arch of :func:`semicircular_arch`).
+    strips : int
+        Strips per interface (>= 1).
+
+    Returns
+    -------
+    Assembly
+        The same blocks; ``strips`` interfaces in place of each, with its normal and stiffness;
+        ``meta["strips"]`` records the number.
+
+    Raises
+    ------
+    ValueError
+        ``strips`` is not a whole number >= 1, or an interface is not a quadrilateral.
+    """
+    if isinstance(strips, bool) or not isinstance(strips, (int, np.integer)) or strips < 1:
+        raise ValueError(f"strips must be a whole number >= 1, got {strips!r}")
+    faces = []
+    for face in assembly.interfaces:
+        p = np.asarray(face.points, dtype=float)
+        if len(p) != 4:
+            raise ValueError(f"interface {face.a}-{face.b} has {len(p)} vertices, not 4")
+        # the edges 0-1 and 3-2, or 1-2 and 0-3, that lie in planes of constant y
+        if abs(p[1, 1] - p[0, 1]) < 1e-12 and abs(p[2, 1] - p[3, 1]) < 1e-12:
+            front, back = (p[0], p[1]), (p[3], p[2])
+        else:
+            front, back = (p[1], p[2]), (p[0], p[3])
+        s = np.linspace(0.0, 1.0, strips + 1)[:, None]
+        f = front[0] + s * (front[1] - front[0])
+        b = back[0] + s * (back[1] - back[0])
+        faces += [Interface(face.a, face.b, np.array([f[k], f[k + 1], b[k + 1], b[k]]), face.normal, face.stiffness)
+                  for k in range(strips)]
+    return Assembly(assembly.blocks, tuple(faces), dict(assembly.meta, strips=strips))
+
+
+# ------------------------------------------------------------------------------ dome cases
+#: sectors and courses of the dome case in the command and the suite (the figures go to 32 courses)
+DOME_SECTORS, DOME_COURSES = 6, 8
+
+
+@cache
+def dome_min_ratio(sectors: int = DOME_SECTORS, courses: int = DOME_COURSES, tol: float = 1e-5) -> float:
+    """``t/R`` of the thinnest hemispherical dome (mid-surface radius ``R = 1`` m, closed crown,
+    ``sectors`` x ``courses`` voussoirs, Heyman's material) that stands under self-weight.
+
+    The meridian cuts do not change the value (every voussoir is the image of one meridian
+    section stretched across its sector, so the equations of a lune per radian do not depend on
+    the sector's angle); the courses do: a voussoir's intrados and extrados are chords, so the
+    courses' sections and weights, and with them the least thickness, converge on the
+    spherical shell's as the courses are refined (docs/validation.md).
+    """
+    return minimum_thickness(
+        lambda t: hemispherical_dome(1.0, t, sectors, courses, unit_weight=UNIT_WEIGHT),
+        0.02, 0.08, Material(), tol=tol,
+    ).ratio
+
+
 # ---------------------------------------------------------------------------------- cases
 _CR = "Cocchetti & Rizzi 2020"
 _MA = "Makris & Alexakis 2013"
@@ -236,6 +310,13 @@ CASES: tuple[ValidationCase, ...] = (
         "printed to 4 digits; tce 0.109451 at 160 voussoirs, the continuous LP 0.109460",
     ),
     ValidationCase(
+        "heyman_dome", "Heyman 1977", "cited (page not read)", "least thickness t/R, hemispherical dome, no hoop tension",
+        0.042, dome_min_ratio, f"{DOME_SECTORS} sectors x {DOME_COURSES} courses", 1e-3,
+        "printed to 2 digits; tce equals the independent LP of the same facetted courses "
+        "(0.0422201 at 8 courses) and converges with the courses on the spherical shell's LP, "
+        "0.04284 (R the mid-surface radius; 0.04194 against the extrados radius)",
+    ),
+    ValidationCase(
         "paper_in_plane", _PAPER, "Fig. 8", "lambda_0max, 14 voussoirs, mu 0.8", 0.243,
         lambda: Analysis(semicircular_arch(), Material(friction=0.8)).limit(0.0).lambda_max,
         "the paper's arch (14 voussoirs)", 1e-3, "printed to 3 digits (tce 0.242824, the 4-hinge mechanism by hand)",
@@ -251,6 +332,66 @@ CASES: tuple[ValidationCase, ...] = (
         "exact when the compressed zone W/(fc D) is a whole number of strips (here 0.2 m = 20 strips)",
     ),
 )
+
+# ------------------------------------------------------- non-associative friction (the 27-block arch)
+#: voussoirs of Gilbert, Casapulla & Ahmed's arch ("a semicircular arch composed of 27 blocks")
+GCA_VOUSSOIRS = 27
+
+
+def nonassoc_min_ratio(mu: float, n: int = GCA_VOUSSOIRS, check: float = 1e-3) -> float:
+    """Least ``t/R`` of the ``n``-voussoir arch (friction ``mu``) for joints that slide
+    without opening: the least thickness at which an admissible state exists (:func:`min_ratio`),
+    confirmed as the non-associative one when, at ``t/R (1 + check)``, the non-associative
+    scheme (:func:`tce.analysis.nonassoc.nonassociative_limit`, in-plane lateral pattern)
+    converges to ``lambda_nonassoc = lambda_assoc > 0``: a non-dilatant collapse state exists
+    at every load up to the associative one, so the arch stands there for either flow rule,
+    and below ``t/R`` nothing stands for either. NaN when the check fails."""
+    ratio = min_ratio(n, mu=mu, tol=1e-7)
+    t = ratio * (1.0 + check)
+    r = nonassociative_limit(Analysis(_arch(t, n), Material(friction=mu, flow="non-associative")), 0.0)
+    closed = r.status == "converged" and r.lambda_assoc > 0 and abs(r.lambda_nonassoc - r.lambda_assoc) <= 1e-6 * r.lambda_assoc
+    return ratio if closed else math.nan
+
+
+_GCA = "Gilbert, Casapulla & Ahmed 2006"
+_GCA_WHERE = "figure of t against mu (read off)"
+_GCA_ARCH = f"{GCA_VOUSSOIRS} radial voussoirs"
+_GCA_READ = ("tolerance: the reading; read off the figure (centreline radius 10 assumed: Heyman's mode I at 1.072 gives "
+             "t/R 0.1072) to +-1 px: +-0.0011 in t/R")
+
+NONASSOC_CASES: tuple[ValidationCase, ...] = (
+    *(
+        ValidationCase(
+            f"gca_eta_{key}", _GCA, _GCA_WHERE, f"least t/R, 27 blocks, mu {mu} ({mode}), non-associative", read,
+            partial(nonassoc_min_ratio, mu), f"{_GCA_ARCH}, mu = {mu}", 1.1e-3, f"{_GCA_READ}; tce {note}",
+        )
+        for key, mu, mode, read, note in (
+            ("mode1", 0.8, "mode I", 0.1072, "0.106721 (associative and non-associative alike: six hinges, nothing slides)"),
+            ("0375", 0.375, "mode II", 0.1265, "0.125966; the sliding joints of mode II are statically determinate, "
+             "so the bracket is closed and the non-associative least thickness is the associative one"),
+            ("035", 0.35, "mode II", 0.1517, "0.151185, bracket closed"),
+            ("0325", 0.325, "mode II", 0.1785, "0.178207, bracket closed"),
+            ("0311", 0.3109, "their least mu", 0.1954, "0.194868, bracket closed (mu of the leftmost point +-0.0007: "
+             "t/R moves by 0.0015 per 0.001 of mu there)"),
+        )
+    ),
+    ValidationCase(
+        "gca_mu_rm", _GCA, _GCA_WHERE, "friction below which sliding joins the hinges (mode I / II), 27 blocks",
+        0.3958, lambda: friction_bound(min_ratio(GCA_VOUSSOIRS) * (1 + 1e-5), n=GCA_VOUSSOIRS, lo=0.3, hi=0.5),
+        _GCA_ARCH, 1e-3,
+        "read off the vertical line between modes I and II (+-0.0007); tce 0.395275 at 27 voussoirs "
+        "(CR2020: 0.395832 with the weights on the centreline)",
+    ),
+    ValidationCase(
+        "gca_mu_ms", _GCA, _GCA_WHERE, "least friction with any equilibrium (mode II / III), 27 blocks", 0.3108,
+        lambda: friction_bound(0.25, n=GCA_VOUSSOIRS, lo=0.29, hi=0.33), f"{_GCA_ARCH}, t/R = 0.25", 2.5e-3,
+        "explained: the figure's vertical line stands at their leftmost computed point (0.3109, t/R "
+        "0.1954); the 27-voussoir arch still stands down to tce's 0.308988 (t/R 0.1973 there, "
+        "rising 1.5 per unit of mu), and the continuous ring to 0.309215 (CR2020)",
+    ),
+)
+
+CASES = CASES + NONASSOC_CASES
 
 COLUMNS = ["case", "source", "where", "quantity", "published", "tce", "difference", "tolerance", "ok",
            "discretisation", "time_s"]

@@ -389,8 +389,21 @@ class FillSection(_Strict):
     depth: NonNegative
     unit_weight: Positive
     weight: bool = True
-    dispersion: Annotated[float, Field(ge=0, le=60)] = DISPERSION_2_TO_1
+    dispersion: Annotated[float, Field(ge=0, le=60)] | Literal["boussinesq"] = DISPERSION_2_TO_1
     k0: Annotated[float, Field(ge=0, lt=1)] = 0.0
+    kp: NonNegative = 0.0
+
+    @field_validator("kp")
+    @classmethod
+    def _passive_not_in_load_paths(cls, v: float) -> float:
+        # tce.core.fill: only the direct limit carries the passive restraint
+        if v != 0.0:
+            raise ValueError(
+                "passive restraint is carried by the direct limit analysis only (Analysis.limit, "
+                "critical_position, adequacy_factor in Python); a study's load path does not carry it and would "
+                "report a second, lower collapse load; fix: remove kp here and use the Python API (docs/studies.md, Fill)"
+            )
+        return v
 
 
 class LoadsSection(_Strict):
@@ -1125,7 +1138,7 @@ def _check_plots(study: Study) -> None:
 
 
 def _check_settlement_path(study: Study) -> None:
-    """``[settlement_path]`` follows planar assemblies of the rigid Heyman material, with
+    """``[settlement_path]`` follows assemblies of the rigid Heyman material; planar ones with
     in-plane motions and (with ``lambda = true``) an in-plane lateral direction."""
     section = study.spec.settlement_path
     if section is None:
@@ -1143,5 +1156,5 @@ def _check_settlement_path(study: Study) -> None:
         except ValueError as exc:
             raise StudyError(
                 f"{study.path}: settlement_path (scenario {sc.name!r}): {exc}; fix: remove [settlement_path] "
-                "or give a planar structure of a Heyman material (no [material] keys) with in-plane motions"
+                "or give a Heyman material (no [material] keys) and, for a planar structure, in-plane motions"
             ) from None

@@ -36,16 +36,7 @@ class Arch:
         self.ji, self.je = r * u, (r + t) * u
         self.nrm = np.column_stack([np.sin(a), -np.cos(a)])  # from voussoir k-1 into voussoir k
         self.tan = u
-        self.weight = np.zeros(n)
-        self.centroid = np.zeros((n, 2))
-        for k in range(n):
-            poly = np.array([self.ji[k], self.je[k], self.je[k + 1], self.ji[k + 1]])
-            x, z = poly[:, 0], poly[:, 1]
-            xs, zs = np.roll(x, -1), np.roll(z, -1)
-            cross = x * zs - xs * z
-            area = cross.sum() / 2.0
-            self.centroid[k] = [((x + xs) * cross).sum() / (6 * area), ((z + zs) * cross).sum() / (6 * area)]
-            self.weight[k] = gamma * d * abs(area)
+        self.weight, self.centroid = voussoir_weights(self.ji, self.je, gamma, d)
 
     def on_top(self, x: float) -> tuple[int, float] | None:
         """Voussoir and extrados height under plan abscissa ``x`` (None off the arch)."""
@@ -61,16 +52,8 @@ class Arch:
         unbounded, NaN when the LP fails."""
         n = self.n
         nv = 4 * (n + 1) + 1
-        A = np.zeros((3 * n, nv))
+        A = joint_matrix(self.ji, self.je, self.nrm, self.tan, nv)
         b = np.zeros(3 * n)
-        for j in range(n + 1):
-            for v, p in enumerate((self.ji[j], self.je[j])):
-                for c, e in enumerate((self.nrm[j], self.tan[j])):
-                    col = 4 * j + 2 * v + c
-                    m = p[0] * e[1] - p[1] * e[0]
-                    for k, sign in ((j, 1.0), (j - 1, -1.0)):
-                        if 0 <= k < n:
-                            A[3 * k:3 * k + 3, col] += sign * np.array([e[0], e[1], m])
         for k in range(n):
             cx, cz = self.centroid[k]
             b[3 * k:3 * k + 3] -= np.array([0.0, -self.weight[k], -cx * self.weight[k]])
@@ -87,6 +70,41 @@ class Arch:
         if res.status == 3:
             return math.inf
         return float(res.x[-1]) if res.status == 0 else math.nan
+
+
+def voussoir_weights(ji: np.ndarray, je: np.ndarray, gamma: float, d: float) -> tuple[np.ndarray, np.ndarray]:
+    """Weight ``gamma d A`` (kN) and centroid ``(x, z)`` (m) of every voussoir, the
+    quadrilateral of its joints' ends (shoelace formulas)."""
+    n = len(ji) - 1
+    weight, centroid = np.zeros(n), np.zeros((n, 2))
+    for k in range(n):
+        poly = np.array([ji[k], je[k], je[k + 1], ji[k + 1]])
+        x, z = poly[:, 0], poly[:, 1]
+        xs, zs = np.roll(x, -1), np.roll(z, -1)
+        cross = x * zs - xs * z
+        area = cross.sum() / 2.0
+        centroid[k] = [((x + xs) * cross).sum() / (6 * area), ((z + zs) * cross).sum() / (6 * area)]
+        weight[k] = gamma * d * abs(area)
+    return weight, centroid
+
+
+def joint_matrix(ji: np.ndarray, je: np.ndarray, nrm: np.ndarray, tan: np.ndarray, nv: int) -> np.ndarray:
+    """Equilibrium rows ``(3 n, nv)`` (force x, force z, moment about the origin per voussoir)
+    of the joint forces of ``n`` voussoirs between ``n + 1`` joints: at each end (intrados
+    ``ji``, extrados ``je``) of joint ``j`` a normal (``nrm[j]``, from voussoir ``j - 1`` into
+    ``j``) and a tangential (``tan[j]``) force, columns ``4 j + 2 end + (0 normal, 1 tangent)``;
+    the other columns are zero."""
+    n = len(ji) - 1
+    A = np.zeros((3 * n, nv))
+    for j in range(n + 1):
+        for v, p in enumerate((ji[j], je[j])):
+            for c, e in enumerate((nrm[j], tan[j])):
+                col = 4 * j + 2 * v + c
+                m = p[0] * e[1] - p[1] * e[0]
+                for k, sign in ((j, 1.0), (j - 1, -1.0)):
+                    if 0 <= k < n:
+                        A[3 * k:3 * k + 3, col] += sign * np.array([e[0], e[1], m])
+    return A
 
 
 def scan(f, lo: float, hi: float, h: float = 0.01, finest: float = 1e-6, keep: int = 4) -> tuple[float, float]:
