@@ -185,7 +185,7 @@ class Formulation:
             self.law_check = partial(law_violation, rows)
         self.kkt = kkt_method(model)
         # F -> diag(1 / row_div) A_eq F, as the scaled operator times F / W: one copy of the
-        # model's largest operator fewer (0.34 GB on a 100,000-block dome, docs/scaling.md)
+        # model's largest operator fewer (0.33 GB on a 100,000-block dome, docs/scaling.md)
         scaled_times = matvec(self.A_eq)
         self._eq_rel_times: Callable[[NDArray[np.float64]], NDArray[np.float64]] = lambda F: scaled_times(F / W)
         self.B_sup_times = matvec(model.B_sup)
