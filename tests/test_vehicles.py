@@ -230,3 +230,18 @@ def test_vehicle_invariants_units_mirrors():
     assert an.model_kind(loads=LoadPattern(lateral=False, vehicle=[dict(axles=[[0.0, 1.0]], wheels=[-0.5, 0.7], y=0.3,
                                                                        x=-1.5)])) == "spatial"
     assert lam(axles=[[0.0, 1.0]], wheels=[0.5, -0.7], y=-0.3, x=-1.5) == pytest.approx(off, rel=1e-6)
+
+
+def test_cs454_axles_and_bogies_as_the_table_prints_them():
+    # CS 454 Revision 0, Table 7.3.1a (normal traffic) and Table 7.3.1b (axle lift-off);
+    # tonnes times standard gravity
+    from tce.core.vehicles import STANDARD_GRAVITY, cs454_double_bogie, cs454_single_axle
+
+    g = STANDARD_GRAVITY
+    assert cs454_single_axle().axles == ((0.0, 11.5 * g),)
+    for s, t in ((1.00, 8.0), (1.29, 8.0), (1.30, 9.5), (1.79, 9.5), (1.80, 10.0), (2.5, 10.0)):
+        assert cs454_double_bogie(s).axles == ((0.0, t * g), (s, t * g))
+    assert cs454_double_bogie(1.5, lift_off=True).axles == ((0.0, 1.5 * 9.5 * g), (1.5, 0.5 * 9.5 * g))
+    assert standard_vehicle("cs454_double_bogie_s130").axles == ((0.0, 9.5 * g), (1.3, 9.5 * g))
+    with pytest.raises(LoadError, match="spacing"):
+        cs454_double_bogie(0.9)

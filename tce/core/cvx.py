@@ -25,6 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .loads import LoadPattern, scene_vectors
+from .passive import refuse_passive
 from .material import Material
 from .model import Model
 from .result import Result
@@ -121,7 +122,8 @@ class CvxTCE:
         """
         t0 = time.perf_counter()
         sett = check_settlements(self.model.assembly.support_names, settlements)
-        _, b_fixed, b_live = scene_vectors(self.model, alpha, loads, sett)
+        pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads, sett)
+        refuse_passive(pattern, "a TCE solve")
         self.rhs.value = b_fixed + lam * b_live
         self.U.value = settlement_vector(self.model, settlements)
         t1 = time.perf_counter()

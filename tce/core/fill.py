@@ -54,7 +54,8 @@ fixed loads (part of ``b_fixed``), and it adds no strength of its own.
   Sheffield, 2005, "Modelling backfill"), here with the full passive pressure and no wall friction;
   a partly mobilised pressure is a smaller ``kp`` (e.g. ``k0 + m (Kp - k0)``, ``m`` the
   mobilisation). Only the direct limit (and what uses it: the critical position, the adequacy
-  factor) carries it: the load path's TCE states do not.
+  factor) carries it: TCE solves, load paths and the non-associative estimate refuse a
+  pattern with ``kp`` > 0 (:func:`tce.core.passive.refuse_passive`) rather than leave it out.
 """
 
 from __future__ import annotations

@@ -21,10 +21,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .fill import Fill, passive_bounds
-from .loads import _block_rows
+from .loads import LoadPattern, _block_rows
+from .surface import LoadError
 from .model import Model
 
-__all__ = ["Restraint", "passive_restraint"]
+__all__ = ["Restraint", "passive_restraint", "refuse_passive"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,3 +76,13 @@ def passive_restraint(model: Model, fill: Fill | None) -> Restraint | None:
         blocks=np.array([b[0] for b in bounds], dtype=np.int64),
         points=np.array([b[1] for b in bounds]), directions=np.array([b[2] for b in bounds]),
     )
+
+
+def refuse_passive(pattern: LoadPattern, what: str) -> None:
+    """Raise :class:`tce.core.surface.LoadError` (key ``fill.kp``) when ``pattern`` has a
+    passive restraint: only the direct limit carries it, and ``what`` (a force state, a load
+    path, an estimate) would leave it out silently."""
+    if pattern.fill is not None and pattern.fill.kp != 0.0:
+        raise LoadError("fill.kp", f"{pattern.fill.kp:g} in {what}",
+                        "only the direct limit (Analysis.limit, critical_position, adequacy_factor) carries the passive "
+                        "restraint; give kp = 0 for force states and load paths")

@@ -57,6 +57,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .clarabel_solver import SOLVER_NAME, ClarabelSolver, Solution, SolverOptions, solve_once
 from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
+from .passive import refuse_passive
 from .material import Material
 from .model import InterfaceMap, Model
 from .canonical import CanonicalSolver
@@ -281,6 +282,7 @@ class TCESolver:
         last = self._vectors_last
         if last is not None and (last[0] is loads or last[0] == loads):
             return last[1]
+        refuse_passive(loads, "a TCE solve")
         v = load_vectors(self.model, loads)
         self._vectors_last = (loads, v)
         return v

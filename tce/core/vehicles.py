@@ -39,7 +39,10 @@ __all__ = [
     "STANDARD",
     "Vehicle",
     "VehicleLoad",
+    "STANDARD_GRAVITY",
     "aashto_hl93_truck",
+    "cs454_double_bogie",
+    "cs454_single_axle",
     "deck_edges",
     "deck_range",
     "eurocode_lm1_tandem",
@@ -356,8 +359,49 @@ def aashto_hl93_truck(rear_spacing: float = 4.3) -> Vehicle:
     )
 
 
+#: standard gravity (m/s^2): an axle load in tonnes times this is in kN
+STANDARD_GRAVITY = 9.80665
+
+
+def cs454_single_axle(tonnes: float = 11.5) -> Vehicle:
+    """A single axle of the UK assessment of masonry arches (normal traffic: 11.5 t).
+
+    CS 454 (*Assessment of highway bridges and structures*, Design Manual for Roads and
+    Bridges, Revision 0), 7.3, Table 7.3.1a "Authorised axle loads and spacings for normal and
+    restricted traffic": a single axle of 11.5 t for normal traffic and for the 33, 26 and 18
+    tonne restricted levels (lower levels: 9, 7, 5.5, 2 t). The load is ``tonnes`` times
+    :data:`STANDARD_GRAVITY` (kN). The table gives axle loads only: the axle is one load on
+    the centre line (``wheels = (0,)``); give the wheels (``dataclasses.replace``) to spread it.
+    """
+    return single_axle(tonnes * STANDARD_GRAVITY, name=f"CS 454 single axle {tonnes:g} t")
+
+
+def cs454_double_bogie(spacing: float, lift_off: bool = False) -> Vehicle:
+    """A double-axle bogie of the UK assessment of masonry arches (normal traffic).
+
+    CS 454 Revision 0, Table 7.3.1a: the axle load depends on the axle spacing ``s``: 8 t for
+    1.00 <= s < 1.30 m, 9.5 t for 1.30 <= s < 1.80 m, 10 t for s >= 1.80 m. With
+    ``lift_off`` (Table 7.3.1b, to be assessed on humped or fast approaches, 7.3.2) the axle
+    loads are multiplied by 1.5 (the first axle, the reference point) and 0.5 (the second);
+    the table says the two are interchangeable, so assess the reversed order too (the same
+    vehicle with its axles swapped). Loads in kN (tonnes times :data:`STANDARD_GRAVITY`), one
+    load per axle on the centre line, as :func:`cs454_single_axle`.
+    """
+    if not (isinstance(spacing, int | float) and spacing >= 1.0):
+        raise LoadError("spacing", f"{spacing!r}", "give an axle spacing >= 1.00 m (CS 454, Table 7.3.1a)")
+    tonnes = 8.0 if spacing < 1.30 else 9.5 if spacing < 1.80 else 10.0
+    f1, f2 = (1.5, 0.5) if lift_off else (1.0, 1.0)
+    load = tonnes * STANDARD_GRAVITY
+    name = f"CS 454 double-axle bogie {tonnes:g} t, s = {spacing:g} m" + (" (axle lift-off)" if lift_off else "")
+    return Vehicle(axles=((0.0, f1 * load), (float(spacing), f2 * load)), name=name)
+
+
 #: standard vehicles by name (``[[loads.vehicle]] standard = "..."``)
 STANDARD: dict[str, Callable[[], Vehicle]] = {
+    "cs454_single_axle": cs454_single_axle,
+    "cs454_double_bogie_s100": lambda: cs454_double_bogie(1.00),
+    "cs454_double_bogie_s130": lambda: cs454_double_bogie(1.30),
+    "cs454_double_bogie_s180": lambda: cs454_double_bogie(1.80),
     "en1991_lm1_tandem_lane1": lambda: eurocode_lm1_tandem(1),
     "en1991_lm1_tandem_lane2": lambda: eurocode_lm1_tandem(2),
     "en1991_lm1_tandem_lane3": lambda: eurocode_lm1_tandem(3),

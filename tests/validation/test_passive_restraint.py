@@ -73,3 +73,14 @@ def test_adequacy_factor_carries_the_passive_restraint_unfactored():
 def test_bad_passive_coefficient_names_the_key(kp):
     with pytest.raises(LoadError, match="kp"):
         Fill(depth=0.3, unit_weight=18.0, k0=0.5, kp=kp)
+
+
+def test_force_states_and_load_paths_refuse_the_passive_restraint():
+    # only the direct limit carries it: a TCE solve or a load path would leave it out silently
+    from tce.analysis.loadpath import load_path
+
+    with pytest.raises(LoadError, match="fill.kp"):
+        AN.solve(0.5, loads=pattern(2.0).moved(-1.8))
+    with pytest.raises(LoadError, match="fill.kp"):
+        load_path(AN, loads=pattern(2.0).moved(-1.8))
+    assert AN.solve(0.5, loads=pattern(0.0).moved(-1.8)).status == "optimal"
