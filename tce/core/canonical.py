@@ -57,9 +57,10 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from .clarabel_solver import ClarabelSolver, SolverOptions
-from .problem import ConicProblem, Formulation, _cones
+from .problem import ConicProblem, Formulation, _cones, with_bounded_forces
 
-__all__ = ["FACE_SLACK", "FACE_SLACKS", "SAME_STATE", "Canonical", "CanonicalSolver", "canonical_b", "canonical_problem"]
+__all__ = ["FACE_SLACK", "FACE_SLACKS", "SAME_STATE", "Canonical", "CanonicalSolver", "canonical_b", "canonical_problem",
+           "restrained_canonical_problem"]
 
 #: slack of the energy bound of the optimal face, relative to the optimum
 FACE_SLACK = 1e-10
@@ -92,6 +93,22 @@ def canonical_problem(f: Formulation, b: NDArray[np.float64], q: NDArray[np.floa
     A = sp.vstack([f.A_eq, -M[:nz], sp.csr_matrix(q.reshape(1, -1)), -M[nz:]]).tocsc()
     cones = _cones(("zero", m + nz), ("nonneg", law.n_nonneg + 1), n_soc=law.n_soc)
     return ConicProblem("canonical", P, np.zeros(n), A, canonical_b(f, b, bound), cones)
+
+
+def restrained_canonical_problem(
+    f: Formulation, b: NDArray[np.float64], q: NDArray[np.float64], bound: float,
+    G: NDArray[np.float64], capacity: NDArray[np.float64],
+) -> ConicProblem:
+    """:func:`canonical_problem` with the bounded extra forces ``0 <= p <= capacity`` (kN) of
+    :func:`tce.core.problem.restrained_tce_problem` (the fill's passive restraint) in its
+    equilibrium rows. ``p`` carries neither energy nor unit-stiffness energy, so the
+    canonical contact forces are unique and ``p`` is whatever balances them (unique when
+    the columns of ``G`` are independent). Unknowns ``(x, p / W)``."""
+    W = f.scaling.force
+    k = G.shape[1]
+    rows = f.law.M.shape[0] + 1
+    cols = sp.vstack([sp.csr_matrix(G * (W / f.row_div)[:, None]), sp.csr_matrix((rows, k))])
+    return with_bounded_forces(canonical_problem(f, b, q, bound), cols, np.asarray(capacity, dtype=float) / W)
 
 
 @dataclass(frozen=True)

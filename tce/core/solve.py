@@ -60,7 +60,7 @@ from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
 from .passive import Restraint, passive_restraint
 from .material import Material
 from .model import InterfaceMap, Model
-from .canonical import CanonicalSolver
+from .canonical import FACE_SLACKS, SAME_STATE, CanonicalSolver, restrained_canonical_problem
 from .problem import (Formulation, phase1_b, phase1_problem, q_scale, recession_problem, restrained_phase1_problem,
                       restrained_tce_problem, tce_b, tce_problem)
 from .result import STATUSES, WRENCH_COMPONENTS, XYZ, Result
@@ -511,8 +511,9 @@ class TCESolver:
 
         One cold solve; an unclear answer is decided by the restrained phase-1 problem
         (:func:`tce.core.problem.restrained_phase1_problem`) and retried with robust settings.
-        No canonical state is sought (``unique`` stays undecided), and an unbounded rigid TCE
-        under support motions is reported ``numerical`` rather than proven.
+        A rigid optimum is replaced by its canonical state
+        (:func:`tce.core.canonical.restrained_canonical_problem`), which decides ``unique``. An
+        unbounded rigid TCE under support motions is reported ``numerical``, not proven.
         """
         f, W, k = self.formulation, self.scaling.force, restraint.size
         b = tce_b(f, rhs)
@@ -550,9 +551,27 @@ class TCESolver:
                 if r > self.options.feas_tol:
                     status, retry = "infeasible", "phase-1 (tight)"
                     break
-        notes.append(f"passive restraint: {k} bounded forces, no canonical state")
+        unique = None
+        if status == "optimal" and f.D is None and self.options.canonical:
+            x = np.concatenate([F, p]) / W
+            q = self._q(U)
+            value = float(q[: f.n] @ x[: f.n])
+            for slack in FACE_SLACKS:  # as tce.core.canonical.CanonicalSolver.state, one cold solve per slack
+                bound = value + slack * abs(value) + 1e-15 * float(np.abs(q) @ np.abs(x[: f.n]))
+                csol = solve_once(restrained_canonical_problem(f, b, q, bound, restraint.G, restraint.capacity),
+                                  self.options.settings(kkt=f.kkt))
+                stime, setup = stime + csol.solve_time, setup + csol.setup_time
+                if csol.solved:
+                    Fc, pc, resc = check(csol.x)
+                    if self._passes(resc):
+                        unique = float(np.abs(csol.x - x).max(initial=0.0)) <= SAME_STATE
+                        F, p, res = Fc, pc, resc
+                        break
+            else:
+                notes.append("canonical state not found: the solver's state kept")
+        notes.append(f"passive restraint: {k} bounded forces")
         return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,
-                            iterations, retry, "; ".join(notes), restraint_forces=p if p is not None else np.full(k, np.nan))
+                            iterations, retry, "; ".join(notes), unique, restraint_forces=p if p is not None else np.full(k, np.nan))
 
     def _canonical_solver(self) -> CanonicalSolver:
         """The warm solver of canonical states (built on first use)."""
