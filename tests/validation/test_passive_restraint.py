@@ -107,6 +107,11 @@ def test_force_state_keeps_the_restraint_within_its_bounds_and_in_equilibrium():
     G = solver.restraint(pat).G
     eq = model.A_eq @ r.forces.ravel() + G @ p + b_fixed + lam * b_live
     assert np.abs(eq).max() <= 1e-6 * np.abs(b_fixed).max()
+    assert r.unique is False and "canonical state not found" not in r.message
+    # the canonical state leans on the fill only where the joints need it: below the
+    # collapse load without restraint, next to nothing (tce.core.canonical.RESTRAINT_WEIGHT)
+    low = 0.5 * AN.limit(loads=pattern(0.0).moved(-1.8), mechanism=False).lambda_max
+    assert AN.solve(low, loads=pat).restraint_forces.sum() <= 1e-2 * cap.sum()
     assert AN.solve(lam, loads=pattern(0.0).moved(-1.8)).status == "infeasible"
     assert AN.solve(lam, loads=pattern(0.0).moved(-1.8)).restraint_forces is None
 
