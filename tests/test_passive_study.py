@@ -12,6 +12,7 @@ import pytest
 import xarray as xr
 
 from tce.cli import main
+from tce.core.analysis import Analysis
 from tce.core.fill import passive_bounds
 from tce.structures.arch import segmental_arch
 from tce.study.schema import parse_study
@@ -77,6 +78,10 @@ def test_study_load_path_carries_the_passive_restraint(tmp_path) -> None:
     p = on.passive_force.values[0][ok]
     assert ok.sum() >= 5 and np.all(p >= -1e-6) and np.all(p <= cap + 1e-6) and p.max() > 1.0
     assert np.isnan(on.passive_force.values[0][~ok]).all()
+    # the stored value is the state's summed restraint: the same solve through the Python API
+    i = int(np.flatnonzero(ok)[-1])
+    state = Analysis(ring).solve(float(on.lam.values[0][i]), loads=scen.loads_pattern)
+    assert float(on.passive_force.values[0][i]) == pytest.approx(state.restraint_forces.sum(), rel=1e-6)
     assert np.isnan(off.passive_force.values).all()
 
 
