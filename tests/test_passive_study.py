@@ -89,3 +89,13 @@ def test_bridge_passive_study_parses_with_its_passive_coefficient() -> None:
     path = ROOT / "studies" / "bridge_passive.toml"
     fill = parse_study(path.read_text(), path).scenarios()[0].loads_pattern.fill
     assert (fill.depth, fill.k0, fill.kp) == (0.3, 0.5, 3.0)
+
+
+def test_passive_restraint_with_a_non_associative_material_exits_2(tmp_path, capsys) -> None:
+    # the non-associative estimate does not carry the restraint: refused before anything runs
+    path = tmp_path / "na.toml"
+    path.write_text(STUDY.replace("KP", "3.0").replace("[loads]", '[material]\nfriction = 0.6\nflow = "non-associative"\n\n[loads]'))
+    code = main(["run", str(path), "--out", str(tmp_path / "out"), "--jobs", "1", "--no-plots"])
+    err = capsys.readouterr().err
+    assert code == 2 and f"{path}: loads.fill.kp" in err and "fix:" in err
+    assert not (tmp_path / "out").exists()

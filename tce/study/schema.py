@@ -997,7 +997,21 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
     guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])))
     _check_plots(study)
     _check_settlement_path(study)
+    _check_passive(study)
     return study
+
+
+def _check_passive(study: Study) -> None:
+    """The fill's passive restraint (``[loads.fill] kp`` > 0) with a non-associative material:
+    the non-associative estimate does not carry it (:func:`tce.core.passive.refuse_passive`)."""
+    fill = study.spec.loads.fill
+    if fill is None or fill.kp == 0.0:
+        return
+    if any(build_material(sc.material).flow == "non-associative" for sc in study.scenarios()):
+        raise StudyError(
+            f"{study.path}: loads.fill.kp: {fill.kp:g} with a non-associative material: the non-associative "
+            "estimate does not carry the passive restraint; fix: kp = 0, or flow = \"associative\""
+        )
 
 
 def load_study(path: Path | str) -> Study:
