@@ -253,7 +253,43 @@ def crushing_arch() -> None:
     _save(fig, "validation_crushing_arch.png")
 
 
-STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity, crushing_arch)
+def gilbert_arch() -> None:
+    """The 27-block arch of Gilbert, Casapulla & Ahmed 2006: least t/R against mu, the points
+    read off their figure, tce's non-associative values at 27 voussoirs (the associative least
+    thickness, its bracket checked closed) and at 160."""
+    from tce.quality.validation import GCA_VOUSSOIRS, NONASSOC_CASES, nonassoc_min_ratio
+
+    read = {c.name: c.published for c in NONASSOC_CASES}
+    pts_mu = [read["gca_mu_rm"], 0.375, 0.35, 0.325, 0.3109]
+    pts_t = [read["gca_eta_mode1"], read["gca_eta_0375"], read["gca_eta_035"], read["gca_eta_0325"], read["gca_eta_0311"]]
+    mus = [0.3091, 0.3095, 0.31, 0.3109, 0.315, 0.32, 0.325, 0.33, 0.34, 0.35, 0.36, 0.375, 0.38, 0.39, 0.395, 0.40,
+           0.45, 0.5, 0.6, 0.7, 0.8]
+    na27 = [nonassoc_min_ratio(mu) for mu in mus]
+    as160 = [min_ratio(160, mu, "radial", 1e-6) if mu > 0.3092 else np.nan for mu in mus]  # its mu_ms: 0.309183
+    mu_ms = friction_bound(0.25, n=GCA_VOUSSOIRS, lo=0.29, hi=0.33)
+    print("mu          ", mus)
+    print("tce 27 (na) ", [f"{v:.5f}" for v in na27])
+    print("tce 160     ", [f"{v:.5f}" for v in as160])
+    print("mu_ms 27    ", f"{mu_ms:.6f}")
+    fig, (ax, dx) = plt.subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [2, 1]})
+    ax.plot(mus, na27, "-", color="C0", label=f"tce, {GCA_VOUSSOIRS} voussoirs, non-associative (bracket closed)")
+    ax.plot(mus, as160, "--", color="C2", lw=0.9, label="tce, 160 voussoirs")
+    ax.plot(pts_mu, pts_t, "kD", ms=6, label="Gilbert et al. 2006, read off their figure (+-0.0011)")
+    ax.axvline(read["gca_mu_ms"], color="k", ls=":", lw=0.9, label=f"their mode III line ({read['gca_mu_ms']})")
+    ax.axvline(mu_ms, color="C0", ls=":", lw=0.9, label=f"tce's least mu, 27 voussoirs ({mu_ms:.4f})")
+    ax.set_ylim(0.09, 0.21)
+    _decorate(ax, "friction coefficient mu", "least thickness t/R",
+              "27-block semicircular arch under self-weight, joints sliding without opening")
+    diff = [nonassoc_min_ratio(mu) - t for mu, t in zip(pts_mu, pts_t)]
+    print("tce 27 - read", [f"{d:+.5f}" for d in diff])
+    dx.errorbar(pts_mu, diff, yerr=0.0011, fmt="kD", ms=5, capsize=3, label="tce (27) - read value, +-1 px")
+    dx.axhline(0.0, color="grey", lw=0.8)
+    _decorate(dx, "friction coefficient mu", "difference in t/R", "tce against the read points")
+    _save(fig, "validation_gilbert_arch.png")
+
+
+STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity, crushing_arch,
+         gilbert_arch)
 
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)

@@ -41,11 +41,6 @@ lambda = true
 
 BAD = {
     "friction": ("[settlement_path]", "[material]\nfriction = 0.6\n\n[settlement_path]", "settlement_path"),
-    "dome": ('type = "semicircular_arch"\ninner_radius = 0.9\nthickness = 0.2\nvoussoirs = 12\n\n'
-             '[scenarios.spread]\nleft = [-1.0, 0, 0, 0, 0, 0]\nright = [1.0, 0, 0, 0, 0, 0]\n\n'
-             '[scenarios.sink]\nright',
-             'type = "dome"\n\n[scenarios.spread]\ns01 = [1.0, 0, 0, 0, 0, 0]\n\n[scenarios.sink]\ns02',
-             "settlement_path"),
     "out of plane": ("right = [1.0, 0", "right = [0.0, 1.0", "settlement_path"),
     "lateral out of plane": ("[settlement_path]", "[loads]\nalpha = 90\n\n[settlement_path]", "settlement_path"),
     "unknown key": ("lambda = true", "lambda = true\nstep = 2", "settlement_path.step"),

@@ -40,7 +40,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import minimize_scalar
 
 from ..core.analysis import Analysis
 from ..core.loads import LoadError, LoadPattern
@@ -239,6 +238,8 @@ class _Infeasible(Exception):
 
 def _refine(lam, values: dict[float, float], xtol: float) -> None:
     """Bounded Brent search between the neighbours of the best local minima of the values."""
+    from scipy.optimize import minimize_scalar  # on first use: 0.2-0.3 CPU-s to import, which every run paid
+
     x = np.array(sorted(values))
     y = np.array([values[v] for v in x])
     y = np.where(np.isnan(y), np.inf, y)

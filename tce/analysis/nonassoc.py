@@ -16,7 +16,15 @@ for 3D blocks [2]_:
    angle zero), leaves the normal forces free within ``-t A <= fn <= fc A``, and solves the
    limit problem again (:func:`tce.core.conic.cone_rows` with ``shear_capacity``). The
    flow rule of this law has no dilatancy: a sliding contact that carries load does not
-   open (its normal relative velocity is zero by complementarity);
+   open (its normal relative velocity is zero by complementarity). The sub-problem's
+   optimal states are seldom unique; the iterate is the one nearest to the normal forces in
+   use, with the least tangential forces (:func:`tce.core.problem.nearest_state_problem`,
+   strictly convex: one state, the same in every frame), taken ``1e-8`` (relative) below
+   ``lambda_k`` where the face has room; iteration 0 is the associative optimal state of
+   least norm, chosen alike. Clarabel's own choice, the centre of the optimal face reached
+   to its tolerance along a path that changes with the frame, made the fixed point depend
+   on the orientation of the scene (a groin vault turned by 30 or 90 degrees did not
+   converge where the same vault as built did);
 3. the scheme stops at a fixed point, a state ``F`` that is a non-associative collapse
    state to ``tol`` (times the total weight ``W`` for forces): ``lambda`` settled (the
    last two iterates within ``tol``, relative); ``F`` an optimal state of the last
@@ -34,10 +42,11 @@ for 3D blocks [2]_:
    ``lambda`` lie within ``tol`` of each other, each iteration also solves
    :func:`tce.core.problem.least_violation_problem`: among the optimal states of the
    sub-problem, the one of least Coulomb violation and least ``|fn - fn_used|`` at the
-   sliding contacts. Its normal forces (not relaxed) fix the next capacities, and it is
-   the state tested in 3. On a 6-course running-bond wall (``docs/materials.md``) the
-   plain scheme circles between lambda 0.641341 and 0.641355; with this step it stops
-   after 20 iterations at 0.641351 (violation 8e-8 W, sliding contacts within 1.3e-7 W).
+   sliding contacts (of those, the one nearest to the normal forces in use:
+   :func:`tce.core.problem.nearest_least_violation_problem`). Its normal forces (not
+   relaxed) fix the next capacities, and it is the state tested in 3. On a 6-course
+   running-bond wall (``docs/materials.md``) the plain scheme circles between lambda
+   0.641341 and 0.641355; with these steps it stops after 37 iterations at 0.639971.
 
 The fixed point is a collapse state of the non-associative problem, so ``lambda_nonassoc``
 is at most ``lambda_assoc`` (its state is statically admissible); it is the scheme's
@@ -46,7 +55,8 @@ states and the lowest is a nonconvex problem (Ferris and Tin-Loi, 2001). Where a
 the fixed point reached depends on the state the solver returns (Clarabel's interior point
 returns the centre of the optimal face): two blocks side by side rocking together collapse,
 without dilatancy, at any load of an interval whose lowest end is each block rocking alone
-(``tests/test_materials.py``), and the scheme returns one load inside it. The scheme may
+(``tests/validation/test_materials_closed_forms.py``), and the scheme returns one load in it
+(with the nearest-state iterates, its lowest end to 1e-6). The scheme may
 also fail to settle (Gilbert et al. report cycling on some problems); the result then says
 ``not_converged`` and carries the iterates, never a number dressed as converged.
 
@@ -78,7 +88,7 @@ from ..core.loads import LoadPattern, as_pattern, scene_vectors
 from ..core.passive import refuse_passive
 from ..core.material import Material
 from ..core.model import Model
-from ..core.problem import least_violation_problem
+from ..core.problem import least_violation_problem, nearest_least_violation_problem, nearest_state_problem
 from ..core.result import Result
 
 __all__ = ["NonAssocResult", "NonAssocSolver", "nonassociative_limit"]
@@ -88,6 +98,10 @@ log = logging.getLogger(__name__)
 #: largest normal opening (relative to the largest vertex speed of the mechanism) a loaded
 #: sliding contact may show in a non-dilatant mechanism
 DILATANCY_TOL = 1e-4
+
+#: relative steps below a sub-problem's lambda_max at which its nearest state is sought, in
+#: turn until one solves cleanly (:meth:`NonAssocSolver._nearest`)
+NEAREST_BACKOFF = (1e-8, 1e-7, 1e-6)
 
 
 @dataclass(frozen=True, eq=False, kw_only=True, repr=False)
@@ -258,7 +272,8 @@ class NonAssocSolver:
                         history=(assoc.lambda_max,), admissibility=0.0, dilatancy=0.0,
                         forces=assoc.forces, mechanism=assoc.mechanism, message=f"equal to the associative limit ({why})")
         history = [assoc.lambda_max]
-        fn = assoc.forces[:, 0]
+        first = self._nearest(self.associative, b_fixed, b_live, assoc.lambda_max, np.zeros(model.n_contacts))
+        fn = (first if first is not None else assoc.forces)[:, 0]
         last: LimitResult | None = None
         viol = cons = float("nan")
         polishing = False
@@ -274,7 +289,8 @@ class NonAssocSolver:
                             message=f"iteration {k}: limit solve {last.status} ({last.message})")
             history.append(last.lambda_max)
             sliding = self._sliding(last)
-            state = last.forces
+            nearest = self._nearest(sub, b_fixed, b_live, last.lambda_max, fn)
+            state = nearest if nearest is not None else last.forces
             viol, cons = self._fixed_point_errors(state, fn, sliding)
             log.debug("non-associative iteration %d: lambda %.12g, law violation %.3g W, sliding contacts off "
                       "their capacity by %.3g W", k, history[-1], viol, cons)
@@ -301,7 +317,7 @@ class NonAssocSolver:
                 )
             # the polished state is the next one whole: relaxing towards it would mix in
             # the centre of the optimal face again
-            fn = polished[:, 0] if polished is not None else fn + self.relaxation * (last.forces[:, 0] - fn)
+            fn = polished[:, 0] if polished is not None else fn + self.relaxation * (state[:, 0] - fn)
         return done(status="not_converged", iterations=self.max_iter, history=tuple(history), admissibility=viol,
                     consistency=cons, forces=empty, mechanism=last.mechanism if last is not None else None,
                     message=f"no fixed point after {self.max_iter} iterations: last lambda {history[-1]:.6g}, "
@@ -351,17 +367,51 @@ class NonAssocSolver:
         None when that solve fails or its state misses equilibrium or the sub-problem's law
         by more than 1e-8 (of ``W`` and ``W L``)."""
         f = sub.formulation
-        problem = least_violation_problem(f, rhs, coulomb, np.where(sliding, fn_used, np.nan))
-        sol = solve_once(problem, sub.options.settings(refine=True, kkt=f.kkt))
+        held = np.where(sliding, fn_used, np.nan)
+        settings = sub.options.settings(refine=True, kkt=f.kkt)
+        sol = solve_once(least_violation_problem(f, rhs, coulomb, held), settings)
         if not sol.solved:
             log.debug("polish: clarabel %s", sol.status)
             return None
-        F = f.forces(sol.x)
+        t = float(sol.x[-1])
+        near = solve_once(nearest_least_violation_problem(f, rhs, coulomb, held, fn_used, t + max(1e-2 * abs(t), 1e-9)),
+                          settings)
+        F = f.forces(near.x if near.solved else sol.x)
+        log.debug("polish: least violation %.3g W, nearest state %s", t, near.status)
         eq, law = f.residuals(F, rhs)
         if eq > 1e-8 or law > 1e-8:
             log.debug("polish: residual %.3g, law %.3g", eq, law)
             return None
         return F.reshape(self.model.n_contacts, self.model.dim)
+
+    def _nearest(
+        self,
+        solver: LimitSolver,
+        b_fixed: NDArray[np.float64],
+        b_live: NDArray[np.float64],
+        lam: float,
+        normal_ref: NDArray[np.float64],
+    ) -> NDArray[np.float64] | None:
+        """Among the states of ``solver``'s law in equilibrium at ``lam`` (its
+        ``lambda_max``: the optimal face), the one nearest to the normal forces
+        ``normal_ref`` with the least tangential forces
+        (:func:`tce.core.problem.nearest_state_problem`: unique, and the same in every frame).
+
+        The face at ``lambda_max`` itself has no interior and Clarabel stops short of it
+        (``NumericalError`` on the groin vault), so the state is taken at ``lam (1 -``
+        :data:`NEAREST_BACKOFF` ``)``, within that of the face. None when that solve fails or
+        misses equilibrium or the law by more than 1e-8 (of ``W`` and ``W L``) at every step."""
+        f = solver.formulation
+        settings = solver.options.settings(refine=True, kkt=f.kkt)
+        for backoff in NEAREST_BACKOFF:
+            rhs = b_fixed + lam * (1.0 - backoff) * b_live
+            sol = solve_once(nearest_state_problem(f, rhs, normal_ref), settings)
+            F = f.forces(sol.x)
+            eq, law = f.residuals(F, rhs) if sol.solved else (np.inf, np.inf)
+            if eq <= 1e-8 and law <= 1e-8:
+                return F.reshape(self.model.n_contacts, self.model.dim)
+            log.debug("nearest state at backoff %.0e: clarabel %s, residual %.3g, law %.3g", backoff, sol.status, eq, law)
+        return None
 
     def _dilatancy(self, res: LimitResult, forces: NDArray[np.float64]) -> float:
         """Largest normal opening, in the mechanism of ``res``, of a contact that slides while

@@ -1,12 +1,16 @@
 """Finite settlements: a support motion followed in increments, the geometry updated as it moves.
 
-For a planar assembly (an arch in its own plane: :func:`tce.core.model.find_plane`), rigid
-blocks and a Heyman material (no tension, no sliding, unlimited compressive strength), the
-support motion ``s * U`` (``U`` the scenario's settlement vectors, ``s`` the magnitude, a
-multiple of ``U``) grows from ``s = 0``. At every configuration the contact points are the
-ends of the interfaces (the two ends of each joint's trace in the plane, carried by both of
-its blocks); an end is *closed* when its two copies meet (the gap, measured along block A's
-normal, is within ``gap_tol``) and *open* otherwise. On the closed ends, the Total
+For rigid blocks of a Heyman material (no tension, no sliding, unlimited compressive
+strength), the support motion ``s * U`` (``U`` the scenario's settlement vectors, ``s`` the
+magnitude, a multiple of ``U``) grows from ``s = 0``. A planar assembly (an arch in its own
+plane: :func:`tce.core.model.find_plane`) is followed in its plane, with three dofs per block;
+any other (domes, vaults, block files) in space, with six; one code path serves both
+(:class:`_Planar` and :class:`_Spatial` hold the only differences: the moment arm, the
+rotation update and the tangent directions). At every configuration the contact points are
+those of the interfaces, carried by both of their blocks: in the plane the two ends of each
+joint's trace, in space the vertices of its polygon. A point is *closed* when its two copies
+meet (the gap, measured along block A's
+normal, is within ``gap_tol``) and *open* otherwise. On the closed points, the Total
 Complementary Energy of the rigid problem (the paper, eq. (11), ``D = 0``)::
 
     minimise    sum_j f_j . h_j                     (= -sum_s R_s . U_s)
@@ -16,7 +20,7 @@ and its dual, the kinematic problem of the blocks driven by the support velocity
 
     maximise    b . v
     subject to  G_n v + h_n >= 0   (no interpenetration: the closed ends may open)
-                G_t v + h_t  = 0   (no sliding at the closed ends)
+                G_t v + h_t  = 0   (no sliding at the closed ends: every tangent)
 
 are one linear program, solved with HiGHS (:func:`scipy.optimize.linprog`): its primal ``v``
 is the mechanism (block velocities per unit magnitude, about the current centroids: blocks
@@ -25,8 +29,9 @@ program is bounded exactly when an admissible force state exists on the current 
 (weak and strong duality), infeasible when the motion cannot be accommodated without
 interpenetration (``incompatible``), unbounded when nothing stands (collapse).
 
-An increment ``ds`` moves every block rigidly by ``v ds`` (a rotation about its centroid and
-a translation; the supports exactly by ``ds U``), then projects the configuration back onto
+An increment ``ds`` moves every block rigidly by ``v ds`` (a rotation about its centroid,
+composed with the block's rotation by Rodrigues' formula in space, and a translation; the
+supports exactly to ``(s + ds) U``), then projects the configuration back onto
 the contacts that stayed closed (one Gauss-Newton step on their relative displacements, so
 that the hinges of a long path do not drift apart), reclassifies every end (a joint that
 hinged has one closed end; a joint whose rotation reverses closes again; a new hinge forms
@@ -46,11 +51,14 @@ apart), ``no_collapse`` (still standing at ``s_max``), ``infeasible`` (nothing s
 interpenetrate, or more than :data:`MAX_STEPS` increments were needed). The ``message``
 says which.
 
-Sign conventions: in-plane coordinates ``(x, z)`` with ``x`` along the plane's horizontal
-direction ``e`` (:attr:`tce.core.model.Plane.e`), rotations positive counter-clockwise
-from ``e`` towards ``+z`` (the rotation vector ``-theta m``). Reactions are the wrench
-``(Rx, Rz, M)`` that the support exerts on the structure (kN, kN m), the moment about the
-support's current centroid.
+Sign conventions: in the plane, coordinates ``(x, z)`` with ``x`` along the plane's
+horizontal direction ``e`` (:attr:`tce.core.model.Plane.e`), rotations positive
+counter-clockwise from ``e`` towards ``+z`` (the rotation vector ``-theta m``); reactions are
+the wrench ``(Rx, Rz, M)`` that the support exerts on the structure (kN, kN m), the moment
+about the support's current centroid. In space, global ``(x, y, z)``, rotation vectors
+(rad) and wrenches ``(Fx, Fy, Fz, Mx, My, Mz)``. A support's motion at magnitude ``s`` is the
+translation ``s (ux, uy, uz)`` and the rotation by the vector ``s (rx, ry, rz)`` about its
+centroid.
 
 References
 ----------
@@ -58,6 +66,8 @@ Ochsendorf J.A. (2002), *Collapse of masonry structures*, PhD thesis, University
 (2006) The masonry arch on spreading supports, *The Structural Engineer* 84(2), 27-34.
 Coccia S., Di Carlo F., Rinaldi Z. (2015), Collapse displacements for a mechanism of spreading-
 induced supports in a masonry arch, *International Journal of Advanced Structural Engineering* 7.
+Zessin J., Lau W., Ochsendorf J. (2010), Equilibrium of cracked masonry domes, *Proceedings of
+the ICE - Engineering and Computational Mechanics* 163(3), 135 ff.
 Livesley R.K. (1978), Limit analysis of structures formed from rigid blocks, *IJNME* 12.
 """
 
@@ -71,8 +81,6 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import scipy.sparse as sp
-from scipy.optimize import linprog
-from scipy.sparse.linalg import lsqr
 
 from ..core.material import Material
 from ..core.model import EZ, Plane, find_plane, lateral_direction
@@ -81,7 +89,7 @@ from ..core.solve import check_settlements
 from ..structures.assembly import Assembly, Block
 from ..structures.geometry import Polyhedron
 
-__all__ = ["MAX_STEPS", "SettlementPathResult", "check_path_scene", "settlement_path"]
+__all__ = ["MAX_STEPS", "SettlementPathResult", "check_path_scene", "rotation_matrices", "settlement_path"]
 
 #: Most increments (accepted or bisected) one path may take.
 MAX_STEPS = 20_000
@@ -92,71 +100,197 @@ MAX_SNAPS = 100
 _FEAS = 1e-9  # relative tolerance of the equilibrium residual and of "velocity is zero"
 
 
+def _linprog(*args, **kwargs):
+    """:func:`scipy.optimize.linprog`, imported on first use: scipy.optimize costs 0.2-0.3 CPU-s
+    to import, which every run paid before, with or without a settlement path."""
+    from scipy.optimize import linprog
+
+    return linprog(*args, **kwargs)
+
+
+def _lsqr(*args, **kwargs):
+    """:func:`scipy.sparse.linalg.lsqr`, imported on first use (as :func:`_linprog`)."""
+    from scipy.sparse.linalg import lsqr
+
+    return lsqr(*args, **kwargs)
+
+
+def rotation_matrices(w: ArrayLike) -> NDArray[np.float64]:
+    """Rotation matrices ``(..., 3, 3)`` of rotation vectors ``w`` ``(..., 3)`` (rad), by
+    Rodrigues' formula ``R = I + sin(a) K + (1 - cos(a)) K^2`` with ``a = |w|`` and ``K`` the
+    cross-product matrix of the unit axis ``w / a`` (the identity where ``a = 0``)."""
+    w = np.asarray(w, dtype=float)
+    a = np.linalg.norm(w, axis=-1)
+    k = w / np.where(a > 0, a, 1.0)[..., None]
+    K = np.zeros(w.shape[:-1] + (3, 3))
+    K[..., 0, 1], K[..., 0, 2], K[..., 1, 2] = -k[..., 2], k[..., 1], -k[..., 0]
+    K = K - np.swapaxes(K, -1, -2)
+    s, c = np.sin(a)[..., None, None], np.cos(a)[..., None, None]
+    return np.eye(3) + s * K + (1.0 - c) * (K @ K)
+
+
+def _rotation_vectors(R: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Inverse of :func:`rotation_matrices` (angles below pi)."""
+    c = np.clip((np.trace(R, axis1=-2, axis2=-1) - 1.0) / 2.0, -1.0, 1.0)
+    a = np.arccos(c)
+    v = np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], axis=-1)
+    s = np.sin(a)
+    scale = np.where(s > 1e-12, a / np.where(s > 1e-12, 2 * s, 1.0), 0.5)  # a / (2 sin a) -> 1/2 as a -> 0
+    return v * scale[..., None]
+
+
 @dataclass(frozen=True)
-class _Scene:
-    """The planar reduction of an assembly: per block its weight, reference centroid and the
-    in-plane coordinates of its interface ends; the support velocities per unit magnitude."""
+class _Planar:
+    """Kinematics in a vertical plane: coordinates ``(x, z)`` (``x`` along ``plane.e``), one
+    rotation ``w`` counter-clockwise from ``e`` towards ``+z`` (the rotation vector ``-w m``)."""
 
     plane: Plane
-    weights: NDArray[np.float64]  # (nb,)
-    c0: NDArray[np.float64]  # (nb, 2) reference centroids (x, z)
-    free: NDArray[np.int64]  # indices of the free blocks
-    ia: NDArray[np.int64]  # (ni,) block A of each interface
-    ib: NDArray[np.int64]
-    ends: NDArray[np.float64]  # (ni, 2, 2) the two ends of each interface's trace (reference)
-    normal: NDArray[np.float64]  # (ni, 2) reference normal, A -> B
-    support: NDArray[np.int64]  # support block indices
-    velocity: NDArray[np.float64]  # (ns, 3) (ux, uz, w) per unit magnitude about the centroid
-    size: float
+    dim = 2
+    nrot = 1
 
-    def to2d(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
-        q = np.asarray(p, dtype=float) - self.plane.origin
-        return np.stack([q @ self.plane.e, q @ EZ], axis=-1)
+    @staticmethod
+    def moment(r: NDArray[np.float64], d: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Velocity along ``d`` of the point at ``r`` from the centroid per unit rotation
+        (``(w x r) . d``), which is also the moment of a force ``d`` at ``r``: ``(n, 1)``."""
+        return (r[:, 0] * d[:, 1] - r[:, 1] * d[:, 0])[:, None]
 
+    @staticmethod
+    def rotation(w: NDArray[np.float64]) -> NDArray[np.float64]:
+        c, s = np.cos(w[..., 0]), np.sin(w[..., 0])
+        return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
 
-def _rot(theta: NDArray[np.float64] | float) -> NDArray[np.float64]:
-    c, s = np.cos(theta), np.sin(theta)
-    return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
+    @staticmethod
+    def angles(R: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.arctan2(R[..., 1, 0], R[..., 0, 0])[..., None]
 
+    @staticmethod
+    def tangents(n: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.stack([-n[:, 1], n[:, 0]], axis=-1)[:, None, :]
 
-def _perp(r: NDArray[np.float64]) -> NDArray[np.float64]:
-    """``w x r`` for a unit counter-clockwise rotation: ``(-r_z, r_x)``."""
-    return np.stack([-r[..., 1], r[..., 0]], axis=-1)
+    def to_global(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Global points ``(..., 3)`` of in-plane points ``(..., 2)``."""
+        o = self.plane.origin
+        return o + p[..., :1] * self.plane.e + (p[..., 1:2] - o[2]) * EZ
 
-
-def _scene(assembly: Assembly, settlements: Mapping[str, ArrayLike]) -> _Scene:
-    plane = find_plane(assembly)
-    if plane is None:
-        raise ValueError("settlement_path needs a planar assembly (a vertical symmetry plane, interfaces in it)")
-    names = assembly.support_names
-    sett = check_settlements(names, settlements)
-    e, m = plane.e, plane.m
-    vel = np.zeros((len(names), 3))
-    for name, u in sett.items():
-        u = np.asarray(u, dtype=float)
+    def reduce(self, u: NDArray[np.float64], name: str) -> NDArray[np.float64]:
+        """In-plane ``(ux, uz, w)`` of a support motion ``(ux, uy, uz, rx, ry, rz)``."""
+        e, m = self.plane.e, self.plane.m
         out = abs(u[:3] @ m) + np.linalg.norm(u[3:] - (u[3:] @ m) * m)
         if out > 1e-12 * max(1.0, np.abs(u).max()):
             raise ValueError(f"settlements[{name!r}] leaves the assembly's plane: only in-plane motions are followed")
-        vel[names.index(name)] = (u[:3] @ e, u[2], -(u[3:] @ m))
+        return np.array([u[:3] @ e, u[2], -(u[3:] @ m)])
+
+    def lift(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Global 6-vectors ``(x, y, z, rx, ry, rz)`` of in-plane ``(x, z, w)`` (forces and
+        moments, or displacements and rotations)."""
+        e, m = self.plane.e, self.plane.m
+        return np.concatenate([q[..., :1] * e + q[..., 1:2] * EZ, -q[..., 2:3] * m], axis=-1)
+
+
+@dataclass(frozen=True)
+class _Spatial:
+    """Kinematics in space: coordinates ``(x, y, z)``, rotation vectors ``(rx, ry, rz)``."""
+
+    dim = 3
+    nrot = 3
+
+    @staticmethod
+    def moment(r: NDArray[np.float64], d: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``(w x r) . d = w . (r x d)``: the coefficients ``r x d`` ``(n, 3)``."""
+        return np.cross(r, d)
+
+    rotation = staticmethod(rotation_matrices)
+    angles = staticmethod(_rotation_vectors)
+
+    @staticmethod
+    def tangents(n: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Two unit tangents per normal: ``t1`` the projection of ``+z`` (``+x`` for a
+        horizontal plane), ``t2 = n x t1``."""
+        ref = np.where((np.abs(n[:, 2]) > 1 - 1e-9)[:, None], np.array([1.0, 0.0, 0.0]), EZ)
+        t1 = ref - np.einsum("ij,ij->i", ref, n)[:, None] * n
+        t1 /= np.linalg.norm(t1, axis=1, keepdims=True)
+        return np.stack([t1, np.cross(n, t1)], axis=1)
+
+    @staticmethod
+    def to_global(p: NDArray[np.float64]) -> NDArray[np.float64]:
+        return p
+
+    @staticmethod
+    def reduce(u: NDArray[np.float64], name: str) -> NDArray[np.float64]:
+        return u
+
+    @staticmethod
+    def lift(q: NDArray[np.float64]) -> NDArray[np.float64]:
+        return q
+
+
+@dataclass(frozen=True)
+class _Scene:
+    """What the path needs of an assembly: per block its weight and reference centroid, the
+    contact points (per interface: the ends of its trace in the plane, or the vertices of
+    its polygon in space), carried by both blocks; the support velocities per unit magnitude."""
+
+    kin: _Planar | _Spatial
+    weights: NDArray[np.float64]  # (nb,)
+    c0: NDArray[np.float64]  # (nb, dim) reference centroids
+    free: NDArray[np.int64]  # indices of the free blocks
+    ia: NDArray[np.int64]  # (ni,) block A of each interface
+    ib: NDArray[np.int64]
+    ci: NDArray[np.int64]  # (nc,) interface of each contact point
+    slot: NDArray[np.int64]  # (nc,) its place in its interface
+    points: NDArray[np.float64]  # (nc, dim) reference contact points
+    normal: NDArray[np.float64]  # (ni, dim) reference normal, A -> B
+    support: NDArray[np.int64]  # support block indices
+    velocity: NDArray[np.float64]  # (ns, ndof) per unit magnitude about the centroid
+    size: float
+
+    @property
+    def dim(self) -> int:
+        return self.kin.dim
+
+    @property
+    def ndof(self) -> int:
+        return self.kin.dim + self.kin.nrot
+
+
+def _scene(assembly: Assembly, settlements: Mapping[str, ArrayLike], model: str = "auto") -> _Scene:
+    plane = find_plane(assembly) if model == "auto" else None
+    kin: _Planar | _Spatial = _Planar(plane) if plane is not None else _Spatial()
+    names = assembly.support_names
+    sett = check_settlements(names, settlements)
+    vel = np.zeros((len(names), kin.dim + kin.nrot))
+    for name, u in sett.items():
+        vel[names.index(name)] = kin.reduce(np.asarray(u, dtype=float), name)
     t = assembly.interface_table
-    to2d = lambda p: np.stack([(p - plane.origin) @ e, p[:, 2]], axis=-1)  # noqa: E731
-    ends = np.zeros((len(t), 2, 2))
-    normal = np.zeros((len(t), 2))
-    for k in range(len(t)):
-        p = to2d(t.points[t.start[k] : t.start[k + 1]])
-        n = np.array([t.normal[k] @ e, t.normal[k][2]])
-        s = p @ _perp(n)
-        ends[k] = p[[np.argmin(s), np.argmax(s)]]
-        normal[k] = n / np.linalg.norm(n)
-    c = assembly.centroids
+    if plane is not None:
+        e = plane.e
+        local = lambda p: np.stack([(p - plane.origin) @ e, p[..., 2]], axis=-1)  # noqa: E731
+        normal = np.stack([t.normal @ e, t.normal[:, 2]], axis=-1) if len(t) else np.zeros((0, 2))
+        normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+        pts = []
+        for k in range(len(t)):  # the two ends of the interface's trace
+            p = local(t.points[t.start[k] : t.start[k + 1]])
+            s = p @ _Planar.tangents(normal[k : k + 1])[0, 0]
+            pts.append(p[[np.argmin(s), np.argmax(s)]])
+        points = np.concatenate(pts) if pts else np.zeros((0, 2))
+        ci = np.repeat(np.arange(len(t)), 2)
+        centroids = local(assembly.centroids)
+    else:
+        normal = np.asarray(t.normal, dtype=float)
+        points = np.asarray(t.points, dtype=float)
+        ci = np.asarray(t.vertex_interface, dtype=np.int64)
+        centroids = assembly.centroids
+    slot = np.arange(len(ci)) - np.searchsorted(ci, ci)
     return _Scene(
-        plane=plane,
+        kin=kin,
         weights=assembly.weights,
-        c0=to2d(c),
+        c0=np.asarray(centroids, dtype=float),
         free=np.asarray(assembly.free_indices, dtype=np.int64),
         ia=t.a.astype(np.int64),
         ib=t.b.astype(np.int64),
-        ends=ends,
+        ci=ci.astype(np.int64),
+        slot=slot.astype(np.int64),
+        points=points,
         normal=normal,
         support=np.asarray(assembly.support_indices, dtype=np.int64),
         velocity=vel,
@@ -166,83 +300,100 @@ def _scene(assembly: Assembly, settlements: Mapping[str, ArrayLike]) -> _Scene:
 
 @dataclass(frozen=True)
 class _Config:
-    """Placement of every block: centroid ``c`` (nb, 2) and rotation ``theta`` (nb,) from the
-    reference, at magnitude ``s``."""
+    """Placement of every block: centroid ``c`` (nb, dim) and rotation ``R`` (nb, dim, dim)
+    from the reference, at magnitude ``s``: a reference point ``p`` of block ``i`` is at
+    ``c_i + R_i (p - c0_i)``."""
 
     s: float
     c: NDArray[np.float64]
-    theta: NDArray[np.float64]
+    R: NDArray[np.float64]
 
     def place(self, idx: NDArray[np.int64], p: NDArray[np.float64], sc: _Scene) -> NDArray[np.float64]:
-        """Current position of reference points ``p`` (..., 2) carried by blocks ``idx``."""
-        r = np.einsum("...ij,...j->...i", _rot(self.theta[idx]), p - sc.c0[idx])
-        return self.c[idx] + r
+        """Current position of reference points ``p`` (n, dim) carried by blocks ``idx``."""
+        return self.c[idx] + np.einsum("nij,nj->ni", self.R[idx], p - sc.c0[idx])
+
+    def turned(self, sc: _Scene, dq: NDArray[np.float64], blocks: NDArray[np.int64]) -> _Config:
+        """The free ``blocks`` moved rigidly by ``dq`` (n, ndof): translated by its first
+        ``dim`` entries and turned about their centroids by the rest (a rotation vector,
+        composed on the left: ``R <- rot(dq) R``)."""
+        c, R = self.c.copy(), self.R.copy()
+        c[blocks] += dq[:, : sc.dim]
+        R[blocks] = sc.kin.rotation(dq[:, sc.dim :]) @ R[blocks]
+        return _Config(self.s, c, R)
 
 
 def _contacts(sc: _Scene, cf: _Config) -> tuple[NDArray, NDArray, NDArray]:
-    """Per interface end: current point (ni, 2, 2), A's normal (ni, 2) and gap (ni, 2),
-    the gap being B's copy minus A's copy along A's normal (m; > 0 open)."""
-    pa = cf.place(sc.ia[:, None].repeat(2, 1), sc.ends, sc)
-    pb = cf.place(sc.ib[:, None].repeat(2, 1), sc.ends, sc)
-    n = np.einsum("kij,kj->ki", _rot(cf.theta[sc.ia]), sc.normal)
-    gap = np.einsum("kej,kj->ke", pb - pa, n)
+    """Per contact point: current point (nc, dim), A's normal (nc, dim) and gap (nc,), the
+    gap being B's copy minus A's copy along A's normal (m; > 0 open)."""
+    pa = cf.place(sc.ia[sc.ci], sc.points, sc)
+    pb = cf.place(sc.ib[sc.ci], sc.points, sc)
+    n = np.einsum("kij,kj->ki", cf.R[sc.ia[sc.ci]], sc.normal[sc.ci])
+    gap = np.einsum("kj,kj->k", pb - pa, n)
     return 0.5 * (pa + pb), n, gap
 
 
 @dataclass(frozen=True)
 class _Step:
-    """One linear program on one configuration and its closed ends."""
+    """One linear program on one configuration and its closed contacts."""
 
     status: str  # optimal / unbounded / infeasible / numerical
-    v: NDArray[np.float64] | None = None  # (nb, 3) block velocities (supports included)
-    fn: NDArray[np.float64] | None = None  # (ni, 2) normal forces at the ends (0 where open)
-    ft: NDArray[np.float64] | None = None
-    reactions: NDArray[np.float64] | None = None  # (ns, 3)
-    dn: NDArray[np.float64] | None = None  # (ni, 2) opening velocity at the ends
+    v: NDArray[np.float64] | None = None  # (nb, ndof) block velocities (supports included)
+    fn: NDArray[np.float64] | None = None  # (nc,) normal forces at the contacts (0 where open)
+    reactions: NDArray[np.float64] | None = None  # (ns, ndof)
+    dn: NDArray[np.float64] | None = None  # (nc,) opening velocity at the contacts
     message: str = ""
 
 
 def _operators(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]):
-    """Compatibility rows of the closed ends: ``(Gn, Gt, hn, ht, kj, p, n)`` with ``G``
-    (sparse, one row per closed end) over the free blocks' ``(vx, vz, w)``, ``h`` the
-    supports' part, ``kj`` the (interface, end) pairs, ``p`` and ``n`` the contacts."""
+    """Compatibility rows of the closed contacts: ``(Gn, Gt, hn, ht, kc, p, dirs)`` with
+    ``G`` (sparse) over the free blocks' velocities ``(v, w)`` (``ndof`` each), ``Gn`` one
+    row per closed contact, ``Gt`` one per closed contact and tangent (tangent by tangent),
+    ``h`` the supports' part, ``kc`` the closed contacts, ``p`` their points and ``dirs``
+    (nk, dim, dim) their directions ``(n, t...)``."""
     p, n, _ = _contacts(sc, cf)
-    kk, ee = np.nonzero(closed)
-    nf = len(sc.free)
+    kc = np.flatnonzero(closed)
+    nk, nf, nd = len(kc), len(sc.free), sc.ndof
     col = np.full(len(sc.weights), -1)
     col[sc.free] = np.arange(nf)
-    vsup = np.zeros((len(sc.weights), 3))
+    vsup = np.zeros((len(sc.weights), nd))
     vsup[sc.support] = sc.velocity
-    pt = p[kk, ee]
-    rows = np.arange(len(kk))
+    pt = p[kc]
+    dirs = np.concatenate([n[kc][:, None, :], sc.kin.tangents(n[kc])], axis=1) if nk else np.zeros((0, sc.dim, sc.dim))
+    rows = np.arange(nk)
     out = []
-    for d in (n[kk], _perp(n[kk])):
-        G = sp.csr_matrix((len(kk), 3 * nf))
-        h = np.zeros(len(kk))
-        for blk, sign in ((sc.ib[kk], 1.0), (sc.ia[kk], -1.0)):
-            # velocity of the point on block blk per unit (vx, vz, w): (1, 0), (0, 1), w x r
-            r = pt - cf.c[blk]
-            coef = sign * np.column_stack([d[:, 0], d[:, 1], r[:, 0] * d[:, 1] - r[:, 1] * d[:, 0]])
+    for j in range(sc.dim):
+        d = dirs[:, j]
+        vals, ri, cj = [], [], []
+        h = np.zeros(nk)
+        for blk, sign in ((sc.ib[sc.ci[kc]], 1.0), (sc.ia[sc.ci[kc]], -1.0)):
+            # velocity of the point on block blk along d per unit (v, w): d, and (w x r) . d
+            coef = sign * np.column_stack([d, sc.kin.moment(pt - cf.c[blk], d)])
             free = col[blk] >= 0
-            cols = 3 * col[blk][free, None] + np.arange(3)
-            G = G + sp.csr_matrix(
-                (coef[free].ravel(), (np.repeat(rows[free], 3), cols.ravel())), shape=(len(kk), 3 * nf)
-            )
+            vals.append(coef[free].ravel())
+            ri.append(np.repeat(rows[free], nd))
+            cj.append((nd * col[blk][free, None] + np.arange(nd)).ravel())
             h[~free] += np.einsum("ij,ij->i", coef[~free], vsup[blk[~free]])
-        out += [G, h]
-    Gn, hn, Gt, ht = out
-    return Gn, Gt, hn, ht, (kk, ee), p, n
+        G = sp.csr_matrix((np.concatenate(vals), (np.concatenate(ri), np.concatenate(cj))), shape=(nk, nd * nf))
+        out.append((G, h))
+    Gn, hn = out[0]
+    Gt = sp.vstack([g for g, _ in out[1:]]).tocsr()
+    ht = np.concatenate([h for _, h in out[1:]])
+    return Gn, Gt, hn, ht, kc, pt, dirs
+
+
+def _weights(sc: _Scene) -> NDArray[np.float64]:
+    """The self-weight load vector over the free blocks' dofs, in units of their total weight."""
+    b = np.zeros(sc.ndof * len(sc.free))
+    b[sc.dim - 1 :: sc.ndof] = -sc.weights[sc.free] / sc.weights[sc.free].sum()
+    return b
 
 
 def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
-    """The TCE and its kinematic dual on the closed ends of configuration ``cf`` (module
+    """The TCE and its kinematic dual on the closed contacts of configuration ``cf`` (module
     docstring); the equilibrium of the duals is checked."""
-    Gn, Gt, hn, ht, (kk, ee), p, n = _operators(sc, cf, closed)
-    nf = len(sc.free)
-    w = sc.weights / sc.weights[sc.free].sum()  # scaled: forces in units of the free weight
-    b = np.zeros(3 * nf)
-    b[1::3] = -w[sc.free]
-    res = linprog(-b, A_ub=-Gn, b_ub=hn, A_eq=Gt, b_eq=-ht, bounds=(None, None), method="highs")
+    Gn, Gt, hn, ht, kc, p, dirs = _operators(sc, cf, closed)
+    b = _weights(sc)
+    res = _linprog(-b, A_ub=-Gn, b_ub=hn, A_eq=Gt, b_eq=-ht, bounds=(None, None), method="highs")
     if res.status == 2:
         return _Step("infeasible", message="the support motion needs interpenetration: " + res.message)
     if res.status == 3:
@@ -254,45 +405,43 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
     resid = Gn.T @ fn_ + Gt.T @ ft_ + b
     if np.abs(resid).max(initial=0.0) > 1e3 * _FEAS or fn_.min(initial=0.0) < -1e3 * _FEAS:
         return _Step("numerical", message=f"equilibrium residual {np.abs(resid).max():.2e} of the dual state")
-    v = np.zeros((len(sc.weights), 3))
-    v[sc.free] = res.x.reshape(-1, 3)
+    nd = sc.ndof
+    v = np.zeros((len(sc.weights), nd))
+    v[sc.free] = res.x.reshape(-1, nd)
     v[sc.support] = sc.velocity
     total = sc.weights[sc.free].sum()
     fn = np.zeros(closed.shape)
-    ft = np.zeros(closed.shape)
-    fn[kk, ee] = fn_ * total
-    ft[kk, ee] = ft_ * total
+    fn[kc] = fn_ * total
     dn = np.zeros(closed.shape)
-    dn[kk, ee] = Gn @ res.x + hn
-    # reactions: the force +f acts on B, -f on A; keep the supports' side, as exerted on the structure
-    reac = np.zeros((len(sc.support), 3))
-    pos = {int(s): i for i, s in enumerate(sc.support)}
-    tang = _perp(n)
-    for k, end in zip(kk, ee):
-        f = fn[k, end] * n[k] + ft[k, end] * tang[k]
-        for blk, sign in ((sc.ia[k], 1.0), (sc.ib[k], -1.0)):
-            if int(blk) in pos:  # the structure's block is the other one: it receives sign * f
-                r = p[k, end] - cf.c[blk]
-                reac[pos[int(blk)]] += sign * np.array([f[0], f[1], r[0] * f[1] - r[1] * f[0]])
-    return _Step("optimal", v=v, fn=fn, ft=ft, reactions=reac, dn=dn)
+    dn[kc] = Gn @ res.x + hn
+    # the force at each closed contact (global in-frame components), +f on B and -f on A
+    comps = np.column_stack([fn_, ft_.reshape(sc.dim - 1, -1).T]) * total if len(kc) else np.zeros((0, sc.dim))
+    f = np.einsum("kj,kjd->kd", comps, dirs)
+    reac = np.zeros((len(sc.support), nd))
+    pos = np.full(len(sc.weights), -1)
+    pos[sc.support] = np.arange(len(sc.support))
+    for blk, sign in ((sc.ia[sc.ci[kc]], 1.0), (sc.ib[sc.ci[kc]], -1.0)):
+        on = pos[blk] >= 0  # the structure's block is the other one: it receives sign * f
+        wrench = sign * np.column_stack([f[on], sc.kin.moment(p[on] - cf.c[blk[on]], f[on])])
+        np.add.at(reac, pos[blk[on]], wrench)
+    return _Step("optimal", v=v, fn=fn, reactions=reac, dn=dn)
 
 
-def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: float) -> tuple[str, float]:
-    """lambda_max of the lateral pattern (weights times ``direction`` = +-1 along ``e``) on the
-    closed ends of ``cf``: ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding)."""
+def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArray[np.float64]) -> tuple[str, float]:
+    """lambda_max of the lateral pattern (the weights along the horizontal ``direction``, in
+    the scene's coordinates) on the closed contacts of ``cf``:
+    ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding)."""
     Gn, Gt, *_ = _operators(sc, cf, closed)
-    nf = len(sc.free)
-    w = sc.weights[sc.free] / sc.weights[sc.free].sum()
-    b = np.zeros(3 * nf)
-    b[1::3] = -w
-    blat = np.zeros(3 * nf)
-    blat[0::3] = direction * w
+    b = _weights(sc)
+    blat = np.zeros_like(b)
+    for j in range(sc.dim):
+        blat[j :: sc.ndof] = -b[sc.dim - 1 :: sc.ndof] * direction[j]
     nn, nt = Gn.shape[0], Gt.shape[0]
     A = sp.hstack([Gn.T, Gt.T, sp.csr_matrix(blat[:, None])])
     c = np.zeros(nn + nt + 1)
     c[-1] = -1.0
     bounds = [(0, None)] * nn + [(None, None)] * nt + [(None, None)]
-    res = linprog(c, A_eq=A, b_eq=-b, bounds=bounds, method="highs")
+    res = _linprog(c, A_eq=A, b_eq=-b, bounds=bounds, method="highs")
     if res.status == 0:
         return "optimal", float(res.x[-1])
     return {2: "infeasible", 3: "unbounded"}.get(res.status, "numerical"), float("nan")
@@ -301,66 +450,63 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: float)
 def _move(sc: _Scene, cf: _Config, v: NDArray[np.float64], ds: float, advance: bool = True) -> _Config:
     """Every free block moved rigidly by ``v ds``; the supports to their exact place at
     ``s + ds`` (at ``s`` when not ``advance``: a motion with the supports held)."""
-    c = cf.c + ds * v[:, :2]
-    theta = cf.theta + ds * v[:, 2]
+    new = cf.turned(sc, ds * v[sc.free], sc.free)
     s = cf.s + ds if advance else cf.s
-    c[sc.support] = sc.c0[sc.support] + s * sc.velocity[:, :2]
-    theta[sc.support] = s * sc.velocity[:, 2]
-    return _Config(s, c, theta)
+    c, R = new.c, new.R
+    c[sc.support] = sc.c0[sc.support] + s * sc.velocity[:, : sc.dim]
+    R[sc.support] = sc.kin.rotation(s * sc.velocity[:, sc.dim :])
+    return _Config(s, c, R)
 
 
 def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
-    """One Gauss-Newton step that closes the relative displacement (both components) of the
-    ends ``keep`` by the least change of the free blocks' placements."""
+    """One Gauss-Newton step that closes the relative displacement (every component) of the
+    contacts ``keep`` by the least change of the free blocks' placements."""
     if not keep.any():
         return cf
-    Gn, Gt, *_ = _operators(sc, cf, keep)
-    pa = cf.place(sc.ia[:, None].repeat(2, 1), sc.ends, sc)
-    pb = cf.place(sc.ib[:, None].repeat(2, 1), sc.ends, sc)
-    _, n, _ = _contacts(sc, cf)
-    kk, ee = np.nonzero(keep)
-    d = pb[kk, ee] - pa[kk, ee]
-    mis = np.concatenate([np.einsum("ij,ij->i", d, n[kk]), np.einsum("ij,ij->i", d, _perp(n[kk]))])
+    Gn, Gt, _, _, kc, _, dirs = _operators(sc, cf, keep)
+    pa = cf.place(sc.ia[sc.ci[kc]], sc.points[kc], sc)
+    pb = cf.place(sc.ib[sc.ci[kc]], sc.points[kc], sc)
+    mis = np.einsum("kd,kjd->jk", pb - pa, dirs).ravel()  # normal rows, then tangent by tangent
     J = sp.vstack([Gn, Gt]).tocsr()
-    dq = lsqr(J, -mis, atol=1e-15, btol=1e-15, iter_lim=100 * J.shape[1])[0].reshape(-1, 3)  # least norm
-    c = cf.c.copy()
-    theta = cf.theta.copy()
-    c[sc.free] += dq[:, :2]
-    theta[sc.free] += dq[:, 2]
-    return _Config(cf.s, c, theta)
+    dq = _lsqr(J, -mis, atol=1e-12, btol=1e-12, iter_lim=100 * J.shape[1])[0].reshape(-1, sc.ndof)  # least norm
+    return cf.turned(sc, dq, sc.free)
 
 
 def _snap(
     sc: _Scene, cf: _Config, closed: NDArray[np.bool_], gtol: float, limit: float
 ) -> tuple[_Config, NDArray[np.bool_], _Step] | None:
     """Follow the structure's fall with the supports held from a configuration where nothing
-    stands, until an open end closes and the structure stands again.
+    stands, until an open contact closes and the structure stands again.
 
     At each sub-step the direction is the kinematic program's steepest descent of the
     weights with the supports held (block speeds bounded by 1, rotations times the size by
-    1); the blocks move along it until the first open end closes (the closing end is then
-    shut exactly by the projection) or by at most 1 % of the size. The fall is taken as
-    quasi-static with perfectly inelastic impacts: the energy released is dissipated when
-    the joint closes. Returns the standing configuration, its closed ends and its program,
-    or None when no end closes before some block has turned by ``limit`` rad or moved by
-    ``limit`` times the size (a collapse), or the program fails.
+    1); the blocks move along it until the first open contact closes (the closing contact
+    is then shut exactly by the projection) or by at most 1 % of the size. The fall is
+    taken as quasi-static with perfectly inelastic impacts: the energy released is
+    dissipated when the joint closes. Returns the standing configuration, its closed
+    contacts and its program, or None when no contact closes before some block has turned
+    by ``reach`` rad or moved by ``reach`` times the size (a collapse), or the program
+    fails. ``reach`` is ``limit`` or, if larger, twice the widest opening of a joint open
+    at the start of the fall (the relative rotation of its blocks): a snap closes an open
+    joint by turning its blocks back by that joint's opening, so a path whose hinges have
+    opened wide must be followed as far to find the closure.
     """
-    nf = len(sc.free)
-    w = sc.weights[sc.free] / sc.weights[sc.free].sum()
-    b = np.zeros(3 * nf)
-    b[1::3] = -w
-    bounds = [(-1.0, 1.0), (-1.0, 1.0), (-1.0 / sc.size, 1.0 / sc.size)] * nf
+    b = _weights(sc)
+    bounds = ([(-1.0, 1.0)] * sc.dim + [(-1.0 / sc.size, 1.0 / sc.size)] * sc.kin.nrot) * len(sc.free)
     start = cf
+    ajar = np.bincount(sc.ci, weights=(~closed).astype(float), minlength=len(sc.ia)) > 0
+    rel = sc.kin.angles(cf.R[sc.ib[ajar]] @ np.swapaxes(cf.R[sc.ia[ajar]], -1, -2))
+    reach = max(limit, 2.0 * float(np.linalg.norm(rel, axis=-1).max(initial=0.0)))
     everything = np.ones(closed.shape, dtype=bool)
     for _ in range(2000):
         Gn, Gt, *_ = _operators(sc, cf, closed)
-        res = linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
+        res = _linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
         if res.status != 0 or -res.fun <= _FEAS:
             return None
-        d = np.zeros((len(sc.weights), 3))
-        d[sc.free] = res.x.reshape(-1, 3)
+        d = np.zeros((len(sc.weights), sc.ndof))
+        d[sc.free] = res.x.reshape(-1, sc.ndof)
         GnA, *_ = _operators(sc, cf, everything)
-        rate = (GnA @ res.x).reshape(closed.shape)  # opening rate of every end along d
+        rate = GnA @ res.x  # opening rate of every contact along d
         _, _, gap = _contacts(sc, cf)
         closing = ~closed & (rate < -_FEAS)
         t_close = float((gap[closing] / -rate[closing]).min()) if closing.any() else math.inf
@@ -371,8 +517,8 @@ def _snap(
             keep |= closing & (gap / np.maximum(-rate, 1e-300) <= t_close * (1 + 1e-9))
         new = _project(sc, new, keep)
         moved = np.abs(new.c - start.c).max() / sc.size
-        turned = np.abs(new.theta - start.theta).max()
-        if max(moved, turned) > limit:
+        turned = np.linalg.norm(sc.kin.angles(new.R @ np.swapaxes(start.R, -1, -2)), axis=-1).max()
+        if max(moved, turned) > reach:
             return None
         _, _, gap = _contacts(sc, new)
         now = gap <= gtol
@@ -387,9 +533,13 @@ def _snap(
 
 
 def _checked(
-    assembly: Assembly, material: Material | None, settlements: Mapping[str, ArrayLike], alpha: float | None
-) -> tuple[_Scene, float]:
-    """The planar scene of a path and the lateral direction along ``e`` (+-1; 0 without
+    assembly: Assembly,
+    material: Material | None,
+    settlements: Mapping[str, ArrayLike],
+    alpha: float | None,
+    model: str = "auto",
+) -> tuple[_Scene, NDArray[np.float64]]:
+    """The scene of a path and the lateral direction in its coordinates (zero without
     ``alpha``), checked (:func:`check_path_scene`)."""
     material = material or Material()
     if material != Material(flow=material.flow):
@@ -397,13 +547,18 @@ def _checked(
             "settlement_path follows rigid blocks of a Heyman material (no friction limit, cohesion, "
             "strengths or stiffness): sliding and crushing are not followed"
         )
-    sc = _scene(assembly.validate(), settlements)
+    if model not in ("auto", "spatial"):
+        raise ValueError(f"model must be 'auto' or 'spatial', got {model!r}")
+    sc = _scene(assembly.validate(), settlements, model)
     if alpha is None:
-        return sc, 0.0
-    direction = float(lateral_direction(alpha) @ sc.plane.e)
+        return sc, np.zeros(sc.dim)
+    d = lateral_direction(alpha)
+    if isinstance(sc.kin, _Spatial):
+        return sc, np.asarray(d, dtype=float)
+    direction = float(d @ sc.kin.plane.e)
     if abs(abs(direction) - 1.0) > 1e-12:
         raise ValueError(f"alpha = {alpha} leaves the assembly's plane: lambda_max is followed in plane only")
-    return sc, direction
+    return sc, np.array([direction, 0.0])
 
 
 def check_path_scene(
@@ -414,9 +569,9 @@ def check_path_scene(
     Raises
     ------
     ValueError
-        A material other than the rigid Heyman one, an assembly that is not planar, a
-        motion out of its plane or of an unknown support, or (``alpha`` given) a lateral
-        direction out of the plane.
+        A material other than the rigid Heyman one, a motion of an unknown support, or, for
+        a planar assembly (:func:`tce.core.model.find_plane`), a motion out of its plane or
+        (``alpha`` given) a lateral direction out of the plane.
     """
     _checked(assembly, material, settlements, alpha)
 
@@ -425,6 +580,11 @@ def check_path_scene(
 class SettlementPathResult(Result):
     """A finite-settlement path (``ok`` when ``status`` is ``collapse``, ``snap_through`` or
     ``contact_lost``: a capacity was bracketed).
+
+    The path's coordinates are those of the assembly: in its plane ``(x, z)`` and one
+    rotation for a planar assembly (``plane`` set), ``(x, y, z)`` and rotation vectors in
+    space (``plane`` None); :meth:`wrenches` and :meth:`displacements` give both in the
+    global frame.
 
     Attributes
     ----------
@@ -440,28 +600,32 @@ class SettlementPathResult(Result):
         Smallest magnitude found not standing (NaN if none).
     magnitudes : (k,) ndarray
         Magnitude of every standing configuration of the path, increasing.
-    reactions : (k, n_supports, 3) ndarray
-        ``(Rx, Rz, M)`` of each support on the structure (kN, kN m) at each magnitude:
-        ``Rx`` along the plane's horizontal direction, ``M`` counter-clockwise about the
-        support's current centroid.
+    reactions : (k, n_supports, 3 or 6) ndarray
+        The wrench of each support on the structure at each magnitude (kN, kN m), the moment
+        about the support's current centroid: planar ``(Rx, Rz, M)`` (``Rx`` along the
+        plane's horizontal direction, ``M`` counter-clockwise), spatial
+        ``(Fx, Fy, Fz, Mx, My, Mz)``.
     lambda_max : (k,) ndarray
         lambda_max of the lateral pattern (``alpha``) on the deformed structure (NaN when
         not asked for).
-    placements : (k, n_blocks, 3) ndarray
-        ``(dx, dz, theta)`` of every block from its reference placement (m, rad).
+    placements : (k, n_blocks, 3 or 6) ndarray
+        Every block's displacement from its reference placement: planar ``(dx, dz, theta)``,
+        spatial ``(dx, dy, dz, rx, ry, rz)`` (the centroid's translation, m, and the rotation
+        about it, rad; a rotation vector in space).
     hinges : list of list of int
         Per magnitude, the interfaces that rotate in the mechanism (hinges).
     hinge_points : (k, n_interfaces, 3) ndarray
-        Per magnitude, the current position of each hinge (the closed end of a rotating
-        interface that opens least; m, global frame), NaN for the other interfaces.
-    open_ends : (k, n_interfaces, 2) bool ndarray
-        Which ends of each interface are open, per magnitude.
+        Per magnitude, the current position of each hinge (the closed contact point of a
+        rotating interface that opens least; m, global frame), NaN for the other interfaces.
+    open_ends : (k, n_interfaces, p) bool ndarray
+        Which contact points of each interface are open, per magnitude (``p`` = 2 in the
+        plane: the two ends; in space the polygon's vertices in order, padded with False).
     hinge_sequence : list of tuple
         ``(magnitude, interface, event)``: ``event`` is ``"hinge"`` when an interface starts
         rotating, ``"closed"`` when an open joint closes again along the path, ``"snap"``
         when it closes at the end of a fall (:attr:`snaps`).
-    plane : Plane
-        The assembly's plane (for drawing in 3D).
+    plane : Plane or None
+        The assembly's plane (planar assemblies).
     snaps : list of float
         Magnitudes at which nothing stood and the structure fell, with the supports held,
         to a new standing configuration (a joint closed: a hinge migrated); each appears
@@ -482,24 +646,31 @@ class SettlementPathResult(Result):
     hinge_points: NDArray[np.float64] = field(repr=False)
     open_ends: NDArray[np.bool_] = field(repr=False)
     hinge_sequence: list = field(repr=False)
-    plane: Plane = field(repr=False)
+    plane: Plane | None = field(repr=False)
     snaps: list = field(default_factory=list)
     n_solves: int = 0
+
+    def _lift(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        return _Spatial.lift(q) if self.plane is None else _Planar(self.plane).lift(q)
+
+    def wrenches(self) -> NDArray[np.float64]:
+        """Reactions ``(k, n_supports, 6)`` in the global frame ``(Fx, Fy, Fz, Mx, My, Mz)``."""
+        return self._lift(self.reactions)
+
+    def displacements(self) -> NDArray[np.float64]:
+        """Block displacements ``(k, n_blocks, 6)`` in the global frame: ``(ux, uy, uz)`` of
+        the centroid and the rotation vector ``(rx, ry, rz)`` about it."""
+        return self._lift(self.placements)
 
     def deformed(self, assembly: Assembly, index: int = -1) -> Assembly:
         """``assembly`` with its blocks at the placement of step ``index`` (the interfaces as
         in the reference: for drawing)."""
-        e, m = self.plane.e, self.plane.m
+        disp = self.displacements()[index]
+        R = rotation_matrices(disp[:, 3:])
         blocks = []
         for k, blk in enumerate(assembly.blocks):
-            dx, dz, th = self.placements[index, k]
             c = blk.shape.centroid
-            v = blk.shape.vertices - c
-            ve, vz = v @ e, v[:, 2]
-            cs, sn = math.cos(th), math.sin(th)
-            rest = v - np.outer(ve, e) - np.outer(vz, EZ)
-            ne, nz = cs * ve - sn * vz, sn * ve + cs * vz
-            pts = c + rest + np.outer(ne + dx, e) + np.outer(nz + dz, EZ)
+            pts = c + disp[k, :3] + (blk.shape.vertices - c) @ R[k].T
             blocks.append(Block(blk.name, Polyhedron(pts, blk.shape.faces), blk.unit_weight, blk.support))
         return Assembly(tuple(blocks), assembly.interfaces, dict(assembly.meta))
 
@@ -516,16 +687,20 @@ def settlement_path(
     gap_tol: float = 1e-7,
     snap_ratio: float = 1e3,
     snap_limit: float = 0.3,
+    model: str = "auto",
 ) -> SettlementPathResult:
     """Follow the support motion ``s * settlements`` from ``s = 0`` until nothing stands.
 
     Parameters
     ----------
     assembly : Assembly
-        A planar assembly (module docstring).
+        Any assembly of rigid blocks; followed in its plane when it is planar (module
+        docstring), in space otherwise.
     settlements : dict
-        ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad) about each support's centroid, in
-        the assembly's plane: the motion of unit magnitude.
+        ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad) about each support's centroid (in
+        the plane of a planar assembly): the motion of unit magnitude. At magnitude ``s`` a
+        support is translated by ``s (ux, uy, uz)`` and turned about its centroid by the
+        rotation vector ``s (rx, ry, rz)``.
     material : Material, optional
         Must be the rigid Heyman material (the default): no friction limit, cohesion,
         strengths or stiffness (sliding and crushing are not followed).
@@ -537,17 +712,25 @@ def settlement_path(
     atol : float, optional
         Width of the final bracket on the magnitude; default ``increment / 64``.
     lam : bool
-        Also lambda_max of the lateral pattern in direction ``alpha`` (0 or 180 degrees: in
-        the plane) on the deformed structure at every standing magnitude.
+        Also lambda_max of the lateral pattern in direction ``alpha`` (for a planar
+        assembly 0 or 180 degrees: in the plane) on the deformed structure at every
+        standing magnitude.
     gap_tol : float
-        An interface end is closed when its gap is below ``gap_tol`` times the assembly's size.
+        A contact point is closed when its gap is below ``gap_tol`` times the assembly's size.
     snap_ratio : float
         Largest ratio of the mechanism's speed to the supports' before ``snap_through``.
     snap_limit : float
         Where nothing stands, the structure's fall with the supports held is followed until
         an open joint closes (a snap, after which the path goes on); a fall in which some
         block turns by more than ``snap_limit`` rad, or moves by more than ``snap_limit``
-        times the assembly's size, before any joint closes is a collapse.
+        times the assembly's size, before any joint closes is a collapse. The limit is
+        raised to twice the widest opening of an open joint when that is larger (a snap
+        turns the blocks back by the opening of the joint it closes).
+    model : {"auto", "spatial"}
+        ``"auto"`` follows a planar assembly in its plane (two contact points per interface,
+        three dofs per block) and any other in space; ``"spatial"`` follows every assembly
+        in space (the polygon vertices, six dofs per block): the same path, the check of
+        the spatial kinematics on a planar structure.
 
     Returns
     -------
@@ -561,19 +744,24 @@ def settlement_path(
     atol = increment / 64 if atol is None else float(atol)
     if not (math.isfinite(atol) and atol > 0):
         raise ValueError(f"atol must be a finite number > 0, got {atol!r}")
-    sc, direction = _checked(assembly, material, settlements, alpha if lam else None)
+    sc, direction = _checked(assembly, material, settlements, alpha if lam else None, model)
     gtol = gap_tol * sc.size
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in settlements.items()}
     n_solves = 0
+    ni = len(sc.ia)
 
     def solve(cf: _Config, closed: NDArray[np.bool_]) -> _Step:
         nonlocal n_solves
         n_solves += 1
         return _solve(sc, cf, closed)
 
+    def per_interface(mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+        """Whether any contact point of each interface is in ``mask``."""
+        return np.bincount(sc.ci, weights=mask.astype(float), minlength=ni) > 0
+
     nb = len(sc.weights)
-    cf = _Config(0.0, sc.c0.copy(), np.zeros(nb))
-    closed = np.ones(sc.ends.shape[:2], dtype=bool)
+    cf = _Config(0.0, sc.c0.copy(), np.broadcast_to(np.eye(sc.dim), (nb, sc.dim, sc.dim)).copy())
+    closed = np.ones(len(sc.ci), dtype=bool)
     step = solve(cf, closed)
     vref = np.abs(sc.velocity).max() * max(1.0, sc.size)
     records: list[tuple[_Config, NDArray, _Step]] = []
@@ -595,7 +783,7 @@ def settlement_path(
 
     def rotating(st: _Step) -> set[int]:
         assert st.v is not None
-        dw = np.abs(st.v[sc.ib, 2] - st.v[sc.ia, 2])
+        dw = np.linalg.norm(st.v[sc.ib, sc.dim :] - st.v[sc.ia, sc.dim :], axis=1)
         return set(np.flatnonzero(dw * sc.size > 1e-7 * vref).tolist())
 
     ds = increment
@@ -628,18 +816,18 @@ def settlement_path(
         stays = closed & (step.dn <= _FEAS * vref * 1e3)
         trial = _project(sc, trial, stays)
         _, _, gap = _contacts(sc, trial)
-        if gap.min() < -10 * gtol:
-            # an open end closed within the increment (or the projection failed): shorter step
+        if gap.min(initial=0.0) < -10 * gtol:
+            # an open contact closed within the increment (or the projection failed): shorter step
             if h > atol:
                 ds = h / 2
                 continue
             status, message = "numerical", f"interpenetration {-gap.min():.3g} m at s = {trial.s:.6g} with the shortest step"
             break
         now = gap <= gtol
-        lost = [k for k in range(len(now)) if not now[k].any()]
+        lost = np.flatnonzero(per_interface(closed) & ~per_interface(now)).tolist()  # in this increment
         new = solve(trial, now)
         if new.status == "optimal":
-            for k in np.flatnonzero((now & ~closed).any(axis=1)):
+            for k in np.flatnonzero(per_interface(now & ~closed)):
                 sequence.append((trial.s, int(k), "closed"))
             record(trial, now, new)
             if upper == upper and trial.s >= upper:
@@ -665,8 +853,7 @@ def settlement_path(
             status = "contact_lost" if lost_at_upper else "collapse"
             message = f"no admissible state at s = {upper:.6g}: {upper_msg}"
             break
-        before = upper_state[1]
-        for k in np.flatnonzero((fallen[1] & ~before).any(axis=1)):
+        for k in np.flatnonzero(per_interface(fallen[1] & ~upper_state[1])):
             sequence.append((fallen[0].s, int(k), "snap"))
         snaps.append(fallen[0].s)
         record(*fallen)
@@ -680,19 +867,21 @@ def settlement_path(
             st, val = _limit(sc, c, cl, direction)
             n_solves += 1
             lam_max[i] = val if st == "optimal" else np.nan
-    placements = np.zeros((k, nb, 3))
-    hinge_points = np.full((k, len(sc.ia), 3), np.nan)
-    plane = sc.plane
+    placements = np.zeros((k, nb, sc.ndof))
+    hinge_points = np.full((k, ni, 3), np.nan)
+    width = int(sc.slot.max(initial=-1)) + 1
+    open_ends = np.zeros((k, ni, width), dtype=bool)
     for i, (c, cl, st) in enumerate(records):
-        placements[i, :, :2] = c.c - sc.c0
-        placements[i, :, 2] = c.theta
-        # the hinge of a rotating interface: its closed end that opens least
+        placements[i, :, : sc.dim] = c.c - sc.c0
+        placements[i, :, sc.dim :] = sc.kin.angles(c.R)
+        open_ends[i, sc.ci, sc.slot] = ~cl
+        # the hinge of a rotating interface: its closed contact point that opens least
         p, _, _ = _contacts(sc, c)
-        rot = sorted(rotating(st))
         assert st.dn is not None
-        end = np.argmin(np.where(cl[rot], st.dn[rot], np.inf), axis=1)
-        xz = p[rot, end]
-        hinge_points[i, rot] = plane.origin + np.outer(xz[:, 0], plane.e) + np.outer(xz[:, 1] - plane.origin[2], EZ)
+        for kk in sorted(rotating(st)):
+            mine = np.flatnonzero((sc.ci == kk) & cl)
+            if len(mine):
+                hinge_points[i, kk] = sc.kin.to_global(p[mine[np.argmin(st.dn[mine])]])
     return SettlementPathResult(
         status=status,
         message=message,
@@ -701,14 +890,14 @@ def settlement_path(
         capacity=float(records[-1][0].s) if ok else float("nan"),
         upper=float(upper),
         magnitudes=np.array([c.s for c, _, _ in records]),
-        reactions=np.array([st.reactions for _, _, st in records]).reshape(k, len(sc.support), 3),
+        reactions=np.array([st.reactions for _, _, st in records]).reshape(k, len(sc.support), sc.ndof),
         lambda_max=lam_max,
         placements=placements,
         hinges=[sorted(rotating(st)) for _, _, st in records],
         hinge_points=hinge_points,
-        open_ends=np.array([~cl for _, cl, _ in records]).reshape(k, *sc.ends.shape[:2]),
+        open_ends=open_ends,
         hinge_sequence=sequence,
-        plane=sc.plane,
+        plane=sc.kin.plane if isinstance(sc.kin, _Planar) else None,
         snaps=snaps,
         n_solves=n_solves,
         wall_time=time.perf_counter() - t0,

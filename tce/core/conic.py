@@ -196,10 +196,11 @@ def cone_rows(
 def matvec(A: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
     """``x -> A @ x``, dense for an operator of at most 65,536 entries: scipy's sparse
     dispatch costs more than the whole product there (about 15 us a call, on the hot
-    path of every load step)."""
+    path of every load step). A larger CSR or CSC operator is used as it is: a CSR copy of a
+    CSC one would hold a second copy of the largest array of a large model."""
     if A.shape[0] * A.shape[1] <= 1 << 16:
         return np.asarray(A.toarray()).__matmul__
-    return sp.csr_matrix(A).__matmul__
+    return (A if A.format in ("csr", "csc") else sp.csr_matrix(A)).__matmul__
 
 
 class LawCheck:

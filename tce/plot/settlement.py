@@ -53,6 +53,30 @@ def _snaps(mags: np.ndarray) -> np.ndarray:
     return mags[1:][np.diff(mags) == 0]
 
 
+def _motion(ds: xr.Dataset, name: str) -> np.ndarray:
+    """Unit translations ``(n_supports, 3)`` of the supports per unit magnitude (zero for
+    supports that do not translate), read from the support blocks' displacements."""
+    mags, n = _path(ds, name)
+    disp = np.asarray(ds["settlement_displacement"].sel(scenario=name).values, dtype=float)[n - 1]
+    sup = np.flatnonzero(np.asarray(ds["block_support"].values, dtype=bool))
+    u = disp[sup, :3] / mags[-1] if mags[-1] > 0 else np.zeros((len(sup), 3))
+    norm = np.linalg.norm(u, axis=1, keepdims=True)
+    return np.divide(u, norm, out=np.zeros_like(u), where=norm > 0)
+
+
+def _thrust_against_motion(ds: xr.Dataset, name: str, reac: np.ndarray) -> np.ndarray:
+    """``-sum_s R_s . u_s / n`` over the ``n`` supports that translate (``u_s`` the unit
+    direction of support ``s``'s translation, ``R_s`` its force on the structure, kN): the
+    mean force each moving support exerts against its own motion. For a dome whose ring
+    spreads radially it is the mean radial thrust per support. Unlike a single support's
+    reaction, which a rigid structure leaves statically indeterminate among the supports
+    of a 3D structure, this sum is unique when the moving supports move by equal amounts
+    (a dome's uniform radial spread): it is then the work the TCE minimises per unit motion."""
+    u = _motion(ds, name)
+    moving = max(int((np.linalg.norm(u, axis=1) > 0).sum()), 1)
+    return -np.einsum("ksj,sj->k", reac[:, :, :3], u) / moving
+
+
 def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
     """Thrust and lambda_max of the deformed structure against the settlement magnitude.
 
@@ -66,8 +90,10 @@ def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
     Returns
     -------
     Figure
-        Left: ``H`` of each support (kN; gid ``"thrust:<scenario>:<support>"``); right,
-        when computed: lambda_max (gid ``"lambda:<scenario>"``).
+        Left: for a planar structure ``|H|`` of each support (kN; gid
+        ``"thrust:<scenario>:<support>"``); for a spatial one the thrust against the motion
+        (:func:`_thrust_against_motion`; gid ``"thrust:<scenario>"``); right, when computed:
+        lambda_max (gid ``"lambda:<scenario>"``).
     """
     names = list(names or settled_scenarios(ds))
     asm = assembly(ds)
@@ -85,7 +111,10 @@ def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
         colour = COLOURS[i % len(COLOURS)]
         mags, n = _path(ds, name)
         reac = np.asarray(ds["settlement_reaction"].sel(scenario=name).values, dtype=float)[:n]
-        for k, sup in enumerate(supports):
+        if plane is None:
+            (line,) = axes[0].plot(mags, _thrust_against_motion(ds, name, reac), color=colour, lw=1.6)
+            line.set_gid(f"thrust:{name}")
+        for k, sup in enumerate(supports if plane is not None else ()):
             h = reac[:, k, :3] @ e
             (line,) = axes[0].plot(mags, np.abs(h), color=colour, ls=("-", "--", ":", "-.")[k % 4], lw=1.6)
             line.set_gid(f"thrust:{name}:{sup}")
@@ -102,11 +131,13 @@ def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
         outcome = str(ds["settlement_outcome"].sel(scenario=name).values)
         label = f"{name}: capacity {cap:.4g} ({outcome})" if np.isfinite(cap) else f"{name}: {outcome}"
         handles.append(Line2D([], [], color=colour, lw=1.6, label=label))
-    handles += [Line2D([], [], color="0.3", ls=("-", "--", ":", "-.")[k % 4], label=f"support {s}") for k, s in enumerate(supports)]
+    if plane is not None:
+        handles += [Line2D([], [], color="0.3", ls=("-", "--", ":", "-.")[k % 4], label=f"support {s}") for k, s in enumerate(supports)]
     handles.append(Line2D([], [], color="0.3", ls=":", lw=1.0, label="capacity"))
     handles.append(Line2D([], [], color="0.3", lw=0.6, alpha=0.5, label="snap (a hinge moves)"))
     axes[0].set_xlabel("settlement magnitude (multiples of the settlement vector)")
-    axes[0].set_ylabel("|H|: horizontal reaction in the plane (kN)")
+    axes[0].set_ylabel("|H|: horizontal reaction in the plane (kN)" if plane is not None
+                       else "thrust against the motion, mean per moving support (kN)")
     axes[0].set_title("Thrust against support motion")
     if lam:
         axes[1].set_xlabel("settlement magnitude (multiples of the settlement vector)")
@@ -137,17 +168,40 @@ def _outline(points: np.ndarray) -> np.ndarray:
     return np.asarray(lower[:-1] + upper[:-1])
 
 
+def _section(asm) -> tuple[np.ndarray, np.ndarray]:
+    """The vertical section drawn for a spatial structure: its horizontal direction ``e``
+    (from the plan centre of the supports to the first support's centroid) and the blocks
+    drawn (those whose centroid lies, seen in plan from that centre, within 30 degrees of
+    ``+e`` or ``-e``)."""
+    c = asm.centroids
+    sup = list(asm.support_indices)
+    o = c[sup, :2].mean(axis=0)
+    d = c[sup[0], :2] - o
+    if np.linalg.norm(d) == 0:
+        d = np.array([1.0, 0.0])
+    d = d / np.linalg.norm(d)
+    rel = c[:, :2] - o
+    r = np.linalg.norm(rel, axis=1)
+    cos = np.abs(rel @ d) / np.where(r > 0, r, 1.0)
+    return np.array([d[0], d[1], 0.0]), (cos >= np.cos(np.radians(30.0))) | (r <= 1e-9 * asm.size)
+
+
 def settlement_shapes(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
     """The deformed structure at magnitudes 0, capacity / 2 and capacity (true scale).
 
     Blocks are drawn as the outline of their vertices in the plane of the structure (the
     planar assemblies the path follows are prisms of convex sections); the hinges of the
-    drawn configuration are dots (gid ``"hinge:<scenario>:<k>"``).
+    drawn configuration are dots (gid ``"hinge:<scenario>:<k>"``). A spatial structure is
+    drawn in the vertical section through its first support (:func:`_section`): for a dome,
+    the two opposite lunes of that sector, in the meridian plane.
     """
     names = list(names or settled_scenarios(ds))
     asm = assembly(ds)
     plane = find_plane(asm)
     e = plane.e if plane is not None else np.array([1.0, 0.0, 0.0])
+    drawn = np.ones(len(asm.blocks), dtype=bool)
+    if plane is None:
+        e, drawn = _section(asm)
     fig = Figure(figsize=(5.0 * len(names), 4.6))
     shades = ("0.85", "#9ecae1", "#fc9272")
     for i, name in enumerate(names):
@@ -161,6 +215,8 @@ def settlement_shapes(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
         for j, k in enumerate(chosen):
             shade = shades[min(j, 2)] if len(chosen) == 3 else shades[2 * (j > 0)]
             for b, blk in enumerate(asm.blocks):
+                if not drawn[b]:
+                    continue
                 u, r = disp[k, b, :3], disp[k, b, 3:]
                 c = blk.shape.centroid
                 v = blk.shape.vertices - c
@@ -171,7 +227,7 @@ def settlement_shapes(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
                 p = c + u + v
                 xy = _outline(np.column_stack([p @ e, p[:, 2]]))
                 ax.add_patch(Polygon(xy, closed=True, fc=shade, ec="0.25", lw=0.4, alpha=0.9 if j == len(chosen) - 1 else 0.6))
-            pts = hp[k][np.isfinite(hp[k, :, 0])]
+            pts = hp[k][np.isfinite(hp[k, :, 0]) & (drawn[asm.interface_table.a] | drawn[asm.interface_table.b])]
             dots = ax.plot(pts @ e, pts[:, 2], "o", ms=5, color="#cb181d" if j == len(chosen) - 1 else "0.4")
             dots[0].set_gid(f"hinge:{name}:{k}")
         ax.set_aspect("equal")

@@ -23,8 +23,10 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     The direct lambda_max of the paper's arch (3D and planar; without and with its
     mechanism) against one raw Clarabel set-up + solve of the same problem, and the planar
     load path (1 mm spreading, step 0.02, atol 1e-6, direct bracket, no mechanism) against a
-    hand-written bisection on a warm raw Clarabel solver of the same TCE data, interleaved
-    call by call, CPU time, medians; the ratio in ``note``.
+    hand-written bisection on a warm raw Clarabel solver of the same TCE data: without
+    canonical states (the same work), and as the path runs by default, with the canonical
+    state of every optimal step, against the raw bisection solving that QP too
+    (:func:`_raw_canonical`); interleaved call by call, CPU time, medians; the ratio in ``note``.
 ``load_path``
     Number of solves and time of the load path against the bisection tolerance, against
     the direct lambda_max.
@@ -44,11 +46,16 @@ reference (the Clarabel-direct solve at tight tolerance, or a closed form):
     Fig. 10 also the default choice of jobs against ``--jobs 1`` and ``--jobs 2``, and dask
     kept out against dask importable (variants interleaved, medians of repeats).
 ``sweeps``
-    The 300-scenario sweep of the paper's arch (no figures) with ``--jobs 1``, ``--jobs 2``
-    and the default, interleaved, each a fresh ``tce run`` (:func:`measured_run`): wall time,
-    the CPU time of every process of the run (fork server and workers included) against the
-    CPU time of the same load paths alone in this process (:func:`solving_cpu`); the share of
-    CPU in solving of each paper study.
+    Whole runs, each a fresh ``tce run --fresh`` (:func:`measured_run`: wall, CPU of every
+    process, CPU per process, load average), variants interleaved, medians of three: the
+    300-scenario sweep of the paper's arch (no figures) with ``--jobs 1``, ``--jobs 2`` and
+    the default, against the CPU of the same load paths alone in this process
+    (:func:`solving_cpu`) and by the CPU on the longest chain of processes
+    (:func:`critical_cpu`); Fig. 7-8, 9 and 10 with ``--no-plots``, with figures
+    (``--no-report``) and as the default (figures, report and its PDF); the share of CPU in
+    solving of each paper study.
+``sweep3000``
+    The share of CPU in solving of a 3,000-scenario sweep of the arch (one run).
 ``reduction``
     What the planar model, dropping the cone (Heyman) and dropping the quadratic term
     (rigid) save, each with its effect on the answer.
@@ -111,7 +118,7 @@ THICKNESS_REF = 0.1075
 IN_PLANE = [0, 2, 4]  # Fx, Fz, My of a support wrench: unique; Fy, Mx, Mz carry a free self-stress in 3D
 COLUMNS = [
     "section", "case", "method", "solver", "model", "n_blocks", "n_solves", "time_s", "build_s", "solver_time_s",
-    "ratio", "error", "error_of", "residual", "peak_mem_mb", "time_min_s", "note",
+    "ratio", "error", "error_of", "residual", "peak_mem_mb", "time_min_s", "note", "cpu_s",
 ]
 
 
@@ -294,28 +301,66 @@ def _limit_rows(quick: bool) -> list[dict[str, Any]]:
 
 
 # ---------------------------------------------------------------- the direct limit's cost
-def _raw_bisection(raw: Any, b0: np.ndarray, b1: np.ndarray, step: float, atol: float) -> tuple[float, int]:
+def _raw_bisection(raw: Any, b0: np.ndarray, b1: np.ndarray, step: float, atol: float,
+                   after: Callable[[np.ndarray, float], Any] | None = None) -> tuple[float, int]:
     """The load path written by hand on a warm Clarabel solver: ``b = b0 + lam b1``, increments
     of ``step`` until Clarabel reports infeasible, then bisection to ``atol``; admissible means
-    ``Solved``. Returns ``(lambda_max, solves)``."""
+    ``Solved``. ``after(x, lam)``, when given, is called with the solution of every admissible
+    step (the canonical state's extra solve). Returns ``(lambda_max, solves)``."""
     lo, hi, k, n = 0.0, float("nan"), 0, 0
+
+    def admissible(lam: float) -> bool:
+        raw.update(b=b0 + lam * b1)
+        sol = raw.solve()
+        if str(sol.status) != "Solved":
+            return False
+        if after is not None:
+            after(np.asarray(sol.x), lam)
+        return True
+
     while True:
-        raw.update(b=b0 + k * step * b1)
         n += 1
-        if str(raw.solve().status) != "Solved":
+        if not admissible(k * step):
             hi = k * step
             break
         lo = k * step
         k += 1
     while hi - lo > atol:
         mid = 0.5 * (lo + hi)
-        raw.update(b=b0 + mid * b1)
         n += 1
-        if str(raw.solve().status) == "Solved":
+        if admissible(mid):
             lo = mid
         else:
             hi = mid
     return lo, n
+
+
+def _raw_canonical(f: Any, b0: np.ndarray, b1: np.ndarray, q: np.ndarray, settings: Any) -> Callable:
+    """``after`` for :func:`_raw_bisection`: the canonical state of each admissible step
+    (:mod:`tce.core.canonical`: least unit-stiffness energy on the optimal face, slack 1e-10
+    of the optimum) on one warm raw Clarabel solver, written from the module's definition;
+    the problem's data are built once, outside the timing (as the TCE data are)."""
+    import clarabel
+
+    from ..core.canonical import FACE_SLACK, canonical_problem
+    from ..core.clarabel_solver import _cones
+
+    p = canonical_problem(f, b0, q, 0.0)
+    m, nz, h = f.A_eq.shape[0], f.law.n_zero, f.law_h
+    state: dict[str, Any] = {}
+
+    def after(x: np.ndarray, lam: float) -> None:
+        value = float(q @ x)
+        bound = value + FACE_SLACK * abs(value) + 1e-15 * float(np.abs(q) @ np.abs(x))
+        b = b0 + lam * b1
+        if "solver" not in state:
+            state["solver"] = clarabel.DefaultSolver(p.P, p.q, p.A, np.concatenate([b[:m], h[:nz], [bound], h[nz:]]),
+                                                     _cones(p), settings)
+        else:
+            state["solver"].update(b=np.concatenate([b[:m], h[:nz], [bound], h[nz:]]))
+        state["solver"].solve()
+
+    return after
 
 
 def _limit_cost(quick: bool) -> list[dict[str, Any]]:
@@ -360,7 +405,9 @@ def _limit_cost(quick: bool) -> list[dict[str, Any]]:
             rows.append(_row("limit_cost", f"arch 16 blocks lambda_max, {label}", name, solver="CLARABEL", model=kind,
                              n_blocks=len(arch.blocks), n_solves=reps, time_s=med, time_min_s=min(ts),
                              note=f"{med / raw:.3f}x raw (CPU, interleaved)"))
-    # the planar load path (direct bracket, no mechanism) against the hand-written bisection
+    # the planar load path (direct bracket, no mechanism) against the hand-written bisection: without
+    # canonical states (the same work as the raw bisection: the target), and as it runs by default,
+    # with the canonical state of every optimal step, against the raw bisection doing that too
     model = build_model(arch, "planar")
     U = np.zeros(6 * len(arch.support_names))
     U[6 * arch.support_names.index("right")] = SETTLEMENT["right"][0]
@@ -368,32 +415,38 @@ def _limit_cost(quick: bool) -> list[dict[str, Any]]:
     _, b_fixed, b_live = scene_vectors(model, 0.0)
     tp = tce_problem(f, tce_b(f, b_fixed), U)
     b0, b1 = tce_b(f, b_fixed), tce_b(f, b_fixed + b_live) - tce_b(f, b_fixed)
-    opts = SolverOptions()
     atol, step = 1e-6, 0.02
-    times = {"tce": [], "raw": []}
-    got: dict[str, Any] = {}
-    for i in range(10 if quick else 60):
-        an = Analysis(arch, mat, model="planar")
-        an.formulation("planar")  # both start from the built, scaled operators (the raw one from tp)
-        order = ("tce", "raw") if i % 2 else ("raw", "tce")
-        for name in order:
-            t0 = clock()
-            if name == "tce":
-                got["tce"] = load_path(an, 0.0, SETTLEMENT, step=step, atol=atol, mechanism=False)
-            else:
-                raw = clarabel.DefaultSolver(tp.P, tp.q, tp.A, b0, _cones(tp), opts.settings(refine=False, kkt=f.kkt))
-                got["raw"] = _raw_bisection(raw, b0, b1, step, atol)
-            times[name].append(clock() - t0)
-    mt, mr = statistics.median(times["tce"]), statistics.median(times["raw"])
-    lp, (lam_raw, n_raw) = got["tce"], got["raw"]
     case = "arch in plane, 1 mm spreading, step 0.02, atol 1e-6"
-    rows.append(_row("limit_cost", case, "tce load path (direct bracket, no mechanism)", solver="CLARABEL", model="planar",
-                     n_blocks=len(arch.blocks), n_solves=lp.n_solves, time_s=mt, time_min_s=min(times["tce"]),
-                     note=f"{mt / mr:.3f}x the raw bisection (CPU, interleaved); lambda_max {lp.lambda_max:.7f}, "
-                          f"{lp.n_solves} TCE solves + 1 direct"))
-    rows.append(_row("limit_cost", case, "hand-written bisection on raw clarabel", solver="CLARABEL", model="planar",
-                     n_blocks=len(arch.blocks), n_solves=n_raw, time_s=mr, time_min_s=min(times["raw"]),
-                     note=f"lambda_max {lam_raw:.7f}, {n_raw} solves"))
+    for canonical in (False, True):
+        opts = SolverOptions(canonical=canonical)
+        settings = opts.settings(refine=False, kkt=f.kkt)
+        times = {"tce": [], "raw": []}
+        got: dict[str, Any] = {}
+        for i in range(10 if quick else 60):
+            an = Analysis(arch, mat, model="planar", options=opts)
+            an.formulation("planar")  # both start from the built, scaled operators (the raw one from tp)
+            order = ("tce", "raw") if i % 2 else ("raw", "tce")
+            for name in order:
+                t0 = clock()
+                if name == "tce":
+                    got["tce"] = load_path(an, 0.0, SETTLEMENT, step=step, atol=atol, mechanism=False)
+                else:
+                    raw = clarabel.DefaultSolver(tp.P, tp.q, tp.A, b0, _cones(tp), settings)
+                    after = _raw_canonical(f, b0, b1, tp.q, settings) if canonical else None
+                    got["raw"] = _raw_bisection(raw, b0, b1, step, atol, after)
+                times[name].append(clock() - t0)
+        mt, mr = statistics.median(times["tce"]), statistics.median(times["raw"])
+        lp, (lam_raw, n_raw) = got["tce"], got["raw"]
+        what = ("with canonical states (the default)" if canonical else "no canonical states")
+        rows.append(_row("limit_cost", case, f"tce load path (direct bracket, no mechanism, {what})", solver="CLARABEL",
+                         model="planar", n_blocks=len(arch.blocks), n_solves=lp.n_solves, time_s=mt,
+                         time_min_s=min(times["tce"]),
+                         note=f"{mt / mr:.3f}x the raw bisection (CPU, interleaved); lambda_max {lp.lambda_max:.7f}, "
+                              f"{lp.n_solves} TCE solves + 1 direct"))
+        raw_what = "with the canonical QP of every admissible step" if canonical else "no canonical states"
+        rows.append(_row("limit_cost", case, f"hand-written bisection on raw clarabel ({raw_what})", solver="CLARABEL",
+                         model="planar", n_blocks=len(arch.blocks), n_solves=n_raw, time_s=mr, time_min_s=min(times["raw"]),
+                         note=f"lambda_max {lam_raw:.7f}, {n_raw} solves"))
     return rows
 
 
@@ -663,30 +716,92 @@ def _runs(quick: bool) -> list[dict[str, Any]]:
 # ---------------------------------------------------------------- sweeps: whole runs in CPU time
 #: Runs a command and prints the wall and CPU seconds of it and of every process it started
 #: (Linux: this process becomes the child subreaper, so the fork server and the workers it
-#: forked, re-parented here when their parent ends, are waited for and counted).
+#: forked, re-parented here when their parent ends, are waited for and counted), the CPU of each
+#: process (sampled from /proc every 50 ms: a process's last ticks may be missed) with its
+#: parent, and the load average before and after.
 _MEASURED = """
-import ctypes, json, os, resource, subprocess, sys, time
+import ctypes, json, os, resource, subprocess, sys, threading, time
 try:
     ctypes.CDLL(None).prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER
 except (AttributeError, OSError):
     pass
+tick = os.sysconf("SC_CLK_TCK")
+procs = {}  # pid -> [cpu s, first parent seen, command line]
+
+def descendants():
+    out, todo = [], [os.getpid()]
+    while todo:
+        p = todo.pop()
+        try:
+            for t in os.listdir(f"/proc/{p}/task"):
+                with open(f"/proc/{p}/task/{t}/children") as fh:
+                    kids = [int(c) for c in fh.read().split()]
+                todo += kids
+                out += kids
+        except OSError:
+            pass
+    return out
+
+def sample():
+    for p in descendants():
+        try:
+            with open(f"/proc/{p}/stat") as fh:
+                f = fh.read().rpartition(")")[2].split()
+            if p not in procs:
+                with open(f"/proc/{p}/cmdline", "rb") as fh:
+                    procs[p] = [0.0, int(f[1]), fh.read().replace(b"\\0", b" ").decode(errors="replace")]
+            procs[p][0] = (int(f[11]) + int(f[12])) / tick
+        except (OSError, ValueError, IndexError):
+            pass
+
+stop = threading.Event()
+def loop():
+    while not stop.wait(0.05):
+        sample()
+load0 = os.getloadavg()[0]
 t0 = time.perf_counter()
-done = subprocess.run(sys.argv[1:], capture_output=True, text=True)
+child = subprocess.Popen(sys.argv[1:], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+sampler = threading.Thread(target=loop, daemon=True)
+sampler.start()
+out, err = child.communicate()
 wall = time.perf_counter() - t0
+own = resource.getrusage(resource.RUSAGE_CHILDREN)
 while True:
     try:
         os.waitpid(-1, 0)
     except ChildProcessError:
         break
+stop.set()
+sampler.join()
 r = resource.getrusage(resource.RUSAGE_CHILDREN)
-print(json.dumps(dict(wall=wall, cpu=r.ru_utime + r.ru_stime, rc=done.returncode, err=done.stderr[-2000:])))
+procs[child.pid] = [own.ru_utime + own.ru_stime, os.getpid(), "tce run"]  # exact: reaped first
+print(json.dumps(dict(wall=wall, cpu=r.ru_utime + r.ru_stime, rc=child.returncode, err=err[-2000:], root=child.pid,
+                      procs=procs, load=[load0, os.getloadavg()[0]])))
 """
 
 
-def measured_run(study: Path, out: Path, args: Sequence[str]) -> dict[str, float]:
+def critical_cpu(got: dict[str, Any]) -> float:
+    """CPU seconds on the longest chain of a measured run (:func:`measured_run`): the ``tce run``
+    process, the fork server's (serial: the parent waits for its imports) and the busiest
+    worker forked from it, plus any other process it started. On an idle machine with a core
+    per worker, the run's wall time would be about this; on a shared one, the ratio of two
+    runs' critical CPU is the speed-up the work allows, which the wall time cannot show while
+    other sessions hold the cores (the scheduler shares the CPU between sessions, not
+    processes: Linux autogroups)."""
+    procs = {int(k): v for k, v in got["procs"].items()}
+    root = int(got["root"])
+    server = [p for p, (_, parent, cmd) in procs.items() if parent == root and "forkserver" in cmd]
+    workers = [v[0] for p, v in procs.items() if v[1] in server]
+    others = [v[0] for p, v in procs.items() if p != root and p not in server and v[1] not in server]
+    return procs[root][0] + sum(procs[p][0] for p in server) + max(workers, default=0.0) + sum(others)
+
+
+def measured_run(study: Path, out: Path, args: Sequence[str]) -> dict[str, Any]:
     """``tce run STUDY --fresh ARGS`` in a fresh process: its wall time, the CPU time of it and
-    of every process it started, and the solver time its results record (``solve_time``
-    summed over scenarios: wall time inside the solve calls)."""
+    of every process it started (``cpu``), the CPU of each process (``procs``), the CPU on the
+    longest chain (``critical``, :func:`critical_cpu`), the load average before and after
+    (``load``) and the solver time its results record (``solve_time`` summed over scenarios:
+    wall time inside the solve calls)."""
     import xarray as xr
 
     cmd = [sys.executable, "-m", "tce.cli", "-q", "run", str(study), "--out", str(out), "--fresh", *args]
@@ -694,6 +809,7 @@ def measured_run(study: Path, out: Path, args: Sequence[str]) -> dict[str, float
     got = json.loads(done.stdout.strip().splitlines()[-1])
     if got["rc"] != 0:
         raise RuntimeError(f"tce run {study.name} failed: {got['err']}")
+    got["critical"] = critical_cpu(got)
     name = next(line.split("=", 1)[1].strip().strip('"') for line in study.read_text().splitlines()
                 if line.strip().startswith("name"))
     with xr.open_dataset(out / name / "results.nc") as ds:
@@ -702,33 +818,67 @@ def measured_run(study: Path, out: Path, args: Sequence[str]) -> dict[str, float
     return got
 
 
-def solving_cpu(study: Path) -> float:
+def solving_cpu(study: Path, every: int = 1) -> float:
     """CPU seconds of the load paths of every scenario of ``study`` in this process, as the
     runner solves them (a cold analysis per scenario) but without recording or writing: the
     solving a run cannot do without (the results' ``solve_time`` is wall time, which a shared
-    machine stretches)."""
+    machine stretches). ``every = k``: every k-th scenario, the sum times k (an estimate, for
+    a large sweep)."""
     from ..analysis.loadpath import load_path
     from ..study.runner import _analysis, _cold
     from ..study.schema import load_study
 
     st = load_study(study)
     c0 = time.process_time()
-    for sc in st.scenarios():
+    for sc in st.scenarios()[::every]:
         an = _cold(_analysis(sc, st.assembly(sc.structure)))
         load_path(an, settlements=sc.settlements, step=sc.loads["lambda_step"], atol=sc.loads["tolerance"],
                   lam_cap=sc.loads["lambda_cap"], loads=sc.loads_pattern)
-    return time.process_time() - c0
+    return (time.process_time() - c0) * every
+
+
+#: the paper studies whose figures are held to 1.5x their own ``--no-plots`` run
+FIGURE_STUDIES = ("fig7_8_inplane", "fig9_outofplane", "fig10_dome")
+#: 50 settlement magnitudes instead of SWEEP_300's 5: 3,000 scenarios
+MAGNITUDES_3000 = "[" + ", ".join(f"{0.5 + 0.05 * k:.2f}" for k in range(50)) + "]"
+
+
+def _load(gs: Sequence[dict[str, Any]]) -> str:
+    """The load average (1 min) over some measured runs: median and range."""
+    loads = [x for g in gs for x in g["load"]]
+    return f"load average {statistics.median(loads):.1f} ({min(loads):.1f}-{max(loads):.1f})"
+
+
+def _interleaved(study: Path, out: Path, variants: dict[str, list[str]], repeats: int) -> dict[str, list[dict[str, Any]]]:
+    """``repeats`` measured runs (:func:`measured_run`) of each variant (``label -> tce run
+    arguments``), interleaved, every other round in reverse order."""
+    got: dict[str, list[dict[str, Any]]] = {k: [] for k in variants}
+    for i in range(repeats):
+        for label in (list(variants) if i % 2 == 0 else list(variants)[::-1]):
+            got[label].append(measured_run(study, out, variants[label]))
+    return got
 
 
 def _sweeps(quick: bool) -> list[dict[str, Any]]:
-    """The 300-scenario sweep of the paper's arch (10 frictions x 5 magnitudes x 6 settlement
-    cases, no figures) with ``--jobs 1``, ``--jobs 2`` and the default, interleaved, each in a
-    fresh process: wall, CPU of every process, and the solver time the results record; the
-    paper studies' share of CPU in solving (``--quick``: a 60-scenario sweep, one repeat)."""
+    """Whole runs, each a fresh ``tce run --fresh`` (:func:`measured_run`), variants
+    interleaved, medians of repeats, wall and CPU (of every process) with the load average:
+
+    - the 300-scenario sweep of the paper's arch (10 frictions x 5 magnitudes x 6 settlement
+      cases, no figures) with ``--jobs 1``, ``--jobs 2`` and the default; the CPU of the same
+      load paths alone in this process (:func:`solving_cpu`) and the CPU on the longest chain
+      of processes (:func:`critical_cpu`);
+    - :data:`FIGURE_STUDIES` with ``--no-plots``, with figures (``--no-report``) and as the
+      default (figures and the calculation report with its PDF);
+    - the share of CPU in solving of each paper study (the 3,000-scenario sweep's is section
+      ``sweep3000``).
+
+    ``--quick``: a 60-scenario sweep and Fig. 7-8, one repeat.
+    """
     import tempfile
 
     rows: list[dict[str, Any]] = []
     repeats = 1 if quick else 3
+    root = Path(__file__).resolve().parents[2] / "studies"
     with tempfile.TemporaryDirectory() as tmp:
         sweep = Path(tmp) / "sweep300.toml"
         text = SWEEP_300 if not quick else SWEEP_300.replace(
@@ -736,33 +886,188 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
         sweep.write_text(text)
         variants = {"--jobs 1": ["--no-plots", "--jobs", "1"], "--jobs 2": ["--no-plots", "--jobs", "2"],
                     "default": ["--no-plots"]}
-        got: dict[str, list[dict[str, float]]] = {k: [] for k in variants}
-        for _ in range(repeats):
-            for label, args in variants.items():
-                got[label].append(measured_run(sweep, Path(tmp) / "out", args))
+        got = _interleaved(sweep, Path(tmp) / "out", variants, repeats)
         base = statistics.median(g["wall"] for g in got["--jobs 1"])
+        base_cpu = statistics.median(g["cpu"] for g in got["--jobs 1"])
         solving = solving_cpu(sweep)
         for label, gs in got.items():
             wall, cpu = statistics.median(g["wall"] for g in gs), statistics.median(g["cpu"] for g in gs)
+            crit = statistics.median(g["critical"] for g in gs)
             solver = statistics.median(g["solver"] for g in gs)
             rows.append(_row("sweeps", f"sweep of {gs[0]['scenarios']} scenarios (arch, no figures)", label,
                              n_solves=len(gs), time_s=wall, time_min_s=min(g["wall"] for g in gs),
-                             solver_time_s=solving,
+                             solver_time_s=solving, cpu_s=crit,
                              note=f"{base / wall:.2f}x faster than --jobs 1 (wall); CPU {cpu:.2f} s, "
                                   f"{cpu / solving:.1f}x the load paths' CPU ({solving:.2f} s), solving "
-                                  f"{solving / cpu:.0%} of the CPU; recorded solve_time {solver:.2f} s (wall)"))
-        root = Path(__file__).resolve().parents[2] / "studies"
+                                  f"{solving / cpu:.0%} of the CPU; longest chain {crit:.2f} CPU-s, "
+                                  f"{base_cpu / crit:.2f}x faster than --jobs 1 by CPU; recorded solve_time "
+                                  f"{solver:.2f} s (wall); {_load(gs)}"))
+        for name in FIGURE_STUDIES[:1] if quick else FIGURE_STUDIES:
+            study = root / f"{name}.toml"
+            if not study.exists():
+                continue
+            kinds = {"--no-plots": ["--no-plots"], "figures (--no-report)": ["--no-report"],
+                     "figures and report (default)": []}
+            runs = _interleaved(study, Path(tmp) / "out", kinds, repeats)
+            plain_cpu = statistics.median(g["cpu"] for g in runs["--no-plots"])
+            plain_wall = statistics.median(g["wall"] for g in runs["--no-plots"])
+            for label, gs in runs.items():
+                cpu, wall = statistics.median(g["cpu"] for g in gs), statistics.median(g["wall"] for g in gs)
+                rows.append(_row("sweeps", f"tce run {name}", label, n_solves=len(gs), time_s=wall,
+                                 time_min_s=min(g["wall"] for g in gs), cpu_s=cpu,
+                                 note=f"CPU {cpu:.2f} s, {cpu / plain_cpu:.2f}x --no-plots (CPU); wall "
+                                      f"{wall / plain_wall:.2f}x --no-plots; {_load(gs)}"))
         for name in () if quick else PAPER_STUDIES:
             if not (root / f"{name}.toml").exists():
                 continue
             g = measured_run(root / f"{name}.toml", Path(tmp) / "out", ["--no-plots"])
             solving = solving_cpu(root / f"{name}.toml")
-            rows.append(_row("sweeps", f"tce run {name}", "default (no figures)", n_solves=1, time_s=g["wall"],
-                             solver_time_s=solving,
+            rows.append(_row("sweeps", f"tce run {name}", "default (no figures): share of CPU in solving", n_solves=1,
+                             time_s=g["wall"], solver_time_s=solving, cpu_s=g["cpu"],
                              note=f"CPU {g['cpu']:.2f} s, the load paths {solving:.2f} s: solving {solving / g['cpu']:.1%} "
-                                  f"of the CPU; recorded solve_time {g['solver']:.3f} s (wall)"))
+                                  f"of the CPU; recorded solve_time {g['solver']:.3f} s (wall); {_load([g])}"))
     return rows
 
+
+def _sweep3000(quick: bool) -> list[dict[str, Any]]:
+    """The share of CPU in solving of a 3,000-scenario sweep of the paper's arch (10 frictions
+    x 50 settlement magnitudes x 6 cases, no figures; one fresh ``tce run`` with the default
+    jobs, :func:`measured_run`): the CPU of every process against the load paths of every
+    tenth scenario timed alone in this process (:func:`solving_cpu`), times ten. ``--quick``:
+    nothing (the run takes minutes)."""
+    import tempfile
+
+    rows: list[dict[str, Any]] = []
+    if quick:
+        return rows
+    with tempfile.TemporaryDirectory() as tmp:
+        big = Path(tmp) / "sweep3000.toml"
+        # lambda_cap 1 (above every lambda_max of the sweep, 0.2-0.4: no path is capped) keeps the
+        # study's bound on its solves (MAX_SOLVES) from refusing 3,000 uncapped paths
+        big.write_text(SWEEP_300.replace('name = "sweep300"', 'name = "sweep3000"').replace(
+            "[0.5, 1.0, 1.5, 2.0, 3.0]", MAGNITUDES_3000).replace("tolerance = 1e-6", "tolerance = 1e-6\nlambda_cap = 1.0"))
+        g = measured_run(big, Path(tmp) / "out", ["--no-plots"])
+        solving = solving_cpu(big, every=10)
+        rows.append(_row("sweeps", f"sweep of {g['scenarios']} scenarios (arch, no figures)",
+                         "default: share of CPU in solving", n_solves=1, time_s=g["wall"], solver_time_s=solving,
+                         cpu_s=g["critical"],
+                         note=f"CPU {g['cpu']:.1f} s, the load paths {solving:.1f} s (every 10th timed, x10): "
+                              f"solving {solving / g['cpu']:.0%} of the CPU, {g['cpu'] / solving:.2f}x; longest "
+                              f"chain {g['critical']:.1f} CPU-s; {_load([g])}"))
+    return rows
+
+
+
+
+# ---------------------------------------------------------------- scale: one large model, stage by stage
+#: dome sizes (sectors = courses) of the scale section: 992 and 20,306 blocks (--quick: 992)
+SCALE_SIZES, QUICK_SCALE_SIZES = (31, 142), (31,)
+
+
+def _scale(quick: bool) -> list[dict[str, Any]]:
+    """Memory and CPU of each stage of building and solving one large dome's lambda_max
+    (:func:`tce.quality.scale.dome_stages`), each size in a fresh process, once (the 50k and
+    100k rows of docs/scaling.md were run the same way, by hand, under an address-space limit)."""
+    rows: list[dict[str, Any]] = []
+    root = str(Path(__file__).resolve().parent.parent.parent)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
+    for n in QUICK_SCALE_SIZES if quick else SCALE_SIZES:
+        done = subprocess.run([sys.executable, "-m", "tce.quality.scale", str(n)], capture_output=True, text=True,
+                              env=env, timeout=7200)
+        if done.returncode != 0:
+            rows.append(_row("scale", f"dome {n} x {n}", "stages", note=f"failed: {done.stderr[-300:]}"))
+            continue
+        r = json.loads(done.stdout.strip().splitlines()[-1])
+        solve = next(st for st in r["stages"] if st["stage"] == "Clarabel solved")
+        build = sum(st["cpu_s"] for st in r["stages"][1:3])
+        for st in r["stages"]:
+            rows.append(_row("scale", f"dome {r['n_blocks']} blocks", st["stage"], solver="CLARABEL", model="spatial",
+                             n_blocks=r["n_blocks"], time_s=st["cpu_s"], peak_mem_mb=1e3 * st["peak_gb"],
+                             note=f"resident {st['rss_gb']:.2f} GB, peak {st['peak_gb']:.2f} GB; {r['n_contacts']} "
+                                  f"contacts, {r['n_vars']} unknowns, {r['rows']} rows, nnz(A) {r['nnz_A']}; "
+                                  f"{r['status']} in {r['iterations']} it; build {build:.1f} CPU-s, "
+                                  f"solve {solve['cpu_s']:.1f} CPU-s"))
+    return rows
+
+# ---------------------------------------------------------------- past one machine: Dask
+#: a sweep whose scenarios carry about half a CPU-second of solving each: a dome of 12 sectors x
+#: 6 courses (84 blocks, 3D SOCP) under 6 frictions x 2 settlement cases
+DASK_DOME_SWEEP = """
+[study]
+name = "dask_dome"
+[structure]
+type = "dome"
+sectors = 12
+courses = 6
+[material]
+friction = 0.8
+[loads]
+lambda_step = 0.05
+tolerance = 1e-4
+[sweep]
+friction = [0.6, 0.7, 0.8, 0.9, 1.0, 1.2]
+[scenarios.none]
+[scenarios.one_outward]
+s01 = [0.001, 0, 0, 0, 0, 0]
+"""
+
+#: the variants of the dask section: label -> ``tce run`` arguments (``--no-plots`` added)
+DASK_VARIANTS = {
+    "in-process (--jobs 1)": ["--jobs", "1"],
+    "loky, 2 workers": ["--jobs", "2"],
+    "dask LocalCluster, 1 worker": ["--backend", "dask", "--jobs", "1"],
+    "dask LocalCluster, 2 workers": ["--backend", "dask", "--jobs", "2"],
+}
+
+
+def _dask(quick: bool) -> list[dict[str, Any]]:
+    """Throughput against workers on the Dask route (``tce run --backend dask --jobs N``, a
+    LocalCluster of N single-threaded worker processes) against the fork-server pool and the
+    in-process run: a light sweep (the 60-scenario arch sweep of ``sweeps --quick``, about 10
+    ms of solving a scenario) and a heavier one (:data:`DASK_DOME_SWEEP`, 12 dome scenarios);
+    each run a fresh ``tce run --fresh --no-plots``, CPU of every process counted (cluster
+    included), variants interleaved, medians (``--quick``: the heavy sweep only, one repeat)."""
+    import importlib.util
+    import tempfile
+
+    from ..study.jobs import NO_DASK
+
+    if importlib.util.find_spec("distributed") is None:
+        return [_row("dask", "dask not installed", "", note="pip install 'tce[dask]'")]
+    # the runs must not inherit the bench program's block on importing dask
+    blocked = os.environ.pop(NO_DASK, None)
+    try:
+        return _dask_rows(quick)
+    finally:
+        if blocked is not None:
+            os.environ[NO_DASK] = blocked
+
+
+def _dask_rows(quick: bool) -> list[dict[str, Any]]:
+    import tempfile
+
+    rows: list[dict[str, Any]] = []
+    repeats = 1 if quick else 3
+    light = SWEEP_300.replace("[0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.2, 1.4, 1.7, 2.0]", "[0.5, 0.8]")
+    sweeps = {"dome": DASK_DOME_SWEEP} if quick else {"arch": light, "dome": DASK_DOME_SWEEP}
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, text in sweeps.items():
+            study = Path(tmp) / f"{name}.toml"
+            study.write_text(text)
+            got: dict[str, list[dict[str, float]]] = {k: [] for k in DASK_VARIANTS}
+            for _ in range(repeats):
+                for label, args in DASK_VARIANTS.items():
+                    got[label].append(measured_run(study, Path(tmp) / "out", ["--no-plots", *args]))
+            solving = solving_cpu(study)
+            base = statistics.median(g["wall"] for g in got["in-process (--jobs 1)"])
+            for label, gs in got.items():
+                wall, cpu = statistics.median(g["wall"] for g in gs), statistics.median(g["cpu"] for g in gs)
+                n = gs[0]["scenarios"]
+                rows.append(_row("dask", f"{name} sweep of {n} scenarios (no figures)", label, n_solves=len(gs),
+                                 time_s=wall, time_min_s=min(g["wall"] for g in gs), solver_time_s=solving,
+                                 note=f"{n / wall:.2f} scenarios per wall s, {base / wall:.2f}x in-process; CPU "
+                                      f"{cpu:.2f} s, {cpu - solving:.2f} s beyond the load paths' {solving:.2f} s"))
+    return rows
 
 # ---------------------------------------------------------------- model reduction
 def _reduction(quick: bool) -> list[dict[str, Any]]:
@@ -958,10 +1263,14 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
         if raw and mine:
             out.append((f"{case}: direct lambda_max <= 1.3x one raw Clarabel set-up + solve (CPU, interleaved)",
                         f"{mine / raw:.3f}x ({mine * 1e3:.3f} / {raw * 1e3:.3f} ms)", mine <= 1.3 * raw))
-        path, bis = t.get("tce load path (direct bracket, no mechanism)"), t.get("hand-written bisection on raw clarabel")
-        if path and bis:
-            out.append((f"{case}: planar load path no slower than a hand-written bisection on raw Clarabel",
-                        f"{path / bis:.3f}x ({path * 1e3:.2f} / {bis * 1e3:.2f} ms)", path <= bis))
+        for tag, raw_tag in (("no canonical states", "no canonical states"),
+                             ("with canonical states (the default)", "with the canonical QP of every admissible step")):
+            path = t.get(f"tce load path (direct bracket, no mechanism, {tag})")
+            bis = t.get(f"hand-written bisection on raw clarabel ({raw_tag})")
+            if path and bis:
+                out.append((f"{case}: planar load path ({tag}) no slower than a hand-written bisection on raw "
+                            f"Clarabel ({raw_tag}; CPU, interleaved)",
+                            f"{path / bis:.3f}x ({path * 1e3:.2f} / {bis * 1e3:.2f} ms)", path <= bis))
     for case, g in df[df.section == "plotting"].groupby("case", sort=False):
         cold = {m.split(" (")[0]: t for m, t in zip(g.method, g.time_s) if "cold" in m}
         if len(cold) == 2:
@@ -987,11 +1296,24 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
     sw = df[df.section == "sweeps"]
     for case in sw.case.unique():
         g = sw[sw.case == case].set_index("method")
+        if "figures (--no-report)" in g.index:
+            plain, figs = g.loc["--no-plots"], g.loc["figures (--no-report)"]
+            out.append((f"{case}: with figures at most 1.5x its own --no-plots run (CPU, every process)",
+                        f"{figs.cpu_s / plain.cpu_s:.2f}x ({figs.cpu_s:.2f} / {plain.cpu_s:.2f} CPU-s; wall "
+                        f"{figs.time_s / plain.time_s:.2f}x)", bool(figs.cpu_s <= 1.5 * plain.cpu_s)))
         if "--jobs 1" not in g.index:
             continue
         j1, j2, dflt = (g.time_s.get(k) for k in ("--jobs 1", "--jobs 2", "default"))
-        out.append((f"{case}: --jobs 2 at least 1.6x faster than --jobs 1 (wall)", f"{j1 / j2:.2f}x", bool(j1 >= 1.6 * j2)))
+        load = g.note["--jobs 2"].rpartition("; ")[2]
+        out.append((f"{case}: --jobs 2 at least 1.6x faster than --jobs 1 (wall)", f"{j1 / j2:.2f}x ({load})",
+                    bool(j1 >= 1.6 * j2)))
+        c1, c2 = g.cpu_s["--jobs 1"], g.cpu_s["--jobs 2"]
+        out.append((f"{case}: --jobs 2 at least 1.6x faster than --jobs 1 (CPU on the longest chain of processes)",
+                    f"{c1 / c2:.2f}x ({c1:.1f} / {c2:.1f} CPU-s)", bool(c1 >= 1.6 * c2)))
         out.append((f"{case}: the default no slower than --jobs 1 (wall)", f"{dflt / j1:.2f}x", bool(dflt <= 1.05 * j1)))
+        cd = g.cpu_s["default"]
+        out.append((f"{case}: the default no slower than --jobs 1 (CPU on the longest chain)", f"{cd / c1:.2f}x",
+                    bool(cd <= 1.05 * c1)))
         cpu = float(g.note["--jobs 1"].split("CPU ")[1].split(" s")[0])
         solver = float(g.solver_time_s["--jobs 1"])
         out.append((f"{case}: --jobs 1 at most 3x its own solving (CPU of the run / CPU of its load paths)",
@@ -1017,7 +1339,7 @@ def _fmt(v: Any) -> str:
 def to_markdown(df: pd.DataFrame, machine: str = "") -> str:
     """The bench table as Markdown (times in ms), followed by the targets."""
     cols = ["section", "case", "method", "solver", "model", "n_solves", "time_ms", "build_ms", "solver_ms", "ratio",
-            "error", "error_of", "residual", "peak_mem_mb", "note"]
+            "error", "error_of", "residual", "peak_mem_mb", "cpu_s", "note"]
     t = df.assign(time_ms=df.time_s * 1e3, build_ms=df.build_s * 1e3, solver_ms=df.solver_time_s * 1e3)
     lines = [f"Machine: {machine}", ""] if machine else []
     lines += ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
@@ -1083,6 +1405,9 @@ SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "scaling": _scaling,
     "runs": _runs,
     "sweeps": _sweeps,
+    "sweep3000": _sweep3000,
+    "dask": _dask,
+    "scale": _scale,
     "reduction": _reduction,
     "plotting": _plotting,
 }

@@ -28,11 +28,12 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from functools import cache
+from functools import cache, partial
 
 import numpy as np
 import pandas as pd
 
+from ..analysis.nonassoc import nonassociative_limit
 from ..analysis.thickness import arch_minimum_thickness, minimum_thickness
 from ..core.analysis import Analysis
 from ..core.material import Material
@@ -50,6 +51,7 @@ __all__ = [
     "dome_min_ratio",
     "format_validation",
     "friction_bound",
+    "nonassoc_min_ratio",
     "run_validation",
     "stress_block_column",
 ]
@@ -330,6 +332,66 @@ CASES: tuple[ValidationCase, ...] = (
         "exact when the compressed zone W/(fc D) is a whole number of strips (here 0.2 m = 20 strips)",
     ),
 )
+
+# ------------------------------------------------------- non-associative friction (the 27-block arch)
+#: voussoirs of Gilbert, Casapulla & Ahmed's arch ("a semicircular arch composed of 27 blocks")
+GCA_VOUSSOIRS = 27
+
+
+def nonassoc_min_ratio(mu: float, n: int = GCA_VOUSSOIRS, check: float = 1e-3) -> float:
+    """Least ``t/R`` of the ``n``-voussoir arch (friction ``mu``) for joints that slide
+    without opening: the least thickness at which an admissible state exists (:func:`min_ratio`),
+    confirmed as the non-associative one when, at ``t/R (1 + check)``, the non-associative
+    scheme (:func:`tce.analysis.nonassoc.nonassociative_limit`, in-plane lateral pattern)
+    converges to ``lambda_nonassoc = lambda_assoc > 0``: a non-dilatant collapse state exists
+    at every load up to the associative one, so the arch stands there for either flow rule,
+    and below ``t/R`` nothing stands for either. NaN when the check fails."""
+    ratio = min_ratio(n, mu=mu, tol=1e-7)
+    t = ratio * (1.0 + check)
+    r = nonassociative_limit(Analysis(_arch(t, n), Material(friction=mu, flow="non-associative")), 0.0)
+    closed = r.status == "converged" and r.lambda_assoc > 0 and abs(r.lambda_nonassoc - r.lambda_assoc) <= 1e-6 * r.lambda_assoc
+    return ratio if closed else math.nan
+
+
+_GCA = "Gilbert, Casapulla & Ahmed 2006"
+_GCA_WHERE = "figure of t against mu (read off)"
+_GCA_ARCH = f"{GCA_VOUSSOIRS} radial voussoirs"
+_GCA_READ = ("tolerance: the reading; read off the figure (centreline radius 10 assumed: Heyman's mode I at 1.072 gives "
+             "t/R 0.1072) to +-1 px: +-0.0011 in t/R")
+
+NONASSOC_CASES: tuple[ValidationCase, ...] = (
+    *(
+        ValidationCase(
+            f"gca_eta_{key}", _GCA, _GCA_WHERE, f"least t/R, 27 blocks, mu {mu} ({mode}), non-associative", read,
+            partial(nonassoc_min_ratio, mu), f"{_GCA_ARCH}, mu = {mu}", 1.1e-3, f"{_GCA_READ}; tce {note}",
+        )
+        for key, mu, mode, read, note in (
+            ("mode1", 0.8, "mode I", 0.1072, "0.106721 (associative and non-associative alike: six hinges, nothing slides)"),
+            ("0375", 0.375, "mode II", 0.1265, "0.125966; the sliding joints of mode II are statically determinate, "
+             "so the bracket is closed and the non-associative least thickness is the associative one"),
+            ("035", 0.35, "mode II", 0.1517, "0.151185, bracket closed"),
+            ("0325", 0.325, "mode II", 0.1785, "0.178207, bracket closed"),
+            ("0311", 0.3109, "their least mu", 0.1954, "0.194868, bracket closed (mu of the leftmost point +-0.0007: "
+             "t/R moves by 0.0015 per 0.001 of mu there)"),
+        )
+    ),
+    ValidationCase(
+        "gca_mu_rm", _GCA, _GCA_WHERE, "friction below which sliding joins the hinges (mode I / II), 27 blocks",
+        0.3958, lambda: friction_bound(min_ratio(GCA_VOUSSOIRS) * (1 + 1e-5), n=GCA_VOUSSOIRS, lo=0.3, hi=0.5),
+        _GCA_ARCH, 1e-3,
+        "read off the vertical line between modes I and II (+-0.0007); tce 0.395275 at 27 voussoirs "
+        "(CR2020: 0.395832 with the weights on the centreline)",
+    ),
+    ValidationCase(
+        "gca_mu_ms", _GCA, _GCA_WHERE, "least friction with any equilibrium (mode II / III), 27 blocks", 0.3108,
+        lambda: friction_bound(0.25, n=GCA_VOUSSOIRS, lo=0.29, hi=0.33), f"{_GCA_ARCH}, t/R = 0.25", 2.5e-3,
+        "explained: the figure's vertical line stands at their leftmost computed point (0.3109, t/R "
+        "0.1954); the 27-voussoir arch still stands down to tce's 0.308988 (t/R 0.1973 there, "
+        "rising 1.5 per unit of mu), and the continuous ring to 0.309215 (CR2020)",
+    ),
+)
+
+CASES = CASES + NONASSOC_CASES
 
 COLUMNS = ["case", "source", "where", "quantity", "published", "tce", "difference", "tolerance", "ok",
            "discretisation", "time_s"]

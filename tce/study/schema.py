@@ -1150,7 +1150,7 @@ def _check_plots(study: Study) -> None:
 
 
 def _check_settlement_path(study: Study) -> None:
-    """``[settlement_path]`` follows planar assemblies of the rigid Heyman material, with
+    """``[settlement_path]`` follows assemblies of the rigid Heyman material; planar ones with
     in-plane motions and (with ``lambda = true``) an in-plane lateral direction."""
     section = study.spec.settlement_path
     if section is None:
@@ -1168,5 +1168,5 @@ def _check_settlement_path(study: Study) -> None:
         except ValueError as exc:
             raise StudyError(
                 f"{study.path}: settlement_path (scenario {sc.name!r}): {exc}; fix: remove [settlement_path] "
-                "or give a planar structure of a Heyman material (no [material] keys) with in-plane motions"
+                "or give a Heyman material (no [material] keys) and, for a planar structure, in-plane motions"
             ) from None

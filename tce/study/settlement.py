@@ -13,7 +13,6 @@ import xarray as xr
 
 from ..analysis.settlement_path import SettlementPathResult, settlement_path
 from ..core.material import Material
-from ..core.model import EZ
 from ..structures.assembly import Assembly
 from .schema import Scenario
 
@@ -21,22 +20,6 @@ __all__ = ["NO_MOTION", "settlement_vars"]
 
 #: outcome of a scenario that moves no support (nothing to follow)
 NO_MOTION = "no_motion"
-
-
-def _wrenches(r: SettlementPathResult) -> np.ndarray:
-    """Reactions ``(k, n_supports, 6)`` in the global frame from the path's in-plane ones."""
-    e, m = r.plane.e, r.plane.m
-    rx, rz, mo = r.reactions[..., 0], r.reactions[..., 1], r.reactions[..., 2]
-    force = rx[..., None] * e + rz[..., None] * EZ
-    return np.concatenate([force, -mo[..., None] * m], axis=-1)
-
-
-def _displacements(r: SettlementPathResult) -> np.ndarray:
-    """Block displacements ``(k, n_blocks, 6)``: ``(ux, uy, uz)`` of the centroid and the
-    rotation vector ``(rx, ry, rz)``, from the reference placement."""
-    e, m = r.plane.e, r.plane.m
-    p = r.placements
-    return np.concatenate([p[..., :1] * e + p[..., 1:2] * EZ, -p[..., 2:3] * m], axis=-1)
 
 
 def _sequence(r: SettlementPathResult, assembly: Assembly) -> str:
@@ -75,9 +58,9 @@ def settlement_vars(sc: Scenario, assembly: Assembly, material: Material) -> xr.
             rotating[i, h] = 1
         scalars = dict(capacity=r.capacity, upper=r.upper, n_solves=r.n_solves, outcome=r.status,
                        message=r.message, hinge_sequence=_sequence(r, assembly))
-        per_step = dict(magnitudes=r.magnitudes, reaction=_wrenches(r), lambda_max=r.lambda_max,
+        per_step = dict(magnitudes=r.magnitudes, reaction=r.wrenches(), lambda_max=r.lambda_max,
                         hinge=rotating, open=r.open_ends.sum(axis=2).astype(float),
-                        displacement=_displacements(r), hinge_point=r.hinge_points)
+                        displacement=r.displacements(), hinge_point=r.hinge_points)
     dims = ("scenario", "settlement_step")
     data = {
         f"settlement_{k}": (("scenario",), np.asarray([v], dtype=object if isinstance(v, str) else None))

@@ -62,20 +62,46 @@ def test_structure_spanning_y_reactions_name_the_supports():
     assert b.reactions["left"][1] > 0 and np.isclose(b.reactions["left"][0], 0.0, atol=1e-9 * a.weight)
 
 
-@pytest.mark.xfail(strict=True, reason="battery (rotation about z): the non-associative estimate depends on the "
-                   "orientation of the scene (open defect, tce.analysis.nonassoc)")
-def test_nonassociative_estimate_does_not_depend_on_orientation():
-    """Found by the rotation relation: the groin vault (mu = 0.5, non-associative) under a
-    live point load gives lambda_nonassoc = 2.307568 as built and 2.307659 turned by 90
-    degrees (both `converged`; the associative limits agree to 1e-15), and under the lateral
-    pattern `converged` (0.096616) as built but `not_converged` turned by 90 or 30 degrees.
-    The scheme's fixed point depends on which admissible state the solver returns (a
-    non-unique optimum), not only on the problem."""
+@pytest.mark.parametrize("angle", [30.0, 90.0])
+def test_nonassociative_estimate_does_not_depend_on_orientation(angle):
+    """Found by the rotation relation: the groin vault (mu = 0.5, non-associative) under the
+    lateral pattern was `converged` (0.096616) as built but `not_converged` turned by 90 or
+    30 degrees, and under a live point load gave 2.307568 as built and 2.307659 turned by 90
+    degrees: the scheme's fixed point depended on which optimal state of each sub-problem
+    Clarabel returned (the centre of a non-unique optimal face, reached to its tolerance along
+    a path that changes with the frame). Fixed in tce.analysis.nonassoc: every iterate is the
+    optimal state nearest to the normal forces in use with the least tangential forces, a
+    strictly convex choice that is the same in every frame (0.0966160 at 0, 30 and 90
+    degrees, within 1e-8)."""
+    sc = scene("groin_vault", "non_associative", "lateral", "none")
+    t = Similarity.rotation(angle)
+    a = answer(sc)
+    b = answer(sc.mapped(t), lam=a.lam, step=path_settings(a.lambda_direct), about=t.points(a.about))
+    assert a.nonassoc[0] == "converged"
+    same_answer(a, b, t)
+
+
+def test_nonassociative_point_load_same_status_when_turned():
+    """The groin vault under a live point load (the case above): the same status and estimate
+    turned by 90 degrees (both `not_converged` within the default 100 iterations: see the
+    next case)."""
     sc = scene("groin_vault", "non_associative", "point", "none")
     t = Similarity.rotation(90.0)
     a = answer(sc)
     b = answer(sc.mapped(t), lam=a.lam, step=path_settings(a.lambda_direct), about=t.points(a.about))
     same_answer(a, b, t)
+
+
+@pytest.mark.xfail(strict=True, reason="open: the groin vault's non-associative estimate under a live point load "
+                   "needs 130-180 iterations (tce.analysis.nonassoc)")
+def test_nonassociative_point_load_converges():
+    """The groin vault (mu = 0.5) under a live point load: with the nearest-state iterates the
+    scheme approaches its fixed point linearly with a ratio near 0.98 (law violation 2e-5 W
+    after 100 iterations, the default budget), and converges after 129 to 176 iterations at
+    2.312326 to 2.312367 as the scene is turned by 0, 30, 45, 90 and 170 degrees (1.7e-5
+    apart: where the polishing step catches the slow approach). Measured 2026-11-24."""
+    sc = scene("groin_vault", "non_associative", "point", "none")
+    assert answer(sc).nonassoc[0] == "converged"
 
 
 def test_load_path_near_the_limit_is_decided():

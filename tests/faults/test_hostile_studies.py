@@ -11,6 +11,9 @@ import json
 import math
 import os
 import re
+import resource
+import subprocess
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -198,16 +201,74 @@ HUGE = {
 }
 
 
-@pytest.mark.parametrize("kind", [t for t in STRUCTURE_TYPES if t != "file"])
-def test_every_generator_refuses_too_many_blocks(kind: str, tmp_path: Path, capsys) -> None:
-    doc = copy.deepcopy(VALID)
-    doc["structure"] = {"type": kind, **HUGE[kind]}
-    doc["scenarios"] = {"none": {}}
-    path = tmp_path / "study.toml"
-    path.write_text(toml(doc))
-    line = _refused(["run", str(path), "--out", str(tmp_path / "out")], capsys, "50000", "structure")
+#: the generators' refusals run in one child process whose address space is capped at this
+#: (bytes; RLIMIT_AS): refusing a study took a peak of 0.39 GB of address space (0.14 GB
+#: resident), a generator that builds its ten million blocks needed 21 GB
+REFUSAL_MEMORY = 2 << 30
+#: and within this time (s): refusing all of them took about 3 s (interpreter start included)
+REFUSAL_TIME = 120.0
+
+#: the child: ``tce run`` on each study (argv[1]: JSON {kind: [study, out]}), in one process;
+#: prints {kind: [exit code, stderr]} as JSON, with a MemoryError as its exit code
+_REFUSE = """
+import contextlib, io, json, sys
+from tce.cli import main
+out = {}
+for kind, (study, folder) in json.loads(sys.argv[1]).items():
+    err = io.StringIO()
+    try:
+        with contextlib.redirect_stderr(err):
+            code = main(["run", study, "--out", folder])
+    except MemoryError:
+        code = "MemoryError"
+    out[kind] = [code, err.getvalue()]
+print(json.dumps(out))
+"""
+
+
+def _cap_memory() -> None:
+    """``preexec_fn`` of the child: its address space capped at :data:`REFUSAL_MEMORY`."""
+    resource.setrlimit(resource.RLIMIT_AS, (REFUSAL_MEMORY, REFUSAL_MEMORY))
+
+
+GENERATORS = [t for t in STRUCTURE_TYPES if t != "file"]
+
+
+@pytest.fixture(scope="module")
+def refusals(tmp_path_factory) -> dict[str, tuple[Any, str, Path]]:
+    """Every generator at a size past MAX_BLOCKS, run by ``tce run`` in a child process under
+    a memory cap and a time limit (:data:`REFUSAL_MEMORY`, :data:`REFUSAL_TIME`), so that with
+    the block cap broken the tests fail on their own (a MemoryError or the time limit) instead
+    of taking the machine's memory (issue 25's mutation check: 21 GB when they ran before the
+    fast test of ``check_blocks``). Returns ``{kind: (exit code, stderr, out folder)}``."""
+    root = tmp_path_factory.mktemp("generators")
+    runs = {}
+    for kind in GENERATORS:
+        doc = copy.deepcopy(VALID)
+        doc["structure"] = {"type": kind, **HUGE[kind]}
+        doc["scenarios"] = {"none": {}}
+        (root / kind).mkdir()
+        (root / kind / "study.toml").write_text(toml(doc))
+        runs[kind] = [str(root / kind / "study.toml"), str(root / kind / "out")]
+    try:
+        child = subprocess.run([sys.executable, "-c", _REFUSE, json.dumps(runs)], capture_output=True, text=True,
+                               timeout=REFUSAL_TIME, preexec_fn=_cap_memory)
+    except subprocess.TimeoutExpired:
+        pytest.fail(f"the generators' refusals did not end within {REFUSAL_TIME:g} s (is the block cap checked?)")
+    assert child.returncode == 0, child.stderr[-2000:]
+    return {k: (code, err, root / k / "out") for k, (code, err) in json.loads(child.stdout).items()}
+
+
+@pytest.mark.parametrize("kind", GENERATORS)
+def test_every_generator_refuses_too_many_blocks(kind: str, refusals) -> None:
+    code, err, out = refusals[kind]
+    assert code == 2, err[-2000:]
+    clean(err)
+    (line,) = errors(err)
+    for word in ("50000", "structure"):
+        assert word in line, line
     assert any(k in line for k in HUGE[kind])  # the parameter that sets the count
-    assert not (tmp_path / "out").exists()
+    assert not out.exists()
 
 
 def _many(n: int, start: float = 0.0) -> list[float]:

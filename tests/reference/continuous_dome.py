@@ -26,7 +26,8 @@ intrados and extrados chords), with ``W`` and ``S`` its first and second moments
 ``int r^2 dA``: the section of a voussoir of a block model whose intrados and extrados are planar
 (every such voussoir over a sector of half-angle ``a`` is the meridian section stretched across the
 sector, ``{(x, y, z): (x / cos a, z) in Q, |y| <= x tan a}``, so its equations per radian are these
-whatever ``a``). All constraints are linear in ``(H, G)``; the smallest ``t`` for which they are feasible is
+whatever ``a``). With an oculus of half-angle ``theta_0`` the courses run from ``theta_0`` (a free edge) to the
+base and ``W``, ``S`` are integrated from there. All constraints are linear in ``(H, G)``; the smallest ``t`` for which they are feasible is
 found by bisection. A crown ring of zero radius carries nothing the hoop forces of the top
 course do not. Written from the statement of the problem (Heyman, *Equilibrium of Shell
 Structures*, 1977; *The Stone Skeleton*, 1995; the static theorem for axisymmetric domes),
@@ -55,12 +56,12 @@ def _facet_moments(ri: float, re: float, th: np.ndarray) -> tuple[np.ndarray, np
     return np.abs(m1), np.abs(m2)
 
 
-def _rows(t: float, m: int, shell: str = "sphere") -> tuple[np.ndarray, np.ndarray]:
+def _rows(t: float, m: int, shell: str = "sphere", oculus: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     ri, re = 1.0 - t / 2.0, 1.0 + t / 2.0
-    th = np.linspace(0.0, np.pi / 2, m + 1)
-    if shell == "sphere":  # the spherical shell itself
-        w = (re**3 - ri**3) / 3.0 * (1.0 - np.cos(th[1:]))
-        s = (re**4 - ri**4) / 4.0 * (th[1:] / 2.0 - np.sin(2.0 * th[1:]) / 4.0)
+    th = np.linspace(np.radians(oculus), np.pi / 2, m + 1)
+    if shell == "sphere":  # the spherical shell itself, from the oculus (or the crown) down
+        w = (re**3 - ri**3) / 3.0 * (np.cos(th[0]) - np.cos(th[1:]))
+        s = (re**4 - ri**4) / 4.0 * ((th[1:] - th[0]) / 2.0 - (np.sin(2.0 * th[1:]) - np.sin(2.0 * th[0])) / 4.0)
     elif shell == "facets":  # courses with straight intrados and extrados chords
         w1, s1 = _facet_moments(ri, re, th)
         w, s = np.cumsum(w1), np.cumsum(s1)
@@ -85,24 +86,25 @@ def _rows(t: float, m: int, shell: str = "sphere") -> tuple[np.ndarray, np.ndarr
 TOLERANCES = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
 
 
-def stands(t: float, m: int = 400, shell: str = "sphere") -> bool:
+def stands(t: float, m: int = 400, shell: str = "sphere", oculus: float = 0.0) -> bool:
     """Whether an admissible state exists at thickness ratio ``t = t/R`` with ``m`` courses
     (``shell``: ``"sphere"``, the spherical shell's courses, or ``"facets"``, courses with
-    straight intrados and extrados chords, as the voussoirs of a block model)."""
-    a, b = _rows(t, m, shell)
+    straight intrados and extrados chords, as the voussoirs of a block model; ``oculus``: the
+    half-angle of an open crown, degrees, its edge free)."""
+    a, b = _rows(t, m, shell, oculus)
     r = linprog(np.zeros(a.shape[1]), A_ub=a, b_ub=b,
                 bounds=[(0, None)] * m + [(None, None)] * m, method="highs", options=TOLERANCES)
     return r.status == 0
 
 
 def minimum_thickness(m: int = 400, lo: float = 0.005, hi: float = 0.3, tol: float = 1e-7,
-                      shell: str = "sphere") -> float | None:
+                      shell: str = "sphere", oculus: float = 0.0) -> float | None:
     """Smallest ``t/R`` of the hemisphere of ``m`` courses that stands (None if ``hi`` does not)."""
-    if not stands(hi, m, shell):
+    if not stands(hi, m, shell, oculus):
         return None
     while hi - lo > tol:
         mid = 0.5 * (lo + hi)
-        if stands(mid, m, shell):
+        if stands(mid, m, shell, oculus):
             hi = mid
         else:
             lo = mid

@@ -187,7 +187,9 @@ def test_two_blocks_side_by_side_bracket(mu: float) -> None:
     assert r.status == "converged"
     assert r.lambda_assoc == pytest.approx(top, rel=1e-8)
     lam = r.lambda_nonassoc
-    assert 0.5 < lam < top - 1e-3  # strictly inside: the bracket is real
+    # in the family, below the associative top (the bracket is real); the nearest-state
+    # iterates reach its lowest end, each block rocking alone (0.500001 at mu 0.6 and 0.8)
+    assert 0.5 - 1e-6 <= lam < top - 1e-3
     # the final state is a member of the family derived above
     model = an.model(r.model)
     w = assembly.weights[1]

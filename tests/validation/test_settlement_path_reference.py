@@ -99,3 +99,14 @@ def test_halving_the_increment_moves_the_capacity_less_than_1e_3():
     a = path(0.15, 36, 0.004)
     b = path(0.15, 36, 0.002)
     assert abs(a.capacity - b.capacity) < 1e-3
+
+
+def test_a_snap_is_followed_as_far_as_the_hinge_opened():
+    """t/R = 0.225 with 72 voussoirs snaps (its haunch hinge moves from 27.5 to 30 degrees)
+    by turning its blocks back by the opening of the hinge it closes; the fall is followed
+    to twice the widest opening whatever ``snap_limit`` says, so a small limit (0.05 rad,
+    below that opening) still reaches the reference's capacity, with the same snap."""
+    u_ref, _, snaps = rs.path_capacity(1.0, 0.225, 72)
+    r = settlement_path(arch(0.225, 72), SPREAD, increment=0.004, s_max=0.5, snap_limit=0.05)
+    assert r.status == "collapse" and len(r.snaps) == len(snaps) == 1
+    assert r.capacity <= u_ref + 1e-6 and u_ref <= r.upper + 1e-6

@@ -1,0 +1,62 @@
+"""``tce bench``'s whole-run arithmetic (issue 24) on made-up measurements: the CPU on the
+longest chain of processes of a run and the targets read from the ``sweeps`` rows. No
+timing is measured here (speed belongs to the bench)."""
+
+from __future__ import annotations
+
+import pandas as pd
+import pytest
+
+from tce.quality.bench import _row, critical_cpu, evaluate_targets
+
+FORKSERVER = "python -c from multiprocessing.forkserver import main; main(5, 6, ['tce.study.runner'])"
+
+
+def test_longest_chain_is_parent_fork_server_busiest_worker_and_the_rest():
+    got = {
+        "root": 100,
+        "procs": {
+            "100": [2.0, 1, "tce run"],
+            "101": [1.0, 100, FORKSERVER],
+            "102": [5.0, 101, FORKSERVER],  # workers: forked from the fork server (same command line)
+            "103": [7.0, 101, FORKSERVER],
+            "104": [0.5, 100, "chromium --headless"],
+        },
+    }
+    assert critical_cpu(got) == pytest.approx(2.0 + 1.0 + 7.0 + 0.5)
+
+
+def test_in_process_run_is_its_own_chain():
+    assert critical_cpu({"root": 7, "procs": {"7": [3.25, 1, "tce run"]}}) == 3.25
+
+
+def _sweep_rows(wall: dict[str, float], chain: dict[str, float]) -> list[dict]:
+    return [_row("sweeps", "sweep of 300 scenarios (arch, no figures)", k, time_s=wall[k], cpu_s=chain[k],
+                 solver_time_s=4.0, note=f"1x; CPU {9.0 if k == '--jobs 1' else 10.0:.2f} s, ...; load average 5.0 (4-6)")
+            for k in wall]
+
+
+def _targets(rows: list[dict]) -> dict[str, tuple[str, bool]]:
+    return {t: (m, ok) for t, m, ok in evaluate_targets(pd.DataFrame(rows))}
+
+
+def test_sweep_targets_by_wall_and_by_longest_chain():
+    rows = _sweep_rows({"--jobs 1": 10.0, "--jobs 2": 9.0, "default": 10.2}, {"--jobs 1": 9.0, "--jobs 2": 5.0, "default": 9.0})
+    t = _targets(rows)
+    case = "sweep of 300 scenarios (arch, no figures)"
+    assert t[f"{case}: --jobs 2 at least 1.6x faster than --jobs 1 (wall)"][1] is False  # 1.11x
+    chain = t[f"{case}: --jobs 2 at least 1.6x faster than --jobs 1 (CPU on the longest chain of processes)"]
+    assert chain == ("1.80x (9.0 / 5.0 CPU-s)", True)
+    assert t[f"{case}: the default no slower than --jobs 1 (wall)"][1] is True  # 1.02x, within 5 %
+    assert t[f"{case}: --jobs 1 at most 3x its own solving (CPU of the run / CPU of its load paths)"] == (
+        "2.2x (9.0 / 4.00 s)", True)
+
+
+def test_figure_target_is_the_cpu_ratio_to_the_no_plots_run():
+    rows = [_row("sweeps", "tce run fig9_outofplane", "--no-plots", time_s=3.0, cpu_s=2.0),
+            _row("sweeps", "tce run fig9_outofplane", "figures (--no-report)", time_s=4.0, cpu_s=3.2)]
+    (measured, ok), = _targets(rows).values()
+    assert measured.startswith("1.60x (3.20 / 2.00 CPU-s") and ok is False
+    rows[1]["cpu_s"] = 2.9
+    (measured, ok), = _targets(rows).values()
+    assert measured.startswith("1.45x") and ok is True
