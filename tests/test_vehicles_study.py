@@ -156,8 +156,8 @@ def test_notes_of_wheels_off_the_deck_are_shown(tmp_path, capsys) -> None:
         (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\n[scenarios.none]"), "loads.fill.unit_weight"),
         (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\nunit_weight = 18.0\nk0 = 1.0\n[scenarios.none]"),
          "loads.fill.k0"),
-        # passive restraint: the direct limit only (tce.core.fill), refused in study files
-        (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\nunit_weight = 18.0\nkp = 3.0\n[scenarios.none]"),
+        # passive coefficient: 0 (off) or >= 1 (tce.core.fill)
+        (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\nunit_weight = 18.0\nkp = 0.5\n[scenarios.none]"),
          "loads.fill.kp"),
     ],
 )

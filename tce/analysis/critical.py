@@ -238,7 +238,7 @@ class _Infeasible(Exception):
 
 def _refine(lam, values: dict[float, float], xtol: float) -> None:
     """Bounded Brent search between the neighbours of the best local minima of the values."""
-    from scipy.optimize import minimize_scalar  # on first use: 0.2-0.3 CPU-s to import, which every run paid
+    from scipy.optimize import minimize_scalar  # on first use: every run paid its import (issue 24)
 
     x = np.array(sorted(values))
     y = np.array([values[v] for v in x])

@@ -101,8 +101,8 @@ _FEAS = 1e-9  # relative tolerance of the equilibrium residual and of "velocity 
 
 
 def _linprog(*args, **kwargs):
-    """:func:`scipy.optimize.linprog`, imported on first use: scipy.optimize costs 0.2-0.3 CPU-s
-    to import, which every run paid before, with or without a settlement path."""
+    """:func:`scipy.optimize.linprog`, imported on first use: with scipy.sparse.linalg and joblib,
+    scipy.optimize cost every run 0.24 CPU-s to import (issue 24), with or without a settlement path."""
     from scipy.optimize import linprog
 
     return linprog(*args, **kwargs)

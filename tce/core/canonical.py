@@ -57,14 +57,20 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from .clarabel_solver import ClarabelSolver, SolverOptions
-from .problem import ConicProblem, Formulation, _cones
+from .problem import ConicProblem, Formulation, _cones, with_bounded_forces
 
-__all__ = ["FACE_SLACK", "FACE_SLACKS", "SAME_STATE", "Canonical", "CanonicalSolver", "canonical_b", "canonical_problem"]
+__all__ = ["FACE_SLACK", "FACE_SLACKS", "SAME_STATE", "Canonical", "CanonicalSolver", "canonical_b", "canonical_problem",
+           "RESTRAINT_WEIGHT", "restrained_canonical_problem"]
 
 #: slack of the energy bound of the optimal face, relative to the optimum
 FACE_SLACK = 1e-10
 #: the slacks tried in turn when the thinner face cannot be solved
 FACE_SLACKS = (FACE_SLACK, 1e-8)
+#: weight of the passive restraint's forces in the canonical selection (:func:`restrained_canonical_problem`).
+#: On the 6 m filled bridge under the LM1 tandem (studies/bridge_passive.toml, kp = 3, load path
+#: step 0.1) the summed restraint at lambda = 1.0 (below the 1.176 collapse without it) is 253 kN
+#: (its cap) with weight 0, 50 kN with 1e2 and 0.8 kN with 1e4; at the limit 253 kN with each.
+RESTRAINT_WEIGHT = 1e4
 #: two states differ when a force component differs by more than this, relative to W
 SAME_STATE = 1e-6
 
@@ -92,6 +98,31 @@ def canonical_problem(f: Formulation, b: NDArray[np.float64], q: NDArray[np.floa
     A = sp.vstack([f.A_eq, -M[:nz], sp.csr_matrix(q.reshape(1, -1)), -M[nz:]]).tocsc()
     cones = _cones(("zero", m + nz), ("nonneg", law.n_nonneg + 1), n_soc=law.n_soc)
     return ConicProblem("canonical", P, np.zeros(n), A, canonical_b(f, b, bound), cones)
+
+
+def restrained_canonical_problem(
+    f: Formulation, b: NDArray[np.float64], q: NDArray[np.float64], bound: float,
+    G: NDArray[np.float64], capacity: NDArray[np.float64],
+) -> ConicProblem:
+    """:func:`canonical_problem` with the bounded extra forces ``0 <= p <= capacity`` (kN) of
+    :func:`tce.core.problem.restrained_tce_problem` (the fill's passive restraint) in its
+    equilibrium rows. Unknowns ``(x, p / W)``.
+
+    ``p`` carries no TCE, but in the selection it carries the energy ``RESTRAINT_WEIGHT / 2
+    (p / W)^2`` (:data:`RESTRAINT_WEIGHT` times the most compliant contact component's, whose
+    normalised entry is 1): with none, the least-energy state leans on the free restraint to
+    unload the joints, and the fill pushes with its full passive capacity far below
+    collapse; with it, the restraint is mobilised only where the contacts cannot carry the
+    load without it (a rule of selection among equally admissible states, not a model of the
+    fill's stiffness). The objective stays strictly convex: the canonical state is unique."""
+    W = f.scaling.force
+    k = G.shape[1]
+    rows = f.law.M.shape[0] + 1
+    cols = sp.vstack([sp.csr_matrix(G * (W / f.row_div)[:, None]), sp.csr_matrix((rows, k))])
+    out = with_bounded_forces(canonical_problem(f, b, q, bound), cols, np.asarray(capacity, dtype=float) / W)
+    n = out.P.shape[0] - k
+    P = sp.block_diag([out.P[:n, :n], sp.identity(k) * RESTRAINT_WEIGHT], format="csc")
+    return ConicProblem(out.name, P, out.q, out.A, out.b, out.cones)
 
 
 @dataclass(frozen=True)

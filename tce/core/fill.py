@@ -43,7 +43,7 @@ fixed loads (part of ``b_fixed``), and it adds no strength of its own.
   ring (as the at-rest pressure does), ``0 <= p <= (kp - k0) |n_h| / n_z * W`` (the pressure
   between at rest and passive over the piece's vertical projection; ``W`` its column's
   weight as above, ``n_h`` the horizontal part of the outward normal), an unknown of the
-  direct limit analysis (:mod:`tce.core.passive`). Dually, a mechanism pays ``p_max`` times
+  direct limit analysis and of every TCE force state (:mod:`tce.core.passive`). Dually, a mechanism pays ``p_max`` times
   the velocity with which the piece moves into the fill, and nothing where it moves away: the
   fill resists, never drives. This is how mechanism programs for arch bridges model the
   backfill's restraint, "specified separately" from the live load's spread and independent
@@ -53,9 +53,10 @@ fixed loads (part of ``b_fixed``), and it adds no strength of its own.
   Report 124, 1987; M. Gilbert, *RING 1.5 Theory and Modelling Guide*, University of
   Sheffield, 2005, "Modelling backfill"), here with the full passive pressure and no wall friction;
   a partly mobilised pressure is a smaller ``kp`` (e.g. ``k0 + m (Kp - k0)``, ``m`` the
-  mobilisation). Only the direct limit (and what uses it: the critical position, the adequacy
-  factor) carries it: TCE solves, load paths and the non-associative estimate refuse a
-  pattern with ``kp`` > 0 (:func:`tce.core.passive.refuse_passive`) rather than leave it out.
+  mobilisation). The direct limit (and what uses it: the critical position, the adequacy
+  factor) and the Clarabel TCE solves (hence load paths and study files) carry it; the cvxpy
+  backend and the non-associative estimate refuse a pattern with ``kp`` > 0
+  (:func:`tce.core.passive.refuse_passive`) rather than leave it out.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Passive restraint of the fill as bounded unknowns of the direct limit analysis.
+"""Passive restraint of the fill as bounded unknowns of the direct limit analysis and of the TCE.
 
 The model (:mod:`tce.core.fill`, ``kp``): on each exposed top-surface piece ``k`` of a free
 block, a horizontal force ``p_k`` from the fill into the ring, ``0 <= p_k <= P_k`` (kN), at
@@ -11,6 +11,12 @@ with ``G`` ``(m_eq, k)`` the unit forces' wrenches in ``A_eq``'s row layout (the
 :class:`Restraint`). By LP duality a mechanism of velocities ``v`` pays
 ``sum_k P_k max(0, -v . G_k)``: each piece resists with its full capacity when it moves into
 the fill (against ``G_k``'s force) and does nothing when it moves away.
+
+The TCE force states (:class:`tce.core.solve.TCESolver`, hence load paths and studies) take the
+same unknowns with the same bounds and no complementary energy
+(:func:`tce.core.problem.restrained_tce_problem`), so a load path's last admissible multiplier
+brackets the direct limit with the restraint. The cvxpy backend and the non-associative
+estimate refuse a pattern with ``kp`` > 0 (:func:`refuse_passive`).
 """
 
 from __future__ import annotations
@@ -80,9 +86,10 @@ def passive_restraint(model: Model, fill: Fill | None) -> Restraint | None:
 
 def refuse_passive(pattern: LoadPattern, what: str) -> None:
     """Raise :class:`tce.core.surface.LoadError` (key ``fill.kp``) when ``pattern`` has a
-    passive restraint: only the direct limit carries it, and ``what`` (a force state, a load
-    path, an estimate) would leave it out silently."""
+    passive restraint that ``what`` (the cvxpy TCE solve, the non-associative estimate) would
+    leave out silently; the direct limit and the Clarabel TCE solves (hence load paths and
+    studies) carry it."""
     if pattern.fill is not None and pattern.fill.kp != 0.0:
         raise LoadError("fill.kp", f"{pattern.fill.kp:g} in {what}",
-                        "only the direct limit (Analysis.limit, critical_position, adequacy_factor) carries the passive "
-                        "restraint; give kp = 0 for force states and load paths")
+                        "the passive restraint is carried by the direct limit and the Clarabel TCE solver "
+                        "(Analysis.solve, load paths, studies); give kp = 0 here")

@@ -73,8 +73,11 @@ __all__ = [
     "phase1_problem",
     "recession_problem",
     "restrained_limit_problem",
+    "restrained_phase1_problem",
+    "restrained_tce_problem",
     "tce_b",
     "tce_problem",
+    "with_bounded_forces",
 ]
 
 Cone = tuple[str, int]
@@ -185,7 +188,7 @@ class Formulation:
             self.law_check = partial(law_violation, rows)
         self.kkt = kkt_method(model)
         # F -> diag(1 / row_div) A_eq F, as the scaled operator times F / W: one copy of the
-        # model's largest operator fewer (0.34 GB on a 100,000-block dome, docs/scaling.md)
+        # model's largest operator fewer (0.33 GB on a 100,000-block dome, docs/scaling.md)
         scaled_times = matvec(self.A_eq)
         self._eq_rel_times: Callable[[NDArray[np.float64]], NDArray[np.float64]] = lambda F: scaled_times(F / W)
         self.B_sup_times = matvec(model.B_sup)
@@ -603,3 +606,56 @@ def lateral_ray_problem(f: Formulation, b_live: NDArray[np.float64], allowed: ND
     q = np.concatenate([np.zeros(n), np.ones(nc)])
     cones = _cones(("zero", m + len(off) + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
     return ConicProblem("lateral-ray", sp.csc_matrix((n + nc, n + nc)), q, A, b, cones + (("soc", dim + 1),) * nc)
+
+
+def with_bounded_forces(problem: ConicProblem, columns: sp.spmatrix, upper: NDArray[np.float64]) -> ConicProblem:
+    """``problem`` with ``k`` extra unknowns ``0 <= y <= upper`` appended after its own.
+
+    ``columns`` ``(m, k)`` are the new unknowns' entries in ``problem``'s rows (zero outside
+    the equilibrium rows); they carry no objective (zero ``P`` and ``q`` entries). Rows:
+    ``problem``'s, then ``-y + s = 0`` and ``y + s = upper`` as one nonnegative block of
+    ``2 k`` rows after its cones (Clarabel takes the cones in any order).
+    """
+    m, n = problem.A.shape
+    k = columns.shape[1]
+    eye = sp.identity(k, format="csr")
+    A = sp.bmat([[problem.A, columns], [None, -eye], [None, eye]], format="csc", dtype=float)
+    P = sp.block_diag([problem.P, sp.csc_matrix((k, k))], format="csc")
+    return ConicProblem(problem.name, P, np.concatenate([problem.q, np.zeros(k)]), A,
+                        np.concatenate([problem.b, np.zeros(k), np.asarray(upper, dtype=float)]),
+                        problem.cones + (("nonneg", 2 * k),))
+
+
+def restrained_tce_problem(
+    f: Formulation, b: NDArray[np.float64], U: NDArray[np.float64], G: NDArray[np.float64], capacity: NDArray[np.float64],
+) -> ConicProblem:
+    """:func:`tce_problem` with ``k`` bounded extra forces ``0 <= p <= capacity`` (kN) whose unit
+    wrenches are the columns of ``G`` (``(m_eq, k)``, ``A_eq``'s row layout)::
+
+        min  1/2 F' D F - U' B_sup F   s.t.  A_eq F + G p + rhs = 0,  F admissible,  0 <= p <= capacity
+
+    (the passive restraint of a fill, :mod:`tce.core.passive`). The forces ``p`` carry no
+    complementary energy: they are reactions of a rigid-plastic fill, which stores none and
+    whose points of contact do not move with the supports (``U``), so they enter the energy
+    neither through a compliance nor through a prescribed motion; they only widen the set of
+    admissible states, as in the limit problem (:func:`restrained_limit_problem`), so the load
+    path's last admissible multiplier and the direct limit describe one problem. Unknowns
+    ``(x, p / W)`` (n + k); rows as :func:`tce_problem`, then :func:`with_bounded_forces`'.
+    """
+    W = f.scaling.force
+    Gs = sp.vstack([sp.csr_matrix(G * (W / f.row_div)[:, None]), sp.csr_matrix((f.law.M.shape[0], G.shape[1]))])
+    return with_bounded_forces(tce_problem(f, b, U), Gs, np.asarray(capacity, dtype=float) / W)
+
+
+def restrained_phase1_problem(
+    f: Formulation, rhs: NDArray[np.float64], G: NDArray[np.float64], capacity: NDArray[np.float64],
+) -> ConicProblem:
+    """:func:`phase1_problem` with the bounded extra forces of :func:`restrained_tce_problem`:
+    the smallest per-block-relative residual of ``A_eq F + G p + rhs``. Unknowns ``(x, r,
+    p / W)`` (n + 1 + k): ``r`` stays at index ``n``."""
+    law, W = f.law, f.scaling.force
+    Gh = sp.csr_matrix(G * (W / f.phase1_div)[:, None])
+    k = G.shape[1]
+    cols = sp.vstack([sp.csr_matrix((law.n_zero, k)), Gh, -Gh,
+                      sp.csr_matrix((law.n_nonneg + 3 * law.n_soc, k))])
+    return with_bounded_forces(phase1_problem(f, rhs), cols, np.asarray(capacity, dtype=float) / W)

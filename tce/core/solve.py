@@ -57,11 +57,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from .clarabel_solver import SOLVER_NAME, ClarabelSolver, Solution, SolverOptions, solve_once
 from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
-from .passive import refuse_passive
+from .passive import Restraint, passive_restraint
 from .material import Material
 from .model import InterfaceMap, Model
-from .canonical import CanonicalSolver
-from .problem import Formulation, phase1_b, phase1_problem, q_scale, recession_problem, tce_b, tce_problem
+from .canonical import FACE_SLACKS, SAME_STATE, CanonicalSolver, restrained_canonical_problem
+from .problem import (Formulation, phase1_b, phase1_problem, q_scale, recession_problem, restrained_phase1_problem,
+                      restrained_tce_problem, tce_b, tce_problem)
 from .result import STATUSES, WRENCH_COMPONENTS, XYZ, Result
 
 if TYPE_CHECKING:
@@ -155,6 +156,10 @@ class TCEResult(Result):
         What decided the status when Clarabel's first answer was not clean ("" if nothing).
     interface_map : InterfaceMap
         The model's arrays that turn ``forces`` into vertex forces and resultants.
+    restraint_forces : (k,) ndarray or None
+        The fill's passive restraint forces ``0 <= p <= capacity`` of the state (kN, along
+        :class:`tce.core.passive.Restraint`'s directions, into the ring); None without a
+        restraint, NaN unless optimal.
     """
 
     HEADLINE = ("lam", "alpha", "model", "tce", "eq_residual", "cone_residual", "unique")
@@ -174,6 +179,7 @@ class TCEResult(Result):
     setup_time: float = 0.0
     retry: str = ""
     interface_map: InterfaceMap = field(repr=False)
+    restraint_forces: NDArray[np.float64] | None = field(default=None, repr=False)
 
     @property
     def interfaces(self) -> tuple[int, ...]:
@@ -273,6 +279,7 @@ class TCESolver:
         self._feas: ClarabelSolver | None = None
         self._recession_cache: dict[bytes, tuple[float, float, NDArray[np.float64]]] = {}
         self._vectors_last: tuple[LoadPattern, tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None
+        self._restraint_last: tuple[LoadPattern, Restraint | None] = (None, None)
         self._canonical: CanonicalSolver | None = None
 
     # ------------------------------------------------------------ problem vectors
@@ -282,10 +289,16 @@ class TCESolver:
         last = self._vectors_last
         if last is not None and (last[0] is loads or last[0] == loads):
             return last[1]
-        refuse_passive(loads, "a TCE solve")
         v = load_vectors(self.model, loads)
         self._vectors_last = (loads, v)
+        self._restraint_last = (loads, passive_restraint(self.model, loads.fill))
         return v
+
+    def restraint(self, loads: LoadPattern) -> Restraint | None:
+        """The passive restraint of the pattern's fill (:func:`tce.core.passive.passive_restraint`),
+        None without one; kept with :meth:`vectors`' last pattern."""
+        self.vectors(loads)
+        return self._restraint_last[1]
 
     def rhs(self, lam: float, alpha: float | None = None, loads: LoadPattern | None = None) -> NDArray[np.float64]:
         """Physical right-hand side ``b_fixed + lam * b_live`` (kN, kN m) of the pattern
@@ -421,6 +434,9 @@ class TCESolver:
         pattern = loads if isinstance(loads, LoadPattern) else as_pattern(loads)
         b_fixed, b_live = self.vectors(pattern)
         rhs = b_fixed + lam * b_live
+        restraint = self.restraint(pattern)
+        if restraint is not None:
+            return self._solve_restrained(lam, pattern, U, rhs, restraint, t0)
         b = tce_b(self.formulation, rhs)
         b_eq = b[: self.formulation.A_eq.shape[0]]
         sol = self._main(U, b)
@@ -485,6 +501,78 @@ class TCESolver:
         return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,
                             sol.iterations, retry, "; ".join(notes), unique)
 
+    def _solve_restrained(
+        self, lam: float, pattern: LoadPattern, U: NDArray[np.float64], rhs: NDArray[np.float64], restraint: Restraint,
+        t0: float,
+    ) -> TCEResult:
+        """:meth:`solve_scene` with the fill's passive restraint: the forces ``0 <= p <= capacity``
+        are unknowns of the TCE problem (:func:`tce.core.problem.restrained_tce_problem`), so
+        the states and the load path see the same admissible set as the direct limit.
+
+        One cold solve; an unclear answer is decided by the restrained phase-1 problem
+        (:func:`tce.core.problem.restrained_phase1_problem`) and retried with robust settings.
+        A rigid optimum is replaced by its canonical state
+        (:func:`tce.core.canonical.restrained_canonical_problem`), which decides ``unique``. An
+        unbounded rigid TCE under support motions is reported ``numerical``, not proven.
+        """
+        f, W, k = self.formulation, self.scaling.force, restraint.size
+        b = tce_b(f, rhs)
+        n_eq = f.A_eq.shape[0]
+        problem = restrained_tce_problem(f, b, U, restraint.G, restraint.capacity)
+        status, retry, F, p, res = "numerical", "", None, None, None
+        notes, stime, setup, iterations = [], 0.0, 0.0, 0
+
+        def check(x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], tuple[float, float]]:
+            Fx, px = f.forces(x), x[f.n : f.n + k] * W
+            eq, law = f.residuals_scaled(Fx, b[:n_eq] - (restraint.G @ px) / f.row_div)
+            bound = float(np.maximum(-px, px - restraint.capacity).max(initial=0.0)) / W
+            return Fx, px, (eq, max(law, bound))
+
+        for name, robust in (("", False), ("robust settings", True)):
+            sol = solve_once(problem, self.options.settings(robust=robust, kkt=f.kkt, b_norm=_b_norm(b)))
+            stime, setup = stime + sol.solve_time, setup + sol.setup_time
+            iterations = iterations or sol.iterations
+            notes.append(f"{name + ' retry: ' if name else ''}clarabel: {sol.status}")
+            if sol.solved:
+                F2, p2, res2 = check(sol.x)
+                if self._passes(res2):
+                    status, retry, F, p, res = "optimal", name, F2, p2, res2
+                    break
+                notes.append("residual check failed")
+            elif sol.status == "PrimalInfeasible":
+                status = "infeasible"
+                break
+            if not name:
+                psol = solve_once(restrained_phase1_problem(f, rhs, restraint.G, restraint.capacity),
+                                  self.options.settings(tight=True, kkt=f.kkt))
+                stime += psol.solve_time
+                r = float(psol.x[f.n]) if psol.solved else float("nan")
+                notes.append(f"phase-1 residual {r:.3g} ({psol.status})")
+                if r > self.options.feas_tol:
+                    status, retry = "infeasible", "phase-1 (tight)"
+                    break
+        unique = None
+        if status == "optimal" and f.D is None and self.options.canonical:
+            x = np.concatenate([F, p]) / W
+            q = self._q(U)
+            value = float(q[: f.n] @ x[: f.n])
+            for slack in FACE_SLACKS:  # as tce.core.canonical.CanonicalSolver.state, one cold solve per slack
+                bound = value + slack * abs(value) + 1e-15 * float(np.abs(q) @ np.abs(x[: f.n]))
+                csol = solve_once(restrained_canonical_problem(f, b, q, bound, restraint.G, restraint.capacity),
+                                  self.options.settings(kkt=f.kkt))
+                stime, setup = stime + csol.solve_time, setup + csol.setup_time
+                if csol.solved:
+                    Fc, pc, resc = check(csol.x)
+                    if self._passes(resc):
+                        unique = float(np.abs(csol.x - x).max(initial=0.0)) <= SAME_STATE
+                        F, p, res = Fc, pc, resc
+                        break
+            else:
+                notes.append("canonical state not found: the solver's state kept")
+        notes.append(f"passive restraint: {k} bounded forces")
+        return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,
+                            iterations, retry, "; ".join(notes), unique, restraint_forces=p if p is not None else np.full(k, np.nan))
+
     def _canonical_solver(self) -> CanonicalSolver:
         """The warm solver of canonical states (built on first use)."""
         if self._canonical is None:
@@ -511,6 +599,7 @@ class TCESolver:
         retry: str,
         message: str,
         unique: bool | None = None,
+        restraint_forces: NDArray[np.float64] | None = None,
     ) -> TCEResult:
         model = self.model
         if F is None or res is None:
@@ -551,4 +640,5 @@ class TCESolver:
             setup_time=setup_time,
             retry=retry,
             interface_map=model.interface_map,
+            restraint_forces=restraint_forces,
         ))

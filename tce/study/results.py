@@ -108,6 +108,8 @@ META: dict[str, tuple[str, str]] = {
     "unique": ("1", "1 if the step's force state is the unique minimiser, 0 if not (then the state stored is the "
                "canonical one: least unit-stiffness energy among the minimisers, tce.core.canonical), NaN if undecided"),
     "vertex_force": ("kN", "force at each interface vertex on block B, global frame"),
+    "passive_force": ("kN", "sum of the fill's passive restraint forces on the ring (horizontal, into the ring; "
+                      "tce.core.passive), NaN without a restraint (kp = 0) or unless optimal"),
     "vertex_point": ("m", "interface vertex position (in the scenario's own structure)"),
     "geometry": ("-", "index k of the scenario's structure: its blocks are the attr 'assembly' (k = 0) or 'assembly_<k>'"),
     "vertex_interface": ("-", "interface of the vertex, as 'A|B' block names"),
@@ -220,6 +222,13 @@ def _step_fields(step: TCEResult, slots: np.ndarray, n_itf: int) -> dict[str, np
     return out
 
 
+def _passive_force(step: TCEResult) -> float:
+    """Sum of the fill's passive restraint forces of a state (kN; NaN without a restraint or
+    unless optimal): :attr:`tce.core.solve.TCEResult.restraint_forces`."""
+    p = step.restraint_forces
+    return float(p.sum()) if p is not None and step.ok else float("nan")
+
+
 def _path_vars(path: Sequence[TCEResult], slots: np.ndarray, n_itf: int) -> dict[str, tuple]:
     """Load-path variables ``(scenario, step, ...)`` of one scenario."""
     per_step = [_step_fields(s, slots, n_itf) for s in path]
@@ -234,6 +243,7 @@ def _path_vars(path: Sequence[TCEResult], slots: np.ndarray, n_itf: int) -> dict
     out: dict[str, tuple] = {k: (dims, np.asarray([v], dtype=float)) for k, v in scalar.items()}
     out["status"] = (dims, _text([[s.status for s in path]]))
     out["unique"] = (dims, np.asarray([[np.nan if s.unique is None else float(s.unique) for s in path]]))
+    out["passive_force"] = (dims, np.asarray([[_passive_force(s) for s in path]], dtype=float))
     out["vertex_force"] = (dims + ("vertex", "xyz"), stack["vertex_force"])
     out["reaction"] = (dims + ("support", "component"), stack["reaction"])
     out["resultant"] = (dims + ("interface", "xyz"), stack["resultant"])

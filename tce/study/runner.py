@@ -368,7 +368,7 @@ def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: 
 @contextlib.contextmanager
 def _dask(scheduler: str | None, jobs: int) -> Iterator[None]:
     """joblib's ``dask`` backend on the cluster at ``scheduler`` (or a local one of ``jobs`` workers)."""
-    import joblib  # here: 0.1-0.2 CPU-s to import, which only the Dask backend needs
+    import joblib  # here: only the Dask backend needs it (every run paid its import: issue 24)
 
     try:
         from distributed import Client, LocalCluster

@@ -384,7 +384,8 @@ class VehicleSection(_Strict):
 class FillSection(_Strict):
     """``[loads.fill]``: fill over the top surface (depth over the crown in m, unit weight in
     kN/m^3, its weight on or off, the wheel loads' spread angle in degrees from the vertical,
-    the coefficient at rest ``k0``); :class:`tce.core.fill.Fill`."""
+    the coefficient at rest ``k0``, the passive coefficient ``kp``: 0, the default, switches
+    the passive restraint off); :class:`tce.core.fill.Fill`."""
 
     depth: NonNegative
     unit_weight: Positive
@@ -395,14 +396,11 @@ class FillSection(_Strict):
 
     @field_validator("kp")
     @classmethod
-    def _passive_not_in_load_paths(cls, v: float) -> float:
-        # tce.core.fill: only the direct limit carries the passive restraint
-        if v != 0.0:
-            raise ValueError(
-                "passive restraint is carried by the direct limit analysis only (Analysis.limit, "
-                "critical_position, adequacy_factor in Python); a study's load path does not carry it and would "
-                "report a second, lower collapse load; fix: remove kp here and use the Python API (docs/studies.md, Fill)"
-            )
+    def _passive_coefficient(cls, v: float) -> float:
+        # tce.core.fill: 0 switches the passive restraint off; k0 < 1 <= kp keeps kp above k0
+        if v != 0.0 and v < 1.0:
+            raise ValueError("give 0 (no passive restraint) or a passive coefficient >= 1 (Rankine: "
+                             "(1 + sin phi) / (1 - sin phi)); fix: e.g. kp = 3.0 for phi = 30 degrees")
         return v
 
 
@@ -999,7 +997,21 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
     guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])))
     _check_plots(study)
     _check_settlement_path(study)
+    _check_passive(study)
     return study
+
+
+def _check_passive(study: Study) -> None:
+    """The fill's passive restraint (``[loads.fill] kp`` > 0) with a non-associative material:
+    the non-associative estimate does not carry it (:func:`tce.core.passive.refuse_passive`)."""
+    fill = study.spec.loads.fill
+    if fill is None or fill.kp == 0.0:
+        return
+    if any(build_material(sc.material).flow == "non-associative" for sc in study.scenarios()):
+        raise StudyError(
+            f"{study.path}: loads.fill.kp: {fill.kp:g} with a non-associative material: the non-associative "
+            "estimate does not carry the passive restraint; fix: kp = 0, or flow = \"associative\""
+        )
 
 
 def load_study(path: Path | str) -> Study:

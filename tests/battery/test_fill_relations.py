@@ -52,3 +52,16 @@ def test_split_live_load_gives_the_same_limit():
 def test_passive_restraint_matters_here():
     # the relation is not empty: without kp the limit is lower
     assert lam(RING, replace(PATTERN, fill=replace(FILL, kp=0.0))) < 0.9 * BASE
+
+
+@pytest.mark.parametrize("t", [Similarity.translation([0.0, 0.0, 0.0]), Similarity.rotation(30.0), Similarity.mirror(0.0),
+                               Similarity.units(1000.0, 1000.0)], ids=["none", "rot30", "mirror", "mm_N"])
+def test_load_path_with_passive_restraint_brackets_the_same_limit(t):
+    # the TCE force states carry the restraint (tce.core.problem.restrained_tce_problem): the
+    # load path's bracket holds the untransformed direct limit, in any frame and units
+    from tce.analysis.loadpath import load_path
+
+    pattern = replace(t.pattern(PATTERN), fill=mapped_fill(t))
+    path = load_path(Analysis(t.assembly(RING)), loads=pattern, atol=0.0, rtol=1e-6)
+    assert path.status == "limit"
+    assert path.lambda_max <= BASE * (1 + 1e-7) and BASE <= path.lambda_upper * (1 + 1e-7)

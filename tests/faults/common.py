@@ -74,10 +74,10 @@ def tce_run(study: Path, out: Path, *args: str, fault: str | None = None, timeou
         env["PYTHONPATH"] = os.pathsep.join([str(HOOK), *filter(None, [env.get("PYTHONPATH")])])
     cmd = [sys.executable, "-m", "tce.cli", "run", str(study), "--out", str(out), "--no-plots", *args]
     return subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=timeout, start_new_session=True,
-                          preexec_fn=_as_from_a_shell)
+                          preexec_fn=as_from_a_shell)
 
 
-def _as_from_a_shell() -> None:
+def as_from_a_shell() -> None:
     """In the child before it runs tce: Ctrl-C, SIGTERM and SIGHUP at their defaults and not
     blocked, as a shell starts a program (an ignored or blocked signal would be inherited from
     whatever the test process did before, and the Ctrl-C fault would never reach tce)."""

@@ -23,7 +23,7 @@ from tce.study import results, runner
 from tce.cli import main
 from tce.study.schema import parse_study
 
-from .common import NAMES, TINY, answer, clean, errors, leftovers, tce_run, write
+from .common import NAMES, TINY, as_from_a_shell, answer, clean, errors, leftovers, tce_run, write
 from .test_run_faults import files, resume_equals, tmpfs  # noqa: F401  (tmpfs: a fixture)
 
 
@@ -55,7 +55,8 @@ def _started(study: Path, out: Path, *args: str, fault: str) -> subprocess.Popen
     env = dict(os.environ, MPLBACKEND="Agg", TCE_FAULT=fault)
     env["PYTHONPATH"] = os.pathsep.join([str(Path(__file__).parent / "hook"), *filter(None, [env.get("PYTHONPATH")])])
     cmd = [sys.executable, "-m", "tce.cli", "run", str(study), "--out", str(out), "--no-plots", *args]
-    return subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    return subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=as_from_a_shell)
 
 
 @pytest.mark.parametrize("jobs", ["1", "2"])
@@ -100,7 +101,8 @@ def test_ctrl_c_while_tce_imports_its_modules(tmp_path: Path) -> None:
         "import xarray\n"
         "time.sleep(30)\n"
     )
-    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
+                         preexec_fn=as_from_a_shell)
     assert run.returncode == 130
     assert run.stderr == "tce: interrupted (SIGINT)\n"
 

@@ -75,12 +75,50 @@ def test_bad_passive_coefficient_names_the_key(kp):
         Fill(depth=0.3, unit_weight=18.0, k0=0.5, kp=kp)
 
 
-def test_force_states_and_load_paths_refuse_the_passive_restraint():
-    # only the direct limit carries it: a TCE solve or a load path would leave it out silently
+@pytest.mark.parametrize("kp", [2.0, 4.0])
+def test_load_path_with_the_restraint_brackets_the_direct_limit(kp):
+    # the load path's force states carry the restraint: its bracket holds the direct limit
+    # (which the independent LP checks above), as without the restraint
     from tce.analysis.loadpath import load_path
 
+    pat = pattern(kp).moved(-1.8)
+    direct = AN.limit(loads=pat, mechanism=False).lambda_max
+    path = load_path(AN, loads=pat)
+    assert path.status == "limit"
+    assert path.lambda_max <= direct + 1e-9 <= path.lambda_upper + 2e-9
+    assert path.lambda_max == pytest.approx(direct, rel=2e-4)
+    # the refusal of kp is lifted: with kp = 0 the path stops far lower
+    assert load_path(AN, loads=pattern(0.0).moved(-1.8)).lambda_max < 0.9 * direct
+
+
+def test_force_state_keeps_the_restraint_within_its_bounds_and_in_equilibrium():
+    pat = pattern(2.0).moved(-1.8)
+    lam = 0.95 * AN.limit(loads=pat, mechanism=False).lambda_max
+    r = AN.solve(lam, loads=pat)
+    assert r.status == "optimal"
+    cap = np.array([b[3] for b in passive_bounds(RING, pat.fill)])
+    p = r.restraint_forces
+    assert p.shape == cap.shape and np.all(p >= -1e-7) and np.all(p <= cap + 1e-7)
+    assert p.max() > 1e-3  # the state leans on the fill: without it lam is not carried
+    # equilibrium of every free block with the restraint forces, checked on the model's operators
+    kind = AN.model_kind(loads=pat)
+    model, solver = AN.model(kind), AN.solver(kind)
+    b_fixed, b_live = solver.vectors(pat)
+    G = solver.restraint(pat).G
+    eq = model.A_eq @ r.forces.ravel() + G @ p + b_fixed + lam * b_live
+    assert np.abs(eq).max() <= 1e-6 * np.abs(b_fixed).max()
+    assert r.unique is False and "canonical state not found" not in r.message
+    # the canonical state leans on the fill only where the joints need it: below the
+    # collapse load without restraint, next to nothing (tce.core.canonical.RESTRAINT_WEIGHT)
+    low = 0.5 * AN.limit(loads=pattern(0.0).moved(-1.8), mechanism=False).lambda_max
+    assert AN.solve(low, loads=pat).restraint_forces.sum() <= 1e-2 * cap.sum()
+    assert AN.solve(lam, loads=pattern(0.0).moved(-1.8)).status == "infeasible"
+    assert AN.solve(lam, loads=pattern(0.0).moved(-1.8)).restraint_forces is None
+
+
+def test_cvxpy_and_the_non_associative_estimate_refuse_the_passive_restraint():
+    # these do not carry it: they refuse rather than leave it out silently
+    from tce.core.cvx import CvxTCE
+
     with pytest.raises(LoadError, match="fill.kp"):
-        AN.solve(0.5, loads=pattern(2.0).moved(-1.8))
-    with pytest.raises(LoadError, match="fill.kp"):
-        load_path(AN, loads=pattern(2.0).moved(-1.8))
-    assert AN.solve(0.5, loads=pattern(0.0).moved(-1.8)).status == "optimal"
+        CvxTCE(AN.model(AN.model_kind(loads=pattern(2.0))), AN.material).solve(0.5, loads=pattern(2.0).moved(-1.8))
