@@ -330,7 +330,7 @@ class LimitSolver:
                                message=f"clarabel: {sol.status}{retried}; {proof}", wall_time=time.perf_counter() - t0,
                                restraint_forces=no_restraint, **common)
         if checked is None:
-            eq = f.residuals_scaled(f.forces(sol.x), rhs_scaled - float(sol.x[-1]) * b_live / f.row_div)[0]
+            eq = f.residuals_scaled(f.forces(sol.x), rhs_scaled - float(sol.x[f.n]) * b_live / f.row_div)[0]
             return LimitResult(status="numerical", forces=self._no_forces(), message=f"clarabel: {sol.status}{retried}; residual {eq:.3g}",
                                wall_time=time.perf_counter() - t0, restraint_forces=no_restraint, **common)
         lam, F, p = checked
@@ -377,13 +377,13 @@ class LimitSolver:
         if not sol.solved:
             return None
         f = self.formulation
-        lam = float(sol.x[-1])
+        lam = float(sol.x[f.n])  # unknowns (x, lam) or, restrained, (x, lam, p / W)
         F = f.forces(sol.x)
         rhs = rhs_scaled - lam * b_live / f.row_div
         p = None
         if restraint is not None:
             W = f.scaling.force
-            p = sol.x[f.n : f.n + restraint.size] * W
+            p = sol.x[f.n + 1 :] * W
             rhs = rhs - restraint.G @ p / f.row_div
             if np.any(p < -1e-8 * W) or np.any(p > restraint.capacity + 1e-8 * W):
                 return None

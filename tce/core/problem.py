@@ -430,34 +430,13 @@ def restrained_limit_problem(
 
         max lam  s.t.  A_eq F + G p + b_fixed + lam b_live = 0,  F admissible,  0 <= p <= capacity
 
-    (the passive restraint of a fill, :mod:`tce.core.passive`). Unknowns ``(x, p / W, lam)``
-    (n + k + 1); rows: ``m_eq`` equalities and the law's zero rows; the law's nonnegative
-    rows, then ``p >= 0`` and ``capacity - p >= 0`` (k rows each); the law's cones. The
-    multipliers of the equality rows are the virtual velocities, as in :func:`limit_problem`.
+    (the passive restraint of a fill, :mod:`tce.core.passive`). Unknowns ``(x, lam, p / W)``
+    (n + 1 + k: ``lam`` stays at index ``n``); rows as :func:`limit_problem`, then
+    :func:`with_bounded_forces`'. The multipliers of the equality rows are the virtual
+    velocities, as in :func:`limit_problem`.
     """
-    law = f.law
-    m, n = f.A_eq.shape
-    k = G.shape[1]
-    W = f.scaling.force
-    C = f.constraints
-    top = m + law.n_zero + law.n_nonneg
-    eye = sp.identity(k, format="csr")
-    Gs = sp.csr_matrix(G * (W / f.row_div)[:, None])
-    live = sp.csr_matrix((b_live / f.row_div)[:, None])
-    A = sp.bmat([
-        [C[:m], Gs, live],
-        [C[m:top], None, None],
-        [None, -eye, None],
-        [None, eye, None],
-        [C[top:], None, None],
-    ], format="csc", dtype=float)
-    h = f.law_h
-    n_lin = law.n_zero + law.n_nonneg
-    b = np.concatenate([f.b_eq(b_fixed), h[:n_lin], np.zeros(k), np.asarray(capacity, dtype=float) / W, h[n_lin:]])
-    q = np.zeros(n + k + 1)
-    q[-1] = -1.0
-    cones = _cones(("zero", m + law.n_zero), ("nonneg", law.n_nonneg + 2 * k), n_soc=law.n_soc)
-    return ConicProblem("limit", sp.csc_matrix((n + k + 1, n + k + 1)), q, A, b, cones)
+    return with_bounded_forces(limit_problem(f, b_fixed, b_live), _equilibrium_columns(f, G),
+                               np.asarray(capacity, dtype=float) / f.scaling.force)
 
 
 def least_violation_problem(
@@ -608,6 +587,14 @@ def lateral_ray_problem(f: Formulation, b_live: NDArray[np.float64], allowed: ND
     return ConicProblem("lateral-ray", sp.csc_matrix((n + nc, n + nc)), q, A, b, cones + (("soc", dim + 1),) * nc)
 
 
+def _equilibrium_columns(f: Formulation, G: NDArray[np.float64]) -> sp.csr_matrix:
+    """The columns of bounded extra forces ``p / W`` (wrenches ``G``, ``(m_eq, k)``) in the rows
+    of :attr:`Formulation.constraints`: ``G W / row_div`` in the equilibrium rows, zero in the
+    contact law's."""
+    W = f.scaling.force
+    return sp.vstack([sp.csr_matrix(G * (W / f.row_div)[:, None]), sp.csr_matrix((f.law.M.shape[0], G.shape[1]))], format="csr")
+
+
 def with_bounded_forces(problem: ConicProblem, columns: sp.spmatrix, upper: NDArray[np.float64]) -> ConicProblem:
     """``problem`` with ``k`` extra unknowns ``0 <= y <= upper`` appended after its own.
 
@@ -642,9 +629,8 @@ def restrained_tce_problem(
     path's last admissible multiplier and the direct limit describe one problem. Unknowns
     ``(x, p / W)`` (n + k); rows as :func:`tce_problem`, then :func:`with_bounded_forces`'.
     """
-    W = f.scaling.force
-    Gs = sp.vstack([sp.csr_matrix(G * (W / f.row_div)[:, None]), sp.csr_matrix((f.law.M.shape[0], G.shape[1]))])
-    return with_bounded_forces(tce_problem(f, b, U), Gs, np.asarray(capacity, dtype=float) / W)
+    return with_bounded_forces(tce_problem(f, b, U), _equilibrium_columns(f, G),
+                               np.asarray(capacity, dtype=float) / f.scaling.force)
 
 
 def restrained_phase1_problem(
