@@ -100,21 +100,6 @@ MAX_SNAPS = 100
 _FEAS = 1e-9  # relative tolerance of the equilibrium residual and of "velocity is zero"
 
 
-def _linprog(*args, **kwargs):
-    """:func:`scipy.optimize.linprog`, imported on first use: with scipy.sparse.linalg and joblib,
-    scipy.optimize cost every run 0.24 CPU-s to import (issue 24), with or without a settlement path."""
-    from scipy.optimize import linprog
-
-    return linprog(*args, **kwargs)
-
-
-def _lsqr(*args, **kwargs):
-    """:func:`scipy.sparse.linalg.lsqr`, imported on first use (as :func:`_linprog`)."""
-    from scipy.sparse.linalg import lsqr
-
-    return lsqr(*args, **kwargs)
-
-
 def rotation_matrices(w: ArrayLike) -> NDArray[np.float64]:
     """Rotation matrices ``(..., 3, 3)`` of rotation vectors ``w`` ``(..., 3)`` (rad), by
     Rodrigues' formula ``R = I + sin(a) K + (1 - cos(a)) K^2`` with ``a = |w|`` and ``K`` the
@@ -404,10 +389,12 @@ def _weights(sc: _Scene) -> NDArray[np.float64]:
 def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
     """The TCE and its kinematic dual on the closed contacts of configuration ``cf`` (module
     docstring); the equilibrium of the duals is checked."""
+    from scipy.optimize import linprog  # on first use: every run paid its import (issue 24)
+
     Gn, Gt, hn, ht, kc, p, dirs = _operators(sc, cf, closed)
     b = _weights(sc)
     V = np.abs(sc.velocity).max(initial=0.0) or 1.0  # velocities in units of the supports' largest
-    res = _linprog(-b, A_ub=-Gn, b_ub=hn / V, A_eq=Gt, b_eq=-ht / V, bounds=(None, None), method="highs")
+    res = linprog(-b, A_ub=-Gn, b_ub=hn / V, A_eq=Gt, b_eq=-ht / V, bounds=(None, None), method="highs")
     if res.status == 2:
         return _Step("infeasible", message="the support motion needs interpenetration: " + res.message)
     if res.status == 3:
@@ -445,6 +432,8 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
     """lambda_max of the lateral pattern (the weights along the horizontal ``direction``, in
     the scene's coordinates) on the closed contacts of ``cf``:
     ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding)."""
+    from scipy.optimize import linprog  # on first use: every run paid its import (issue 24)
+
     Gn, Gt, *_ = _operators(sc, cf, closed)
     b = _weights(sc)
     blat = np.zeros_like(b)
@@ -455,7 +444,7 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
     c = np.zeros(nn + nt + 1)
     c[-1] = -1.0
     bounds = [(0, None)] * nn + [(None, None)] * nt + [(None, None)]
-    res = _linprog(c, A_eq=A, b_eq=-b, bounds=bounds, method="highs")
+    res = linprog(c, A_eq=A, b_eq=-b, bounds=bounds, method="highs")
     if res.status == 0:
         return "optimal", float(res.x[-1])
     return {2: "infeasible", 3: "unbounded"}.get(res.status, "numerical"), float("nan")
@@ -475,6 +464,8 @@ def _move(sc: _Scene, cf: _Config, v: NDArray[np.float64], ds: float, advance: b
 def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     """One Gauss-Newton step that closes the relative displacement (every component) of the
     contacts ``keep`` by the least change of the free blocks' placements."""
+    from scipy.sparse.linalg import lsqr  # on first use (issue 24)
+
     if not keep.any():
         return cf
     Gn, Gt, _, _, kc, _, dirs = _operators(sc, cf, keep)
@@ -482,7 +473,7 @@ def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     pb = cf.place(sc.ib[sc.ci[kc]], sc.points[kc], sc)
     mis = np.einsum("kd,kjd->jk", pb - pa, dirs).ravel()  # normal rows, then tangent by tangent
     J = sp.vstack([Gn, Gt]).tocsr()
-    dq = _lsqr(J, -mis, atol=1e-12, btol=1e-12, iter_lim=100 * J.shape[1])[0]  # least norm
+    dq = lsqr(J, -mis, atol=1e-12, btol=1e-12, iter_lim=100 * J.shape[1])[0]  # least norm
     return cf.turned(sc, _unscale(sc, dq), sc.free)
 
 
@@ -505,6 +496,8 @@ def _snap(
     joint by turning its blocks back by that joint's opening, so a path whose hinges have
     opened wide must be followed as far to find the closure.
     """
+    from scipy.optimize import linprog  # on first use: every run paid its import (issue 24)
+
     b = _weights(sc)
     bounds = (-1.0, 1.0)  # scaled velocities (:func:`_operators`)
     start = cf
@@ -514,7 +507,7 @@ def _snap(
     everything = np.ones(closed.shape, dtype=bool)
     for _ in range(2000):
         Gn, Gt, *_ = _operators(sc, cf, closed)
-        res = _linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
+        res = linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
         if res.status != 0 or -res.fun <= _FEAS:
             return None
         d = np.zeros((len(sc.weights), sc.ndof))
