@@ -72,11 +72,8 @@ def thickness_convergence() -> None:
                label="Cocchetti & Rizzi 2020: 0.107426 (= LP, weights on the centreline)")
     ax.set_xticks(ns, [str(n) for n in ns])
     ax.minorticks_off()
-    ax.set_xlabel("voussoirs")
-    ax.set_ylabel("least thickness t/R")
-    ax.set_title("Semicircular arch under self-weight: least thickness against the discretisation")
-    ax.legend(fontsize=7.5, loc="center right")
-    ax.grid(alpha=0.3)
+    _decorate(ax, "voussoirs", "least thickness t/R",
+              "Semicircular arch under self-weight: least thickness against the discretisation", loc="center right")
     _save(fig, "validation_thickness.png")
 
 
@@ -108,11 +105,8 @@ def friction_curve() -> None:
     a.axvline(PUBLISHED["cr_mu_rotational"], color="C3", lw=0.8, ls="--", label="CR2020 mu_rm = 0.395832")
     a.axvline(PUBLISHED["cr_mu_sliding"], color="C4", lw=0.8, ls="--", label="CR2020 mu_ms = 0.309215")
     a.plot([PUBLISHED["cr_mu_sliding"]], [PUBLISHED["cr_eta_sliding"]], "r*", ms=10, label="CR2020 (mu_ms, 0.200637)")
-    a.set_xlabel("friction coefficient mu")
-    a.set_ylabel("least thickness t/R")
-    a.set_title("Least thickness against friction (CR2020 Fig. 7)")
-    a.legend(fontsize=7)
-    a.grid(alpha=0.3)
+    _decorate(a, "friction coefficient mu", "least thickness t/R", "Least thickness against friction (CR2020 Fig. 7)",
+              fontsize=7)
     ring_rm, ring_ms = 0.395264, 0.3092153  # continuous LP, ring centroids (tests/validation/literature)
     b.semilogx(ns, np.array(mu_rm) - PUBLISHED["cr_mu_rotational"], "o-", color="C3", label="tce mu_rm - 0.395832")
     b.axhline(ring_rm - PUBLISHED["cr_mu_rotational"], color="C3", ls=":", lw=1,
@@ -122,11 +116,7 @@ def friction_curve() -> None:
     b.axhline(0.0, color="k", lw=0.6)
     b.set_xticks(ns, [str(n) for n in ns])
     b.minorticks_off()
-    b.set_xlabel("voussoirs")
-    b.set_ylabel("tce - published")
-    b.set_title("Transition frictions: difference to Table 3")
-    b.legend(fontsize=7)
-    b.grid(alpha=0.3)
+    _decorate(b, "voussoirs", "tce - published", "Transition frictions: difference to Table 3", fontsize=7)
     _save(fig, "validation_friction.png")
 
 
@@ -143,11 +133,8 @@ def paper_cases() -> None:
     ax.plot(ns, lam90, "s-", label="tce lambda_90max (out of plane)")
     ax.plot([14], [PUBLISHED["paper_in_plane"]], "C0*", ms=12, label="the paper, Fig. 8: 0.243")
     ax.plot([14], [PUBLISHED["paper_out_of_plane"]], "C1*", ms=12, label="the paper, Fig. 9: 0.178")
-    ax.set_xlabel("voussoirs (the paper: 14)")
-    ax.set_ylabel("lambda_max")
-    ax.set_title("The paper's arch (t = 0.2 m, mu = 0.8): limit against the discretisation")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
+    _decorate(ax, "voussoirs (the paper: 14)", "lambda_max",
+              "The paper's arch (t = 0.2 m, mu = 0.8): limit against the discretisation", fontsize=8)
     _save(fig, "validation_paper.png")
 
 
@@ -161,11 +148,7 @@ def stress_block() -> None:
     ax.semilogx(strips, lam, "o-", label="tce, base joint in strips")
     ax.axhline(PUBLISHED["stress_block"], color="k", ls="--", label="stress block (b - W/(fc d))/h = 0.2")
     ax.axhline(0.4, color="grey", ls=":", label="rigid (no fc): b/h = 0.4")
-    ax.set_xlabel("strips across the base joint")
-    ax.set_ylabel("lambda_max")
-    ax.set_title("Crushing: one block 0.4 x 0.3 x 1 m, fc = 40 kN/m^2")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
+    _decorate(ax, "strips across the base joint", "lambda_max", "Crushing: one block 0.4 x 0.3 x 1 m, fc = 40 kN/m^2", fontsize=8)
     _save(fig, "validation_stress_block.png")
 
 
