@@ -1,0 +1,263 @@
+"""Draw a run's figures in processes that got ready while the run solved (issue 24).
+
+Figures cost a ``tce run`` of the paper's arch more than its solving: importing matplotlib and
+tce's figure modules (about 0.35 CPU-s) and drawing them (0.6-0.9 CPU-s), against 1.2-1.4 CPU-s
+for the whole run without figures. None of the imports needs the results, and the figures do
+not need each other. :meth:`Drawers.start` therefore forks one process, early in the run, that
+imports those modules and draws a small figure (fonts loaded, caches filled) while the run
+solves; once warm it forks the others from itself (a fork of a warm process is ready at once).
+When the results are written, :meth:`Drawers.draw` hands the figures out one at a time to
+whichever drawer is free, as the runner hands out scenarios, and collects the files in the
+order of :func:`tce.plot.output.figure_tasks`. On two cores the imports overlap the solving
+and the drawing is split in two, so a run with figures waits about half of what drawing them
+costs; the CPU spent is the same as drawing them in the run's own process.
+
+Drawers are used only where this cannot be slower than drawing in the run's process: on Linux
+(a fork, a parent-death signal), with at least two cores usable, more than one job allowed
+(``--jobs 1`` draws in its own process as before) and a single-threaded caller (a fork copies
+only the calling thread).
+
+Faults are those of drawing in the run's process:
+
+- each figure is written atomically (:func:`tce.plot.output.render`); a failure (a full disk
+  is an :class:`OSError` naming the file) is raised in the run's process as if it had happened
+  there, after the figures being drawn elsewhere are finished; no further figure is started;
+- a drawer that dies leaves its figure to be drawn again in the run's process, with the others
+  no drawer took;
+- drawers ignore Ctrl-C and SIGHUP (the run decides), are ended by :meth:`Drawers.close` (the
+  run's Ctrl-C and every exit go through it: it removes the temporary file of a figure cut
+  short), and die with the process that started them (``PR_SET_PDEATHSIG``), so a
+  ``kill -9`` of ``tce run`` leaves none behind. They are started before the run takes its
+  folder's lock, so they never hold it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import multiprocessing as mp
+import multiprocessing.connection
+import os
+import pickle
+import signal
+import sys
+import threading
+import traceback
+from collections import deque
+from pathlib import Path
+from typing import Any
+
+import xarray as xr
+
+from ..signals import quiet_children
+from ..study.progress import Progress
+
+__all__ = ["Drawers"]
+
+log = logging.getLogger(__name__)
+
+#: seconds to wait for a drawer to end before killing it
+_GRACE = 5.0
+
+
+class DrawerTraceback(Exception):
+    """The traceback of a figure that failed in a drawer (the cause of the error re-raised)."""
+
+
+def _die_with(parent: int) -> None:
+    """End this process when ``parent`` ends (Linux ``PR_SET_PDEATHSIG``), or now if it has."""
+    import ctypes
+
+    ctypes.CDLL(None).prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
+    if os.getppid() != parent:  # it ended before the request
+        os._exit(0)
+
+
+def _warm() -> None:
+    """Import every figure module and draw a small figure with text (loads the fonts)."""
+    import io
+
+    from matplotlib.figure import Figure
+
+    from .output import _builders
+
+    _builders()
+    fig = Figure(figsize=(1, 1))
+    ax = fig.add_subplot()
+    ax.plot([0, 1], [0, 1], label="λ")
+    ax.set_title("warm")
+    ax.legend()
+    fig.savefig(io.BytesIO(), format="png")
+
+
+def _serve(conn: mp.connection.Connection) -> None:
+    """Draw the tasks the run sends on ``conn``, replying with the file or the failure."""
+    from .output import render
+
+    while True:
+        try:
+            msg = conn.recv()
+        except (EOFError, OSError):  # the run closed its end
+            return
+        if msg is None:
+            return
+        ds, task, outdir = msg
+        try:
+            reply: tuple = ("drawn", render(ds, task, Path(outdir)))
+        except Exception as exc:  # noqa: BLE001 - raised again in the run's process
+            reply = ("failed", exc, traceback.format_exc())
+        try:
+            try:
+                conn.send(reply)
+            except (pickle.PicklingError, TypeError, AttributeError):  # an exception that does not pickle
+                conn.send(("failed", RuntimeError(f"{type(reply[1]).__name__}: {reply[1]}"), reply[2]))
+        except OSError:
+            return
+
+
+def _first(conns: list, run_ends: list, parent: int, level: int) -> None:
+    """The drawer forked from the run: warm up, fork the others, serve ``conns[0]``."""
+    _die_with(parent)
+    for sig in (signal.SIGINT, signal.SIGHUP):
+        signal.signal(sig, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    for c in run_ends:  # the run's ends: its death must reach us as an end of file
+        c.close()
+    logging.getLogger("tce").setLevel(level)
+    try:
+        _warm()
+    except Exception:  # noqa: BLE001 - the figures themselves will say what is wrong
+        log.debug("warming up a drawer failed", exc_info=True)
+    me = os.getpid()
+    for k in range(1, len(conns)):
+        if os.fork() == 0:
+            try:
+                _die_with(me)
+                for j, c in enumerate(conns):
+                    if j != k:
+                        c.close()
+                _serve(conns[k])
+            finally:
+                os._exit(0)
+        conns[k].close()
+    _serve(conns[0])
+    conns[0].close()
+    while True:  # reap the others
+        try:
+            os.wait()
+        except ChildProcessError:
+            break
+
+
+class Drawers:
+    """Processes that draw a run's figures (module docstring); start with :meth:`start`."""
+
+    def __init__(self, process: mp.process.BaseProcess, conns: list) -> None:
+        self.process = process
+        self.conns = conns
+
+    @classmethod
+    def start(cls, n: int) -> Drawers | None:
+        """Fork ``n`` drawers (the first from this process, the others from it once warm), or
+        None where drawing here is as fast (module docstring: fewer than two usable cores or
+        ``n < 2``, not Linux, other threads running)."""
+        cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 1
+        n = min(n, cores)
+        if n < 2 or not sys.platform.startswith("linux") or threading.active_count() > 1:
+            return None
+        ctx = mp.get_context("fork")
+        pairs = [ctx.Pipe() for _ in range(n)]
+        ours, theirs = [a for a, _ in pairs], [b for _, b in pairs]
+        level = logging.getLogger("tce").getEffectiveLevel()
+        process = ctx.Process(target=_first, args=(theirs, ours, os.getpid(), level), daemon=True,
+                              name="tce-drawer")
+        with quiet_children():  # Ctrl-C between the fork and its handlers is the run's
+            process.start()
+        for c in theirs:
+            c.close()
+        log.debug("drawers: %d, the first is process %d", n, process.pid)
+        return cls(process, ours)
+
+    def draw(self, ds: xr.Dataset, tasks: list, outdir: Path) -> list[Path]:
+        """Draw ``tasks`` (:func:`tce.plot.output.figure_tasks`) of ``ds`` into ``outdir``.
+
+        Returns the files in task order; raises the first failure (module docstring)."""
+        from .output import _subset, render, temporary
+
+        queue = deque(range(len(tasks)))
+        busy: dict[Any, int] = {}
+        files: dict[int, Path] = {}
+        failure: tuple | None = None
+
+        def feed(conn: Any) -> None:
+            if not queue or failure is not None:
+                return
+            k = queue.popleft()
+            busy[conn] = k
+            try:
+                conn.send((_subset(ds, tasks[k]), tasks[k], str(outdir)))
+            except OSError:  # it died: drawn here or by another
+                del busy[conn]
+                queue.appendleft(k)
+                self._drop(conn)
+
+        try:
+            with Progress(len(tasks), "figures", unit="file") as bar:
+                for conn in list(self.conns):
+                    feed(conn)
+                while busy:
+                    for conn in mp.connection.wait(list(busy)):
+                        try:
+                            reply = conn.recv()
+                        except (EOFError, OSError):
+                            k = busy.pop(conn)
+                            log.warning("a figure drawer ended while drawing %s: drawing it here", tasks[k].name)
+                            queue.appendleft(k)
+                            self._drop(conn)
+                            continue
+                        k = busy.pop(conn)
+                        if reply[0] == "drawn":
+                            files[k] = reply[1]
+                            bar.note(reply[1].name)
+                            bar.update()
+                        elif failure is None:
+                            failure = reply[1:]
+                        feed(conn)
+                if failure is not None:
+                    exc, tb = failure
+                    raise exc from DrawerTraceback(tb)
+                for k in queue:  # no drawer left
+                    files[k] = render(ds, tasks[k], outdir)
+                    bar.update()
+        except BaseException:
+            if busy:  # interrupted (Ctrl-C) while drawers draw: end them, remove what they left
+                self._kill()
+                for k in busy.values():
+                    temporary(Path(outdir) / tasks[k].name).unlink(missing_ok=True)
+            raise
+        return [files[k] for k in range(len(tasks))]
+
+    def _drop(self, conn: Any) -> None:
+        self.conns.remove(conn)
+        conn.close()
+
+    def _kill(self) -> None:
+        """Kill the drawers (the first; the others die with it) and wait until each is gone
+        (its end of the pipe closes)."""
+        self.process.kill()
+        for conn in self.conns:
+            with contextlib.suppress(EOFError, OSError):
+                while conn.poll(_GRACE):
+                    conn.recv()
+        self.close()
+
+    def close(self) -> None:
+        """End the drawers (each ends when its pipe closes; the first waits for the others).
+        Idempotent."""
+        for conn in self.conns:
+            conn.close()
+        self.conns = []
+        self.process.join(_GRACE)
+        if self.process.is_alive():
+            self.process.kill()
+            self.process.join()

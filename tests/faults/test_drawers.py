@@ -1,0 +1,184 @@
+"""Figures drawn by the processes ``tce run`` prepares while it solves (:mod:`tce.plot.drawers`):
+the same files as drawing in the run's process, and the same faults: a full disk reported as
+one line naming the file, a drawer that dies replaced by the run's process, Ctrl-C and
+``kill -9`` leaving no drawer and no temporary file behind."""
+
+from __future__ import annotations
+
+import errno
+import logging
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import matplotlib.figure
+import pytest
+import xarray as xr
+
+from tce.cli import main
+from tce.plot import output
+from tce.plot.drawers import Drawers
+from tce.study import runner
+from tce.study.schema import parse_study
+
+from .common import TINY, as_from_a_shell, clean, errors, leftovers, write
+
+#: the tiny study without its sweep, both scenarios drawn: four PNG files and the view
+DRAWN = TINY.replace("[sweep]\nfriction = [0.8, 2.0]", "[material]\nfriction = 0.8") + '\n[plots]\nscenarios = ["none", "outward"]\nkinds = ["states", "thrust", "thrust_lines", "mechanism", "view"]\n'
+
+
+@pytest.fixture(scope="module")
+def finished(tmp_path_factory) -> xr.Dataset:
+    study = parse_study(DRAWN, "study.toml")
+    return xr.load_dataset(runner.run_study(study, tmp_path_factory.mktemp("finished"), jobs=1).results)
+
+
+@pytest.fixture
+def start():
+    """Start drawers (after the test's patches: they are forked with them), closed after the test."""
+    started = []
+
+    def go() -> Drawers:
+        d = Drawers.start(2)
+        if d is None:
+            pytest.skip("drawers need Linux and two usable cores")
+        started.append(d)
+        return d
+
+    yield go
+    for d in started:
+        d.close()
+
+
+def _gone(pids: list[int], within: float = 5.0) -> None:
+    """Every process of ``pids`` ends within ``within`` seconds (a zombie has ended)."""
+    end = time.monotonic() + within
+    while any(runner._alive(pid) for pid in pids):
+        assert time.monotonic() < end, f"processes {[p for p in pids if runner._alive(p)]} are still running"
+        time.sleep(0.05)
+
+
+def test_the_same_files_in_the_same_order(finished, start, tmp_path) -> None:
+    here = output.write_figures(finished, tmp_path / "here")
+    there = output.write_figures(finished, tmp_path / "there", draw=start().draw)
+    assert [p.name for p in there] == [p.name for p in here] and len(here) >= 5
+    for a, b in zip(here, there):
+        assert a.read_bytes() == b.read_bytes(), a.name
+    assert not leftovers(tmp_path)
+
+
+def test_no_drawers_with_one_job_or_one_core(monkeypatch) -> None:
+    assert Drawers.start(1) is None
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0})
+    assert Drawers.start(2) is None
+
+
+def _fail_on(name: str, how):
+    """``Figure.savefig`` patched to call ``how(fname)`` for the file ``name`` in a drawer."""
+    savefig, run = matplotlib.figure.Figure.savefig, os.getpid()
+
+    def patched(self, fname, *args, **kwargs):
+        if os.getpid() != run and isinstance(fname, Path) and fname.name == f".{name}.tmp":
+            how(fname)
+        return savefig(self, fname, *args, **kwargs)
+
+    return patched
+
+
+def _full(fname) -> None:
+    raise OSError(errno.ENOSPC, "No space left on device", str(fname))
+
+
+def test_a_full_disk_in_a_drawer_is_the_runs_figure_fault(tmp_path, monkeypatch, capsys) -> None:
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", _fail_on("thrust.png", _full))
+    out = tmp_path / "out"
+    assert main(["run", str(write(tmp_path, DRAWN)), "--out", str(out), "--no-report"]) == 3
+    err = capsys.readouterr().err
+    clean(err)
+    (line,) = errors(err)
+    assert "no space left on the device" in line and ".thrust.png.tmp" in line
+    assert (out / "tiny" / "results.nc").exists() and "tce plot" in err and not leftovers(out)
+
+
+def test_a_drawer_that_dies_is_replaced_by_the_run(finished, start, tmp_path, monkeypatch, caplog) -> None:
+    here = output.write_figures(finished, tmp_path / "here")
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig",
+                        _fail_on("thrust.png", lambda fname: os.kill(os.getpid(), signal.SIGKILL)))
+    logger = logging.getLogger("tce.plot.drawers")
+    logger.addHandler(caplog.handler)  # whatever an earlier main() made of the "tce" logger
+    try:
+        there = output.write_figures(finished, tmp_path / "there", draw=start().draw)
+    finally:
+        logger.removeHandler(caplog.handler)
+    assert [p.name for p in there] == [p.name for p in here]
+    assert all(a.read_bytes() == b.read_bytes() for a, b in zip(here, there))
+    assert "while drawing thrust.png: drawing it here" in caplog.text and not leftovers(tmp_path)
+
+
+def test_ctrl_c_while_drawers_draw(finished, start, tmp_path, monkeypatch) -> None:
+    pids = tmp_path / "pids"
+    pids.mkdir()
+
+    def stuck(fname) -> None:  # a drawer half-way through writing its file
+        Path(fname).write_bytes(b"half")
+        (pids / str(os.getpid())).touch()
+        time.sleep(60)
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", _fail_on("thrust.png", stuck))
+    drawers = start()
+
+    def interrupt(signum, frame):  # Ctrl-C once a drawer is stuck
+        if any(pids.iterdir()):
+            raise KeyboardInterrupt
+
+    before = signal.signal(signal.SIGALRM, interrupt)
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 0.1, 0.1)
+        with pytest.raises(KeyboardInterrupt):
+            output.write_figures(finished, tmp_path / "out", draw=drawers.draw)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, before)
+    (stuck_pid,) = [int(p.name) for p in pids.iterdir()]
+    assert not leftovers(tmp_path / "out")  # its pipe closed: it writes nothing more
+    _gone([stuck_pid, drawers.process.pid])
+
+
+def test_kill_9_of_the_run_ends_its_drawers(tmp_path) -> None:
+    """The drawers die with ``tce run`` (a parent-death signal), even one stuck in a figure."""
+    hook = tmp_path / "hook"
+    hook.mkdir()
+    (hook / "sitecustomize.py").write_text(textwrap.dedent(f"""
+        import os, time
+        from pathlib import Path
+        import matplotlib.figure
+        savefig = matplotlib.figure.Figure.savefig
+        def stuck(self, fname, *args, **kwargs):
+            if not isinstance(fname, (str, os.PathLike)):  # the drawer's warm-up
+                return savefig(self, fname, *args, **kwargs)
+            Path({str(tmp_path)!r}, "drawer-" + str(os.getpid())).touch()
+            time.sleep(120)
+        matplotlib.figure.Figure.savefig = stuck
+    """))
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=os.pathsep.join([str(hook), os.environ.get("PYTHONPATH", "")]))
+    cmd = [sys.executable, "-m", "tce.cli", "run", str(write(tmp_path, DRAWN)), "--out", str(tmp_path / "out"),
+           "--no-report"]
+    run = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True,
+                           preexec_fn=as_from_a_shell)
+    try:
+        end = time.monotonic() + 120
+        while len(list(tmp_path.glob("drawer-*"))) < 2:  # both drawers inside a figure
+            assert time.monotonic() < end and run.poll() is None, run.stderr.read() if run.poll() is not None else ""
+            time.sleep(0.05)
+        run.kill()
+        run.wait()
+        _gone([int(p.name.split("-")[1]) for p in tmp_path.glob("drawer-*")])
+    finally:
+        if run.poll() is None:
+            run.kill()
+        run.communicate()
+    assert (tmp_path / "out" / "tiny" / "results.nc").exists()
