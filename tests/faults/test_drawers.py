@@ -64,11 +64,14 @@ def _gone(pids: list[int], within: float = 5.0) -> None:
 
 def test_the_same_files_in_the_same_order(finished, start, tmp_path) -> None:
     here = output.write_figures(finished, tmp_path / "here")
-    there = output.write_figures(finished, tmp_path / "there", draw=start().draw)
+    drawers = start()
+    there = output.write_figures(finished, tmp_path / "there", draw=drawers.draw)
     assert [p.name for p in there] == [p.name for p in here] and len(here) >= 5
     for a, b in zip(here, there):
         assert a.read_bytes() == b.read_bytes(), a.name
     assert not leftovers(tmp_path)
+    drawers.close()  # idle drawers end on their own when the run closes its pipes
+    assert drawers.process.exitcode == 0
 
 
 def test_no_drawers_with_one_job_or_one_core(monkeypatch) -> None:
