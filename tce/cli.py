@@ -318,9 +318,9 @@ def _run(args: argparse.Namespace) -> int:
     bar = _Bar(study.name)
     drawers = None
     if not args.no_plots:  # figures drawn by processes made ready while the run solves (issue 24)
-        from .plot.drawers import Drawers
+        from .plot.drawers import Drawers, cpu_free
 
-        drawers = Drawers.start(args.jobs or os.cpu_count() or 1)
+        drawers = Drawers.start(args.jobs or os.cpu_count() or 1) if args.jobs != 1 and cpu_free() else None
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,

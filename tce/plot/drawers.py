@@ -12,10 +12,12 @@ order of :func:`tce.plot.output.figure_tasks`. On two cores the imports overlap 
 and the drawing is split in two, so a run with figures waits about half of what drawing them
 costs; the CPU spent is the same as drawing them in the run's own process.
 
-Drawers are used only where this cannot be slower than drawing in the run's process: on Linux
-(a fork, a parent-death signal), with at least two cores usable, more than one job allowed
-(``--jobs 1`` draws in its own process as before) and a single-threaded caller (a fork copies
-only the calling thread).
+Drawers are used only where they should not be slower than drawing in the run's process: on
+Linux (a fork, a parent-death signal), with at least two cores usable, more than one job
+allowed (``--jobs 1`` draws in its own process as before), a single-threaded caller (a fork
+copies only the calling thread) and, as ``tce run`` decides, CPUs that other programs leave
+free (:func:`cpu_free`). The drawers spend a little more CPU than the run's process would
+(their fork and the pages it copies; collections skip the inherited objects, ``gc.freeze``).
 
 Faults are those of drawing in the run's process:
 
@@ -34,6 +36,7 @@ Faults are those of drawing in the run's process:
 from __future__ import annotations
 
 import contextlib
+import gc
 import logging
 import multiprocessing as mp
 import multiprocessing.connection
@@ -52,10 +55,13 @@ import xarray as xr
 from ..signals import quiet_children
 from ..study.progress import Progress
 
-__all__ = ["Drawers"]
+__all__ = ["PRESSURE_LIMIT", "Drawers", "cpu_free"]
 
 log = logging.getLogger(__name__)
 
+#: CPU pressure (percent of the last 10 s some task waited for a CPU) from which drawing in the
+#: run's process is chosen (:func:`cpu_free`)
+PRESSURE_LIMIT = 25.0
 #: seconds to wait for a drawer to end before killing it
 _GRACE = 5.0
 
@@ -129,6 +135,7 @@ def _first(conns: list, run_ends: list, parent: int, level: int) -> None:
     except Exception:  # noqa: BLE001 - the figures themselves will say what is wrong
         log.debug("warming up a drawer failed", exc_info=True)
     me = os.getpid()
+    gc.freeze()
     for k in range(1, len(conns)):
         if os.fork() == 0:
             try:
@@ -147,6 +154,22 @@ def _first(conns: list, run_ends: list, parent: int, level: int) -> None:
             os.wait()
         except ChildProcessError:
             break
+
+
+def cpu_free(limit: float = PRESSURE_LIMIT) -> bool:
+    """Whether the CPUs are free enough for drawers to gain time: tasks waited for a CPU less
+    than ``limit`` percent of the last 10 s (Linux's pressure stall information,
+    ``/proc/pressure/cpu``, ``some avg10``; True where it cannot be read).
+
+    While other programs keep every core busy, a second process gains no wall time and the
+    drawers' own cost (a fork and its copied pages, 0.2-0.4 CPU-s on the paper's arch under a
+    load average of 4-6) makes the run slower than drawing in its own process."""
+    try:
+        with open("/proc/pressure/cpu") as fh:
+            some = fh.readline().split()
+        return float(some[1].split("=")[1]) < limit
+    except (OSError, IndexError, ValueError):
+        return True
 
 
 class Drawers:
@@ -171,8 +194,12 @@ class Drawers:
         level = logging.getLogger("tce").getEffectiveLevel()
         process = ctx.Process(target=_first, args=(theirs, ours, os.getpid(), level), daemon=True,
                               name="tce-drawer")
-        with quiet_children():  # Ctrl-C between the fork and its handlers is the run's
-            process.start()
+        gc.freeze()  # the drawers' collections skip what they inherit: no copies of its pages
+        try:
+            with quiet_children():  # Ctrl-C between the fork and its handlers is the run's
+                process.start()
+        finally:
+            gc.unfreeze()
         for c in theirs:
             c.close()
         log.debug("drawers: %d, the first is process %d", n, process.pid)

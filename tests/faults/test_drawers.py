@@ -21,7 +21,8 @@ import xarray as xr
 
 from tce.cli import main
 from tce.plot import output
-from tce.plot.drawers import Drawers
+from tce.plot import drawers as drawers_module
+from tce.plot.drawers import Drawers, cpu_free
 from tce.study import runner
 from tce.study.schema import parse_study
 
@@ -80,6 +81,23 @@ def test_no_drawers_with_one_job_or_one_core(monkeypatch) -> None:
     assert Drawers.start(2) is None
 
 
+def test_no_drawers_while_other_programs_hold_the_cpus(tmp_path, monkeypatch) -> None:
+    pressure = tmp_path / "cpu"
+    real_open = open
+
+    def fake_open(path, *args, **kwargs):
+        return real_open(pressure if path == "/proc/pressure/cpu" else path, *args, **kwargs)
+
+    monkeypatch.setattr("builtins.open", fake_open)
+    pressure.write_text("some avg10=81.91 avg60=88.71 avg300=81.65 total=14732235240\n"
+                        "full avg10=0.00 avg60=0.00 avg300=0.00 total=0\n")
+    assert cpu_free() is False
+    pressure.write_text("some avg10=3.10 avg60=88.71 avg300=81.65 total=14732235240\n")
+    assert cpu_free() is True
+    pressure.unlink()  # no pressure information: the cores decide
+    assert cpu_free() is True
+
+
 def _fail_on(name: str, how):
     """``Figure.savefig`` patched to call ``how(fname)`` for the file ``name`` in a drawer."""
     savefig, run = matplotlib.figure.Figure.savefig, os.getpid()
@@ -97,6 +115,7 @@ def _full(fname) -> None:
 
 
 def test_a_full_disk_in_a_drawer_is_the_runs_figure_fault(tmp_path, monkeypatch, capsys) -> None:
+    monkeypatch.setattr(drawers_module, "cpu_free", lambda: True)  # drawers however busy the machine is
     monkeypatch.setattr(matplotlib.figure.Figure, "savefig", _fail_on("thrust.png", _full))
     out = tmp_path / "out"
     assert main(["run", str(write(tmp_path, DRAWN)), "--out", str(out), "--no-report"]) == 3
@@ -166,6 +185,8 @@ def test_kill_9_of_the_run_ends_its_drawers(tmp_path) -> None:
             Path({str(tmp_path)!r}, "drawer-" + str(os.getpid())).touch()
             time.sleep(120)
         matplotlib.figure.Figure.savefig = stuck
+        import tce.plot.drawers
+        tce.plot.drawers.cpu_free = lambda: True  # drawers however busy the machine is
     """))
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=os.pathsep.join([str(hook), os.environ.get("PYTHONPATH", "")]))
     cmd = [sys.executable, "-m", "tce.cli", "run", str(write(tmp_path, DRAWN)), "--out", str(tmp_path / "out"),
