@@ -801,16 +801,21 @@ def measured_run(study: Path, out: Path, args: Sequence[str]) -> dict[str, Any]:
     """``tce run STUDY --fresh ARGS`` in a fresh process: its wall time, the CPU time of it and
     of every process it started (``cpu``), the CPU of each process (``procs``), the CPU on the
     longest chain (``critical``, :func:`critical_cpu`), the load average before and after
-    (``load``) and the solver time its results record (``solve_time`` summed over scenarios:
-    wall time inside the solve calls)."""
+    (``load``), whether the CPUs were free for figure drawers when it started (``cpu_free``,
+    :func:`tce.plot.drawers.cpu_free`) and the solver time its results record (``solve_time``
+    summed over scenarios: wall time inside the solve calls)."""
     import xarray as xr
 
+    from ..plot.drawers import cpu_free
+
     cmd = [sys.executable, "-m", "tce.cli", "-q", "run", str(study), "--out", str(out), "--fresh", *args]
+    free = cpu_free()  # as tce run will find it: figures by the drawers or in the run's process
     done = subprocess.run([sys.executable, "-c", _MEASURED, *cmd], capture_output=True, text=True, check=True)
     got = json.loads(done.stdout.strip().splitlines()[-1])
     if got["rc"] != 0:
         raise RuntimeError(f"tce run {study.name} failed: {got['err']}")
     got["critical"] = critical_cpu(got)
+    got["cpu_free"] = free
     name = next(line.split("=", 1)[1].strip().strip('"') for line in study.read_text().splitlines()
                 if line.strip().startswith("name"))
     with xr.open_dataset(out / name / "results.nc") as ds:
@@ -920,7 +925,8 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
                 rows.append(_row("sweeps", f"tce run {name}", label, n_solves=len(gs), time_s=wall,
                                  time_min_s=min(g["wall"] for g in gs), cpu_s=cpu,
                                  note=f"CPU {cpu:.2f} s, {cpu / plain_cpu:.2f}x --no-plots (CPU); wall "
-                                      f"{wall / plain_wall:.2f}x --no-plots; {_load(gs)}"))
+                                      f"{wall / plain_wall:.2f}x --no-plots; drawers usable (CPUs free) in "
+                                      f"{sum(g['cpu_free'] for g in gs)} of {len(gs)} runs; {_load(gs)}"))
         for name in () if quick else PAPER_STUDIES:
             if not (root / f"{name}.toml").exists():
                 continue
