@@ -20,6 +20,9 @@ Sources:
 - The paper (*3D exploration of internal stresses due to lateral loads and foundation
   movements in a semicircular arch*): ``lambda_0max = 0.243`` (Fig. 8) and
   ``lambda_90max = 0.178`` (Fig. 9), printed to three digits.
+- LACT3 v1.0 (Y. Hua, M. Buzzetti, N. Pingaro, L. C. M. da Silva, G. Milani, 2025; repository
+  GabrieleMilani/LACT3_v1.0), its solver test: the collapse tilt of its sample wall, 16.73 deg
+  at a friction angle of 26 deg (a code's test value, not a publication's; :mod:`tce.quality.walls`).
 """
 
 from __future__ import annotations
