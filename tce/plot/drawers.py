@@ -105,8 +105,6 @@ def _serve(conn: mp.connection.Connection) -> None:
             msg = conn.recv()
         except (EOFError, OSError):  # the run closed its end
             return
-        if msg is None:
-            return
         ds, task, outdir = msg
         try:
             reply: tuple = ("drawn", render(ds, task, Path(outdir)))
@@ -121,7 +119,7 @@ def _serve(conn: mp.connection.Connection) -> None:
             return
 
 
-def _first(conns: list, run_ends: list, parent: int, level: int) -> None:
+def _first(conns: list, run_ends: list, parent: int) -> None:
     """The drawer forked from the run: warm up, fork the others, serve ``conns[0]``."""
     _die_with(parent)
     for sig in (signal.SIGINT, signal.SIGHUP):
@@ -129,7 +127,6 @@ def _first(conns: list, run_ends: list, parent: int, level: int) -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     for c in run_ends:  # the run's ends: its death must reach us as an end of file
         c.close()
-    logging.getLogger("tce").setLevel(level)
     try:
         _warm()
     except Exception:  # noqa: BLE001 - the figures themselves will say what is wrong
@@ -162,8 +159,9 @@ def cpu_free(limit: float = PRESSURE_LIMIT) -> bool:
     ``/proc/pressure/cpu``, ``some avg10``; True where it cannot be read).
 
     While other programs keep every core busy, a second process gains no wall time and the
-    drawers' own cost (a fork and its copied pages, 0.2-0.4 CPU-s on the paper's arch under a
-    load average of 4-6) makes the run slower than drawing in its own process."""
+    drawers' own cost (a fork, the pages it copies and a second process: 0.5-0.6 CPU-s more than
+    drawing in the run's process on the paper's arch at a load average of 6) makes the run
+    slower than drawing in its own process."""
     try:
         with open("/proc/pressure/cpu") as fh:
             some = fh.readline().split()
@@ -191,8 +189,7 @@ class Drawers:
         ctx = mp.get_context("fork")
         pairs = [ctx.Pipe() for _ in range(n)]
         ours, theirs = [a for a, _ in pairs], [b for _, b in pairs]
-        level = logging.getLogger("tce").getEffectiveLevel()
-        process = ctx.Process(target=_first, args=(theirs, ours, os.getpid(), level), daemon=True,
+        process = ctx.Process(target=_first, args=(theirs, ours, os.getpid()), daemon=True,
                               name="tce-drawer")
         gc.freeze()  # the drawers' collections skip what they inherit: no copies of its pages
         try:

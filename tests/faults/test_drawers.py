@@ -12,6 +12,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
 import time
 from pathlib import Path
 
@@ -55,6 +56,19 @@ def start():
         d.close()
 
 
+def _elsewhere(request) -> bool:
+    """Run this test in a fresh pytest process when this one has other threads (left by other
+    tests: tce forks drawers only from a single-threaded process), and say whether it did."""
+    if threading.active_count() == 1:
+        return False
+    assert "TCE_TEST_ALONE" not in os.environ, f"threads in a fresh pytest process: {threading.enumerate()}"
+    done = subprocess.run([sys.executable, "-m", "pytest", "-v", "-p", "no:cacheprovider", "-p", "no:xdist",
+                           request.node.nodeid], cwd=request.config.rootpath, capture_output=True, text=True,
+                          timeout=600, env=dict(os.environ, TCE_TEST_ALONE="1"))
+    assert done.returncode == 0 and "1 passed" in done.stdout, done.stdout[-4000:]
+    return True
+
+
 def _gone(pids: list[int], within: float = 5.0) -> None:
     """Every process of ``pids`` ends within ``within`` seconds (a zombie has ended)."""
     end = time.monotonic() + within
@@ -63,7 +77,9 @@ def _gone(pids: list[int], within: float = 5.0) -> None:
         time.sleep(0.05)
 
 
-def test_the_same_files_in_the_same_order(finished, start, tmp_path) -> None:
+def test_the_same_files_in_the_same_order(finished, start, tmp_path, request) -> None:
+    if _elsewhere(request):
+        return
     here = output.write_figures(finished, tmp_path / "here")
     drawers = start()
     there = output.write_figures(finished, tmp_path / "there", draw=drawers.draw)
@@ -114,7 +130,9 @@ def _full(fname) -> None:
     raise OSError(errno.ENOSPC, "No space left on device", str(fname))
 
 
-def test_a_full_disk_in_a_drawer_is_the_runs_figure_fault(tmp_path, monkeypatch, capsys) -> None:
+def test_a_full_disk_in_a_drawer_is_the_runs_figure_fault(tmp_path, monkeypatch, capsys, request) -> None:
+    if _elsewhere(request):
+        return
     monkeypatch.setattr(drawers_module, "cpu_free", lambda: True)  # drawers however busy the machine is
     monkeypatch.setattr(matplotlib.figure.Figure, "savefig", _fail_on("thrust.png", _full))
     out = tmp_path / "out"
@@ -126,7 +144,9 @@ def test_a_full_disk_in_a_drawer_is_the_runs_figure_fault(tmp_path, monkeypatch,
     assert (out / "tiny" / "results.nc").exists() and "tce plot" in err and not leftovers(out)
 
 
-def test_a_drawer_that_dies_is_replaced_by_the_run(finished, start, tmp_path, monkeypatch, caplog) -> None:
+def test_a_drawer_that_dies_is_replaced_by_the_run(finished, start, tmp_path, monkeypatch, caplog, request) -> None:
+    if _elsewhere(request):
+        return
     here = output.write_figures(finished, tmp_path / "here")
     monkeypatch.setattr(matplotlib.figure.Figure, "savefig",
                         _fail_on("thrust.png", lambda fname: os.kill(os.getpid(), signal.SIGKILL)))
@@ -141,7 +161,9 @@ def test_a_drawer_that_dies_is_replaced_by_the_run(finished, start, tmp_path, mo
     assert "while drawing thrust.png: drawing it here" in caplog.text and not leftovers(tmp_path)
 
 
-def test_ctrl_c_while_drawers_draw(finished, start, tmp_path, monkeypatch) -> None:
+def test_ctrl_c_while_drawers_draw(finished, start, tmp_path, monkeypatch, request) -> None:
+    if _elsewhere(request):
+        return
     pids = tmp_path / "pids"
     pids.mkdir()
 
