@@ -20,6 +20,10 @@ Sources:
 - The paper (*3D exploration of internal stresses due to lateral loads and foundation
   movements in a semicircular arch*): ``lambda_0max = 0.243`` (Fig. 8) and
   ``lambda_90max = 0.178`` (Fig. 9), printed to three digits.
+- Hua, Y., Buzzetti, M., Pingaro, N., da Silva, L. C. M. & Milani, G. (2025). LACT3, *Limit
+  Analysis Code for Tilting Table Tests* (GitHub GabrieleMilani/LACT3_v1.0): the tilt at
+  collapse of its sample arch ``arch_1`` with friction angle 30 deg, 17.10 deg, as asserted by
+  the repository's ``LACT3_SolverTest.m`` (the accompanying paper was not accessible).
 """
 
 from __future__ import annotations
@@ -37,7 +41,7 @@ from ..analysis.nonassoc import nonassociative_limit
 from ..analysis.thickness import arch_minimum_thickness, minimum_thickness
 from ..core.analysis import Analysis
 from ..core.material import Material
-from ..structures.arch import semicircular_arch
+from ..structures.arch import segmental_arch, semicircular_arch
 from ..structures.dome import hemispherical_dome
 from ..structures.assembly import Assembly, Block, Interface
 from ..structures.geometry import box
@@ -54,6 +58,8 @@ __all__ = [
     "nonassoc_min_ratio",
     "run_validation",
     "stress_block_column",
+    "tilt_angle",
+    "tilting_arch",
 ]
 
 #: voussoirs of the arch cases in the command and the suite (the figures go to 640)
@@ -392,6 +398,54 @@ NONASSOC_CASES: tuple[ValidationCase, ...] = (
 )
 
 CASES = CASES + NONASSOC_CASES
+
+# ------------------------------------------------------- the arch on a tilting table (LACT3's arch_1)
+#: LACT3's sample arch (Hua, Buzzetti, Pingaro, da Silva & Milani, ``sample/arch_1.dxf``, mm there):
+#: a semicircle of 27 radial voussoirs of 20/3 deg, intrados radius 317 mm, extrados 373.3 mm,
+#: whose lowest voussoir on each side is part of the base, so that 25 voussoirs stand on two
+#: skewbacks inclined at pi/27 above the springing line; friction angle 30 deg, no cohesion.
+TILT_RADII = (0.317, 0.3733)
+TILT_VOUSSOIRS = 25
+TILT_FRICTION_ANGLE = 30.0
+
+
+def tilting_arch(voussoirs: int = TILT_VOUSSOIRS, depth: float = 0.1) -> Assembly:
+    """LACT3's arch_1 (m): the circular ring of :data:`TILT_RADII` between skewbacks at
+    ``pi/27`` above the springing line (embrace ``25 pi/27``), cut into ``voussoirs`` equal
+    radial voussoirs (25 in the source), as :func:`tce.structures.arch.segmental_arch`:
+    intrados span ``2 ri cos(pi/27)``, rise ``ri (1 - sin(pi/27))``, thickness ``re - ri``."""
+    ri, re = TILT_RADII
+    start = math.pi / 27.0
+    return segmental_arch(2.0 * ri * math.cos(start), ri * (1.0 - math.sin(start)), re - ri, depth, voussoirs,
+                          UNIT_WEIGHT)
+
+
+def tilt_angle(voussoirs: int = TILT_VOUSSOIRS, friction_angle: float | None = TILT_FRICTION_ANGLE) -> float:
+    """Tilt (deg) of the table at which :func:`tilting_arch` collapses: ``atan(lambda_max)``.
+
+    On a table tilted by ``theta`` every block's weight has the component ``W sin(theta)``
+    along the table and ``W cos(theta)`` across it; the contact law (no tension, Coulomb cone)
+    is homogeneous in the forces, so the arch stands exactly when it carries the lateral
+    pattern ``lambda = tan(theta)`` on a level table. ``friction_angle`` (deg), None for
+    Heyman's material. NaN if the limit is not a finite optimum.
+    """
+    mu = None if friction_angle is None else math.tan(math.radians(friction_angle))
+    r = Analysis(tilting_arch(voussoirs), Material(friction=mu)).limit(0.0)
+    return math.degrees(math.atan(r.lambda_max)) if r.status == "optimal" else math.nan
+
+
+TILTING_CASES: tuple[ValidationCase, ...] = (
+    ValidationCase(
+        "lact3_tilt_arch", "Hua et al. 2025 (LACT3)", "repository test, sample arch_1",
+        "tilt angle at collapse (deg), 25-voussoir arch, friction angle 30 deg", 17.10, tilt_angle,
+        f"their arch: {TILT_VOUSSOIRS} radial voussoirs, mu = tan 30 deg", 0.01,
+        "printed to 0.01 deg (their tilt steps); tce 17.1057 = atan(0.3077487), which the LP of "
+        "the same voussoirs (tests/reference/lateral_arch.py) gives to 1e-11; the collapse is "
+        "four hinges, no joint slides, so the friction angle does not enter",
+    ),
+)
+
+CASES = CASES + TILTING_CASES
 
 COLUMNS = ["case", "source", "where", "quantity", "published", "tce", "difference", "tolerance", "ok",
            "discretisation", "time_s"]
