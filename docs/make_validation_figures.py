@@ -271,8 +271,48 @@ def gilbert_arch() -> None:
     _save(fig, "validation_gilbert_arch.png")
 
 
+def tilting_arch() -> None:
+    """LACT3's arch_1 on a tilting table (Hua et al. 2025): the collapse tilt against the number
+    of voussoirs (the LP of the same voussoirs and the continuous ring of the same embrace
+    beside it) and against the friction angle, with the source's 17.10 deg at 25 voussoirs,
+    30 deg."""
+    from tce.quality.validation import TILT_RADII, TILT_VOUSSOIRS, TILTING_CASES, tilt_angle
+
+    published = TILTING_CASES[0].published
+    ri, re = TILT_RADII
+    t, start = (re - ri) / ((re + ri) / 2), np.pi / 27
+    ns = [5, 9, 15, 25, 45, 85, 165, 325]
+    tce = [tilt_angle(n) for n in ns]
+    lp = [np.degrees(np.arctan(lateral_ref.capacity(t, n, "facets", start=start))) for n in ns]
+    ring = np.degrees(np.arctan(lateral_ref.capacity(t, 4000, start=start)))
+    print("voussoirs", ns)
+    print("tce tilt ", [f"{v:.5f}" for v in tce])
+    print("LP tilt  ", [f"{v:.5f}" for v in lp])
+    print("ring     ", f"{ring:.5f}")
+    phis = [15, 17.5, 20, 22.5, 25, 26, 27, 27.5, 28, 29, 30, 32.5, 35, 40, 45]
+    by_phi = [tilt_angle(TILT_VOUSSOIRS, p) for p in phis]
+    print("phi      ", phis)
+    print("tce tilt ", [f"{v:.4f}" for v in by_phi])
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11.5, 4.5))
+    a.semilogx(ns, tce, "o", mfc="none", ms=8, color="C0", label="tce, friction angle 30 deg")
+    a.semilogx(ns, lp, "-", lw=1, color="C0", label="LP over the same voussoirs (no sliding)")
+    a.axhline(ring, color="k", ls=":", label=f"LP, continuous ring of the same embrace ({ring:.3f})")
+    a.errorbar([TILT_VOUSSOIRS], [published], yerr=0.01, fmt="r*", ms=11, capsize=3,
+               label=f"LACT3 (Hua et al. 2025): {published:.2f} deg at 25 voussoirs")
+    a.set_xticks(ns, [str(n) for n in ns])
+    a.minorticks_off()
+    _decorate(a, "voussoirs (embrace 166.7 deg, t/R = 0.163)", "tilt at collapse (deg)",
+              "LACT3's arch_1 on a tilting table: the discretisation")
+    b.plot(phis, by_phi, "o-", color="C0", label="tce, 25 voussoirs")
+    b.axhline(tce[ns.index(TILT_VOUSSOIRS)], color="grey", ls="--", lw=0.8, label="no sliding (Heyman)")
+    b.errorbar([30.0], [published], yerr=0.01, fmt="r*", ms=11, capsize=3, label="LACT3, friction angle 30 deg")
+    _decorate(b, "friction angle (deg)", "tilt at collapse (deg)", "the same arch against the friction angle",
+              loc="lower right")
+    _save(fig, "validation_tilting_arch.png")
+
+
 STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity, crushing_arch,
-         gilbert_arch)
+         gilbert_arch, tilting_arch)
 
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)
