@@ -297,7 +297,8 @@ def tilting_arch() -> None:
     a.semilogx(ns, tce, "o", mfc="none", ms=8, color="C0", label="tce, friction angle 30 deg")
     a.semilogx(ns, lp, "-", lw=1, color="C0", label="LP over the same voussoirs (no sliding)")
     a.axhline(ring, color="k", ls=":", label=f"LP, continuous ring of the same embrace ({ring:.3f})")
-    a.errorbar([TILT_VOUSSOIRS], [published], yerr=0.01, fmt="r*", ms=11, capsize=3,
+    allowed = [[0.005], [0.021]]  # a last stable tilt: the collapse lies up to two 0.0078 deg steps above, +-0.005 rounding
+    a.errorbar([TILT_VOUSSOIRS], [published], yerr=allowed, fmt="r*", ms=11, capsize=3,
                label=f"LACT3 (Hua et al. 2025): {published:.2f} deg at 25 voussoirs")
     a.set_xticks(ns, [str(n) for n in ns])
     a.minorticks_off()
@@ -305,7 +306,7 @@ def tilting_arch() -> None:
               "LACT3's arch_1 on a tilting table: the discretisation")
     b.plot(phis, by_phi, "o-", color="C0", label="tce, 25 voussoirs")
     b.axhline(tce[ns.index(TILT_VOUSSOIRS)], color="grey", ls="--", lw=0.8, label="no sliding (Heyman)")
-    b.errorbar([30.0], [published], yerr=0.01, fmt="r*", ms=11, capsize=3, label="LACT3, friction angle 30 deg")
+    b.errorbar([30.0], [published], yerr=allowed, fmt="r*", ms=11, capsize=3, label="LACT3, friction angle 30 deg")
     _decorate(b, "friction angle (deg)", "tilt at collapse (deg)", "the same arch against the friction angle",
               loc="lower right")
     _save(fig, "validation_tilting_arch.png")
