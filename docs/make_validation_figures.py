@@ -271,18 +271,19 @@ def gilbert_arch() -> None:
     _save(fig, "validation_gilbert_arch.png")
 
 
-def tilting_arch() -> None:
-    """LACT3's arch_1 on a tilting table (Hua et al. 2025): the collapse tilt against the number
+def lact3_arch() -> None:
+    """The sample arch of LACT3 v1.0 (arch_1) on a tilting table: the collapse tilt against the number
     of voussoirs (the LP of the same voussoirs and the continuous ring of the same embrace
     beside it) and against the friction angle, with the source's 17.10 deg at 25 voussoirs,
     30 deg."""
-    from tce.quality.validation import TILT_RADII, TILT_VOUSSOIRS, TILTING_CASES, tilt_angle
+    from tce.quality.validation import TILT_FRICTION_ANGLE, TILT_RADII, TILT_VOUSSOIRS, tilting_arch
+    from tce.quality.walls import tilt_angle
 
-    published = TILTING_CASES[0].published
+    published = PUBLISHED["lact3_arch_tilt"]
     ri, re = TILT_RADII
     t, start = (re - ri) / ((re + ri) / 2), np.pi / 27
     ns = [5, 9, 15, 25, 45, 85, 165, 325]
-    tce = [tilt_angle(n) for n in ns]
+    tce = [tilt_angle(tilting_arch(n), TILT_FRICTION_ANGLE) for n in ns]
     lp = [np.degrees(np.arctan(lateral_ref.capacity(t, n, "facets", start=start))) for n in ns]
     ring = np.degrees(np.arctan(lateral_ref.capacity(t, 4000, start=start)))
     print("voussoirs", ns)
@@ -290,7 +291,7 @@ def tilting_arch() -> None:
     print("LP tilt  ", [f"{v:.5f}" for v in lp])
     print("ring     ", f"{ring:.5f}")
     phis = [15, 17.5, 20, 22.5, 25, 26, 27, 27.5, 28, 29, 30, 32.5, 35, 40, 45]
-    by_phi = [tilt_angle(TILT_VOUSSOIRS, p) for p in phis]
+    by_phi = [tilt_angle(tilting_arch(), p) for p in phis]
     print("phi      ", phis)
     print("tce tilt ", [f"{v:.4f}" for v in by_phi])
     fig, (a, b) = plt.subplots(1, 2, figsize=(11.5, 4.5))
@@ -299,21 +300,66 @@ def tilting_arch() -> None:
     a.axhline(ring, color="k", ls=":", label=f"LP, continuous ring of the same embrace ({ring:.3f})")
     allowed = [[0.005], [0.021]]  # a last stable tilt: the collapse lies up to two 0.0078 deg steps above, +-0.005 rounding
     a.errorbar([TILT_VOUSSOIRS], [published], yerr=allowed, fmt="r*", ms=11, capsize=3,
-               label=f"LACT3 (Hua et al. 2025): {published:.2f} deg at 25 voussoirs")
+               label=f"LACT3 v1.0 test: {published:.2f} deg at 25 voussoirs")
     a.set_xticks(ns, [str(n) for n in ns])
     a.minorticks_off()
     _decorate(a, "voussoirs (embrace 166.7 deg, t/R = 0.163)", "tilt at collapse (deg)",
               "LACT3's arch_1 on a tilting table: the discretisation")
     b.plot(phis, by_phi, "o-", color="C0", label="tce, 25 voussoirs")
     b.axhline(tce[ns.index(TILT_VOUSSOIRS)], color="grey", ls="--", lw=0.8, label="no sliding (Heyman)")
-    b.errorbar([30.0], [published], yerr=allowed, fmt="r*", ms=11, capsize=3, label="LACT3, friction angle 30 deg")
+    b.errorbar([30.0], [published], yerr=allowed, fmt="r*", ms=11, capsize=3, label="LACT3 v1.0 test, friction angle 30 deg")
     _decorate(b, "friction angle (deg)", "tilt at collapse (deg)", "the same arch against the friction angle",
               loc="lower right")
-    _save(fig, "validation_tilting_arch.png")
+    _save(fig, "validation_lact3_arch.png")
+
+
+
+def lact3_tilt() -> None:
+    """The sample wall of LACT3 v1.0 on a tilting table: its mechanism at phi = 26 deg, and the
+    collapse tilt against the friction angle (both directions) with LACT3's test value."""
+    from matplotlib.patches import Polygon
+
+    from tce.quality.walls import lact3_wall, tilt_angle
+
+    wall = lact3_wall()
+    phis = [18, 20, 22, 24, 26, 28, 30, 31, 32, 33, 35, 40, 45, 50]
+    plus = [tilt_angle(wall, p, 0.0) for p in phis]
+    minus = [tilt_angle(wall, p, 180.0) for p in phis]
+    rigid = np.degrees(np.arctan(Analysis(wall, Material()).limit(0.0, mechanism=False).lambda_max))
+    print("phi        ", phis)
+    print("tilt +x    ", [f"{v:.4f}" for v in plus])
+    print("tilt -x    ", [f"{v:.4f}" for v in minus])
+    print("no sliding ", f"{rigid:.4f}")
+    r = Analysis(wall, Material(friction=np.tan(np.radians(26.0)))).limit(0.0)
+    v = r.mechanism.velocities
+    scale = 0.12 / np.abs(v[:, [0, 2]]).max()
+    fig, (ax, cx) = plt.subplots(1, 2, figsize=(12, 4.8), gridspec_kw={"width_ratios": [1.25, 1]})
+    for k, (block, c) in enumerate(zip(wall.blocks, wall.centroids)):
+        p = block.shape.vertices[block.shape.vertices[:, 1] < 1e-9][:, [0, 2]]
+        p = p[np.argsort(np.arctan2(p[:, 1] - c[2], p[:, 0] - c[0]))]
+        ux = v[k, 0] + v[k, 4] * (p[:, 1] - c[2])
+        uz = v[k, 2] - v[k, 4] * (p[:, 0] - c[0])
+        moving = np.abs(v[k, [0, 2, 4]]).max() > 1e-6
+        ax.add_patch(Polygon(p, closed=True, fill=False, ec="0.8", lw=0.4))
+        ax.add_patch(Polygon(p + scale * np.c_[ux, uz], closed=True, fc="C1" if moving else "0.9",
+                             ec="k", lw=0.4, alpha=0.8 if moving else 0.6))
+    ax.set_xlim(-0.3, 2.5)
+    ax.set_ylim(-0.2, 1.75)
+    ax.set_aspect("equal")
+    ax.set_title(f"mechanism at phi = 26 deg, tilt {np.degrees(np.arctan(r.lambda_max)):.4f} deg towards +x "
+                 "(moving blocks orange)", fontsize=9)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("z (m)")
+    cx.plot(phis, plus, "o-", color="C0", ms=4, label="tce, table tilted towards +x")
+    cx.plot(phis, minus, "s--", color="C2", ms=4, label="tce, towards -x")
+    cx.axhline(rigid, color="grey", ls=":", lw=0.9, label=f"tce, no sliding (+x): {rigid:.2f} deg")
+    cx.plot([26.0], [PUBLISHED["lact3_wall_tilt"]], "k*", ms=11, label="LACT3 v1.0 test: 16.73 deg at phi = 26 deg")
+    _decorate(cx, "friction angle phi (deg)", "collapse tilt (deg)", "collapse tilt against the friction angle")
+    _save(fig, "validation_lact3_wall.png")
 
 
 STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity, crushing_arch,
-         gilbert_arch, tilting_arch)
+         gilbert_arch, lact3_tilt, lact3_arch)
 
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)

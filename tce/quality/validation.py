@@ -20,10 +20,10 @@ Sources:
 - The paper (*3D exploration of internal stresses due to lateral loads and foundation
   movements in a semicircular arch*): ``lambda_0max = 0.243`` (Fig. 8) and
   ``lambda_90max = 0.178`` (Fig. 9), printed to three digits.
-- Hua, Y., Buzzetti, M., Pingaro, N., da Silva, L. C. M. & Milani, G. (2025). LACT3, *Limit
-  Analysis Code for Tilting Table Tests* (GitHub GabrieleMilani/LACT3_v1.0): the tilt at
-  collapse of its sample arch ``arch_1`` with friction angle 30 deg, 17.10 deg, as asserted by
-  the repository's ``LACT3_SolverTest.m`` (the accompanying paper was not accessible).
+- LACT3 v1.0 (Y. Hua, M. Buzzetti, N. Pingaro, L. C. M. da Silva, G. Milani, 2025; repository
+  GabrieleMilani/LACT3_v1.0), its solver test: the collapse tilt of its sample wall, 16.73 deg
+  at a friction angle of 26 deg (:mod:`tce.quality.walls`), and of its sample arch ``arch_1``,
+  17.10 deg at 30 deg (:func:`tilting_arch`): a code's test values, not a publication's.
 """
 
 from __future__ import annotations
@@ -45,6 +45,7 @@ from ..structures.arch import segmental_arch, semicircular_arch
 from ..structures.dome import hemispherical_dome
 from ..structures.assembly import Assembly, Block, Interface
 from ..structures.geometry import box
+from .walls import lact3_wall, tilt_angle
 
 __all__ = [
     "CASES",
@@ -58,7 +59,6 @@ __all__ = [
     "nonassoc_min_ratio",
     "run_validation",
     "stress_block_column",
-    "tilt_angle",
     "tilting_arch",
 ]
 
@@ -399,6 +399,23 @@ NONASSOC_CASES: tuple[ValidationCase, ...] = (
 
 CASES = CASES + NONASSOC_CASES
 
+# ------------------------------------------------------------------- walls on a tilting table
+_LACT3 = "LACT3 v1.0 (code, 2025)"
+
+WALL_CASES: tuple[ValidationCase, ...] = (
+    ValidationCase(
+        "lact3_wall_tilt", _LACT3, "LACT3_SolverTest.m (its test; no paper read)",
+        "collapse tilt (deg), its sample wall with a door and a window, phi 26 deg, c = 0, associative", 16.73,
+        lambda: tilt_angle(lact3_wall(), 26.0), "the sample wall: 182 blocks on a slab, table tilted towards +x", 0.015,
+        "a code's own test value, not a publication's: LACT3 steps the tilt up, halving the step below its "
+        "converging tolerance (0.01 deg), reports the last tilt at which the wall still carries load, printed "
+        "to 0.01 deg; the collapse tilt is within 0.015 deg of the printed one. tce 16.7376 (lambda = tan theta); "
+        "towards -x the same wall fails at 10.63 deg",
+    ),
+)
+
+CASES = CASES + WALL_CASES
+
 # ------------------------------------------------------- the arch on a tilting table (LACT3's arch_1)
 #: LACT3's sample arch (Hua, Buzzetti, Pingaro, da Silva & Milani, ``sample/arch_1.dxf``, mm there):
 #: a semicircle of 27 radial voussoirs of 20/3 deg, intrados radius 317 mm, extrados 373.3 mm,
@@ -420,30 +437,17 @@ def tilting_arch(voussoirs: int = TILT_VOUSSOIRS, depth: float = 0.1) -> Assembl
                           UNIT_WEIGHT)
 
 
-def tilt_angle(voussoirs: int = TILT_VOUSSOIRS, friction_angle: float | None = TILT_FRICTION_ANGLE) -> float:
-    """Tilt (deg) of the table at which :func:`tilting_arch` collapses: ``atan(lambda_max)``.
-
-    On a table tilted by ``theta`` every block's weight has the component ``W sin(theta)``
-    along the table and ``W cos(theta)`` across it; the contact law (no tension, Coulomb cone)
-    is homogeneous in the forces, so the arch stands exactly when it carries the lateral
-    pattern ``lambda = tan(theta)`` on a level table. ``friction_angle`` (deg), None for
-    Heyman's material. NaN if the limit is not a finite optimum.
-    """
-    mu = None if friction_angle is None else math.tan(math.radians(friction_angle))
-    r = Analysis(tilting_arch(voussoirs), Material(friction=mu)).limit(0.0)
-    return math.degrees(math.atan(r.lambda_max)) if r.status == "optimal" else math.nan
-
-
 TILTING_CASES: tuple[ValidationCase, ...] = (
     ValidationCase(
-        "lact3_tilt_arch", "Hua et al. 2025 (LACT3)", "repository test, sample arch_1",
-        "tilt angle at collapse (deg), 25-voussoir arch, friction angle 30 deg", 17.10, tilt_angle,
+        "lact3_arch_tilt", _LACT3, "LACT3_SolverTest.m (its test; no paper read)",
+        "collapse tilt (deg) of its sample arch, 25 voussoirs, phi 30 deg, c = 0, associative", 17.10,
+        lambda: tilt_angle(tilting_arch(), TILT_FRICTION_ANGLE),
         f"their arch: {TILT_VOUSSOIRS} radial voussoirs, mu = tan 30 deg", 0.02,
-        "LACT3 prints the last tilt at which the arch stands, found by halving a 1 deg step until "
-        "it is below 0.01 deg (LACT3.m's defaults), to 0.01 deg: at most 0.016 deg below the "
-        "collapse, and 0.005 of rounding; tce 17.1057 = atan(0.3077487), which the LP of the same "
-        "voussoirs (tests/reference/lateral_arch.py) gives to 1e-11; four hinges, no joint slides, "
-        "so the friction angle does not enter",
+        "a code's own test value, not a publication's: LACT3 prints, to 0.01 deg, the last tilt at "
+        "which the arch stands, found by halving a 1 deg step until it is below 0.01 deg (LACT3.m's "
+        "defaults): at most 0.016 deg below the collapse, and 0.005 of rounding; tce 17.1057 = "
+        "atan(0.3077487), which the LP of the same voussoirs (tests/reference/lateral_arch.py) gives "
+        "to 1e-11; four hinges, no joint slides, so the friction angle does not enter",
     ),
 )
 
