@@ -141,3 +141,22 @@ def test_restrained_states_pass_the_check_with_the_restraint_and_are_least_selec
     assert selection(r) <= selection(raw) + 1e-9 * selection(r)
     if sett is None:  # no motion: every admissible state is optimal; the solver's leans on the fill
         assert selection(r) < 0.1 * selection(raw) and p.sum() < 0.01 * raw.restraint_forces.sum()
+
+
+@pytest.mark.parametrize("lam, status", [(2.0, "optimal"), (2.5, "infeasible")])
+def test_an_undecided_restrained_solve_is_decided_with_the_restraint(monkeypatch, lam, status):
+    """The warm solve reports a numerical failure: phase-1 decides, with the restraint's forces
+    (the ring carries the wheel to 1.571 without them and to 2.280 with kp = 2, the direct
+    limits of tests/validation/test_passive_restraint.py), then the retries solve it."""
+    from types import SimpleNamespace
+
+    from tce.core.clarabel_solver import Solution
+    from tce.core.solve import TCESolver
+
+    monkeypatch.setattr(TCESolver, "_main", lambda self, U, b, restraint: Solution(
+        "NumericalError", SimpleNamespace(iterations=0), 0.0, 0.0))
+    r = Analysis(RING).solve(lam, loads=pattern(2.0))
+    assert r.status == status
+    assert r.retry == ("rescaled" if status == "optimal" else "phase-1")
+    if status == "optimal":
+        assert r.eq_residual <= 1e-9 and r.restraint_forces.sum() > 1.0
