@@ -441,6 +441,7 @@ def _limit_cost(quick: bool) -> list[dict[str, Any]]:
             raws = {"raw": settings, "raw, refined QP": opts.settings(kkt=f.kkt)} if canonical else {"raw": settings}
             times: dict[str, list[float]] = {k: [] for k in ("tce", *raws)}
             got: dict[str, Any] = {}
+            loads = [os.getloadavg()[0]]
             for r in range(repeats):
                 an = Analysis(arch, mat, model=kind, options=opts)
                 an.formulation(kind)  # both start from the built, scaled operators (the raw one from tp)
@@ -454,6 +455,7 @@ def _limit_cost(quick: bool) -> list[dict[str, Any]]:
                         after = _raw_canonical(f, b0, b1, tp.q, raws[name]) if canonical else None
                         got[name] = _raw_bisection(raw, b0, b1, step, atol, after)
                     times[name].append(clock() - t0)
+                loads.append(os.getloadavg()[0])
             mt = statistics.median(times["tce"])
             lp = got["tce"]
             what = "with canonical states (the default)" if canonical else "no canonical states"
@@ -461,7 +463,8 @@ def _limit_cost(quick: bool) -> list[dict[str, Any]]:
             rows.append(_row("limit_cost", case, f"tce load path (direct bracket, no mechanism, {what})",
                              solver="CLARABEL", model=kind, n_blocks=len(arch.blocks), n_solves=lp.n_solves, time_s=mt,
                              time_min_s=min(times["tce"]),
-                             note=f"{ratios} (CPU, interleaved, {repeats} runs); lambda_max {lp.lambda_max:.7f}, "
+                             note=f"{ratios} (CPU, interleaved, {repeats} runs, {_load([{'load': loads}])}); "
+                                  f"lambda_max {lp.lambda_max:.7f}, "
                                   f"{lp.n_solves} TCE solves + 1 direct"))
             for k in raws:
                 lam_raw, n_raw = got[k]
