@@ -32,9 +32,9 @@ fresh one (equilibrated for this problem), then by one with robust settings
 interior-point method as a load next to its limit (the admissible set is a sliver). The
 robust one decided the limit step of a 6 m ring under 0.3 m of fill with passive restraint
 (kp = 3, one 100 kN wheel at x = -1.8 m, tests/test_passive_study.py), where the others stop
-``AlmostSolved`` 3.2e-8 off equilibrium (18 iterations; measured on branch h24d, 2026-11-24). On the paper's arch
-under a 1 mm transversal motion (3D SOCP, load path with step 0.02), Clarabel's
-``AlmostSolved`` answers missed the check by up to 2x (cone residual 1.8e-9) and were taken
+``AlmostSolved`` 3.2e-8 off equilibrium (18 iterations; measured on branch h24d,
+2026-11-24). On the paper's arch under a 1 mm transversal motion (3D SOCP, load path with
+step 0.02), Clarabel's ``AlmostSolved`` answers missed the check by up to 2x (cone residual 1.8e-9) and were taken
 as solved, so the 1e-8 slack was never tried, and 2 of 14 steps (lambda 0.02 and 0.24) were
 left undecided; now all 14 are decided (measured on branch hdef, 2026-11-24).
 

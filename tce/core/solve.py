@@ -389,7 +389,8 @@ class TCESolver:
         """Smallest equilibrium residual reachable by admissible forces at multiplier ``lam``
         of the pattern ``loads`` (or the default pattern in direction ``alpha``).
 
-        Solves :func:`tce.core.problem.phase1_problem` (always feasible and bounded).
+        Solves :func:`tce.core.problem.phase1_problem` (always feasible and bounded; with the
+        pattern's passive restraint, :func:`tce.core.problem.restrained_phase1_problem`).
         Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol`` means the load is
         carried. A residual that is undecided (NaN) or lies within ``PHASE1_BAND`` times
         ``feas_tol`` is decided again with tight tolerances
