@@ -385,23 +385,16 @@ class TCESolver:
         self._warm_q = q
         return self._warm.solve()
 
-    def phase1(self, lam: float, alpha: float | None = None, loads: LoadPattern | None = None) -> tuple[float, float, str]:
-        """Smallest equilibrium residual reachable by admissible forces at multiplier ``lam``
-        of the pattern ``loads`` (or the default pattern in direction ``alpha``).
-
-        Solves :func:`tce.core.problem.phase1_problem` (always feasible and bounded; with the
-        pattern's passive restraint, :func:`tce.core.problem.restrained_phase1_problem`).
-        Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol`` means the load is
-        carried. A residual that is undecided (NaN) or lies within ``PHASE1_BAND`` times
-        ``feas_tol`` is decided again with tight tolerances
-        (:meth:`SolverOptions.settings`); the status then ends with ``tight: ...``.
-        """
-        pattern = as_pattern(alpha, loads)
-        return self._phase1(self.rhs(lam, loads=pattern), self.restraint(pattern))
-
     def _phase1(self, rhs: NDArray[np.float64], restraint: Restraint | None = None) -> tuple[float, float, str]:
-        """:meth:`phase1` for a right-hand side ``rhs``, with the restraint's bounded forces
-        (:func:`tce.core.problem.restrained_phase1_problem`; ``r`` at index ``n`` in both)."""
+        """Smallest equilibrium residual reachable by admissible forces for the right-hand
+        side ``rhs`` (with the restraint's bounded forces when given).
+
+        Solves :func:`tce.core.problem.phase1_problem` (always feasible and bounded; with a
+        restraint, :func:`tce.core.problem.restrained_phase1_problem`; ``r`` at index ``n`` in
+        both). Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol`` means the load is
+        carried. A residual that is undecided (NaN) or lies within ``PHASE1_BAND`` times
+        ``feas_tol`` is decided again with tight tolerances (:meth:`SolverOptions.settings`);
+        the status then ends with ``tight: ...``."""
         f = self.formulation
 
         def problem() -> ConicProblem:
