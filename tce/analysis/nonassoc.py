@@ -103,6 +103,12 @@ DILATANCY_TOL = 1e-4
 #: turn until one solves cleanly (:meth:`NonAssocSolver._nearest`)
 NEAREST_BACKOFF = (1e-8, 1e-7, 1e-6)
 
+#: the extrapolation of a slow linear approach (:meth:`NonAssocSolver._extrapolate`)
+ACCELERATION_DEPTH = 6
+ACCELERATION_COS = 0.999
+ACCELERATION_SPREAD = 0.005
+ACCELERATION_LAMBDA_DECAY = 0.7
+
 
 @dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class NonAssocResult(Result):
@@ -278,6 +284,8 @@ class NonAssocSolver:
         viol = cons = float("nan")
         polishing = False
         coulomb = cone_rows(model, mu, **mat.strengths)
+        steps: list[tuple[NDArray[np.float64], NDArray[np.float64]]] = []  # (fn, T(fn) - fn) of the plain steps in a row
+        pending: tuple[NDArray[np.float64], float] | None = None  # (plain next fn, error) when fn was extrapolated
         for k in range(1, self.max_iter + 1):
             rows = cone_rows(model, 0.0, cohesion=mat.cohesion, tensile_strength=mat.tensile_strength,
                              compressive_strength=mat.compressive_strength, shear_capacity=mu * np.maximum(fn, 0.0))
@@ -315,13 +323,65 @@ class NonAssocSolver:
                     message=f"fixed point after {k} iterations (Gilbert, Casapulla and Ahmed 2006)"
                     + ("; polished state" if polished is not None else ""),
                 )
-            # the polished state is the next one whole: relaxing towards it would mix in
-            # the centre of the optimal face again
-            fn = polished[:, 0] if polished is not None else fn + self.relaxation * (state[:, 0] - fn)
+            error = max(viol, cons)
+            if pending is not None:
+                plain, before = pending
+                pending = None
+                if not error < before:
+                    # the safeguard: the extrapolated capacities did not bring the state
+                    # nearer to a fixed point; go on from the plain step instead
+                    log.debug("iteration %d: extrapolation rejected (error %.3g W, was %.3g W)", k, error, before)
+                    fn = plain
+                    continue
+            if polished is not None:
+                # the polished state is the next one whole: relaxing towards it would mix in
+                # the centre of the optimal face again
+                fn = polished[:, 0]
+                steps.clear()
+                continue
+            steps.append((fn, state[:, 0] - fn))
+            fn = fn + self.relaxation * steps[-1][1]
+            guess = self._extrapolate(steps, history)
+            if guess is not None:
+                log.debug("iteration %d: extrapolated, capacities moved by %.3g W", k,
+                          float(np.abs(guess - fn).max()) / W)
+                pending = (fn, error)
+                fn = guess
+                steps.clear()
         return done(status="not_converged", iterations=self.max_iter, history=tuple(history), admissibility=viol,
                     consistency=cons, forces=empty, mechanism=last.mechanism if last is not None else None,
                     message=f"no fixed point after {self.max_iter} iterations: last lambda {history[-1]:.6g}, "
                     f"law violation {viol:.3g} W, sliding contacts off their capacity by {cons:.3g} W")
+
+    def _extrapolate(
+        self, steps: list[tuple[NDArray[np.float64], NDArray[np.float64]]], history: list[float]
+    ) -> NDArray[np.float64] | None:
+        """The limit of a slow linear approach seen in the last plain steps ``(fn_j, d_j =
+        T(fn_j) - fn_j)`` (``lambda_j`` the last values of ``history``), or None."""
+        m = ACCELERATION_DEPTH
+        if len(steps) < m + 1:
+            return None
+        x = np.array([f for f, _ in steps[-m - 1:]]).T
+        d = np.array([g for _, g in steps[-m - 1:]]).T
+        norms = np.linalg.norm(d, axis=0)
+        if np.any(norms == 0.0) or not self._creeping(history):
+            return None
+        dots = np.einsum("ij,ij->j", d[:, :-1], d[:, 1:])
+        ratios = dots / norms[:-1] ** 2
+        cosines = dots / (norms[:-1] * norms[1:])
+        if cosines.min() < ACCELERATION_COS or ratios.max() >= 1.0 or np.ptp(ratios) > ACCELERATION_SPREAD:
+            return None
+        nxt = x + self.relaxation * d
+        c, *_ = np.linalg.lstsq(np.diff(d, axis=1), -d[:, 0], rcond=None)
+        return nxt[:, 0] + np.diff(nxt, axis=1) @ c
+
+    def _creeping(self, history: list[float]) -> bool:
+        """Whether ``lambda`` creeps along a slow mode: its last :data:`ACCELERATION_DEPTH`
+        changes of one sign, the last at least :data:`ACCELERATION_LAMBDA_DECAY` times the first."""
+        dlam = np.diff(history[-ACCELERATION_DEPTH - 1:])
+        if len(dlam) < ACCELERATION_DEPTH or not (np.all(dlam > 0) or np.all(dlam < 0)):
+            return False
+        return bool(dlam[-1] / dlam[0] >= ACCELERATION_LAMBDA_DECAY)
 
     def _settled(self, history: list[float], n: int) -> bool:
         """Whether the last ``n`` values of ``lambda`` (the associative one included) lie
