@@ -271,8 +271,52 @@ def gilbert_arch() -> None:
     _save(fig, "validation_gilbert_arch.png")
 
 
+def lact3_tilt() -> None:
+    """The sample wall of LACT3 v1.0 on a tilting table: its mechanism at phi = 26 deg, and the
+    collapse tilt against the friction angle (both directions) with LACT3's test value."""
+    from matplotlib.patches import Polygon
+
+    from tce.quality.walls import lact3_wall, tilt_angle
+
+    wall = lact3_wall()
+    phis = [18, 20, 22, 24, 26, 28, 30, 31, 32, 33, 35, 40, 45, 50]
+    plus = [tilt_angle(wall, p, 0.0) for p in phis]
+    minus = [tilt_angle(wall, p, 180.0) for p in phis]
+    rigid = np.degrees(np.arctan(Analysis(wall, Material()).limit(0.0, mechanism=False).lambda_max))
+    print("phi        ", phis)
+    print("tilt +x    ", [f"{v:.4f}" for v in plus])
+    print("tilt -x    ", [f"{v:.4f}" for v in minus])
+    print("no sliding ", f"{rigid:.4f}")
+    r = Analysis(wall, Material(friction=np.tan(np.radians(26.0)))).limit(0.0)
+    v = r.mechanism.velocities
+    scale = 0.12 / np.abs(v[:, [0, 2]]).max()
+    fig, (ax, cx) = plt.subplots(1, 2, figsize=(12, 4.8), gridspec_kw={"width_ratios": [1.25, 1]})
+    for k, (block, c) in enumerate(zip(wall.blocks, wall.centroids)):
+        p = block.shape.vertices[block.shape.vertices[:, 1] < 1e-9][:, [0, 2]]
+        p = p[np.argsort(np.arctan2(p[:, 1] - c[2], p[:, 0] - c[0]))]
+        ux = v[k, 0] + v[k, 4] * (p[:, 1] - c[2])
+        uz = v[k, 2] - v[k, 4] * (p[:, 0] - c[0])
+        moving = np.abs(v[k, [0, 2, 4]]).max() > 1e-6
+        ax.add_patch(Polygon(p, closed=True, fill=False, ec="0.8", lw=0.4))
+        ax.add_patch(Polygon(p + scale * np.c_[ux, uz], closed=True, fc="C1" if moving else "0.9",
+                             ec="k", lw=0.4, alpha=0.8 if moving else 0.6))
+    ax.set_xlim(-0.3, 2.5)
+    ax.set_ylim(-0.2, 1.75)
+    ax.set_aspect("equal")
+    ax.set_title(f"mechanism at phi = 26 deg, tilt {np.degrees(np.arctan(r.lambda_max)):.4f} deg towards +x "
+                 "(moving blocks orange)", fontsize=9)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("z (m)")
+    cx.plot(phis, plus, "o-", color="C0", ms=4, label="tce, table tilted towards +x")
+    cx.plot(phis, minus, "s--", color="C2", ms=4, label="tce, towards -x")
+    cx.axhline(rigid, color="grey", ls=":", lw=0.9, label=f"tce, no sliding (+x): {rigid:.2f} deg")
+    cx.plot([26.0], [PUBLISHED["lact3_wall_tilt"]], "k*", ms=11, label="LACT3 v1.0 test: 16.73 deg at phi = 26 deg")
+    _decorate(cx, "friction angle phi (deg)", "collapse tilt (deg)", "collapse tilt against the friction angle")
+    _save(fig, "validation_lact3_wall.png")
+
+
 STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity, crushing_arch,
-         gilbert_arch)
+         gilbert_arch, lact3_tilt)
 
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)

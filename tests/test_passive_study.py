@@ -99,3 +99,17 @@ def test_passive_restraint_with_a_non_associative_material_exits_2(tmp_path, cap
     err = capsys.readouterr().err
     assert code == 2 and f"{path}: loads.fill.kp" in err and "fix:" in err
     assert not (tmp_path / "out").exists()
+
+
+def test_drawn_states_say_the_passive_restraint_they_carry(tmp_path) -> None:
+    """`states.png` draws the ring's interface forces, not the fill's pieces: a state that
+    leans on the restraint says how much (the stored sum) in its note; one without says nothing."""
+    from tce.plot import data, figures
+
+    on, off = run(tmp_path, 3.0), run(tmp_path, 0.0)
+    st = data.find_state(on, "none", "max")
+    pushed = float(on.passive_force.sel(scenario="none", step=st.step))
+    assert pushed > 1.0 and f"pushes {pushed:.3g} kN" in st.note
+    fig = figures.states_figure(on, [("none", "max")])
+    assert any(f"pushes {pushed:.3g} kN" in t.get_text() for t in fig.axes[0].texts)
+    assert "passive" not in data.find_state(off, "none", "max").note

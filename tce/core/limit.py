@@ -483,6 +483,10 @@ class LimitSolver:
         such states this is the one of least total force, which loads few contacts (those
         that lock), where an interior-point certificate loads all of them.
 
+        The fill's passive restraint (:mod:`tce.core.passive`) has no column here, and needs
+        none: its forces are bounded (``0 <= p <= cap``), so along a ray ``dF / dlam`` their
+        share ``p / lam`` vanishes, and the contacts alone carry the live load.
+
         Parameters
         ----------
         alpha : float, optional

@@ -342,10 +342,19 @@ def find_state(ds: xr.Dataset, scenario: str, target: Target) -> State:
     return State(scenario, target, None, target, "not solved (tce plot solves it on demand)")
 
 
+#: passive restraint (kN) below which a state's note does not mention it (solver round-off)
+PASSIVE_SHOWN = 1e-6
+
+
 def _notes(ds: xr.Dataset, scenario: str, step: int) -> str:
     notes = [outcome_note(ds, scenario)]
     if "unique" in ds and float(ds["unique"].sel(scenario=scenario, step=step)) == 0.0:
         notes.append(NOT_UNIQUE)
+    if "passive_force" in ds:
+        passive = float(ds["passive_force"].sel(scenario=scenario, step=step))
+        if math.isfinite(passive) and passive > PASSIVE_SHOWN:
+            notes.append(f"the fill's passive restraint pushes {passive:.3g} kN horizontally on the ring "
+                         "(its pieces are not drawn)")
     return "; ".join(n for n in notes if n)
 
 

@@ -20,6 +20,9 @@ Sources:
 - The paper (*3D exploration of internal stresses due to lateral loads and foundation
   movements in a semicircular arch*): ``lambda_0max = 0.243`` (Fig. 8) and
   ``lambda_90max = 0.178`` (Fig. 9), printed to three digits.
+- LACT3 v1.0 (Y. Hua, M. Buzzetti, N. Pingaro, L. C. M. da Silva, G. Milani, 2025; repository
+  GabrieleMilani/LACT3_v1.0), its solver test: the collapse tilt of its sample wall, 16.73 deg
+  at a friction angle of 26 deg (a code's test value, not a publication's; :mod:`tce.quality.walls`).
 """
 
 from __future__ import annotations
@@ -41,6 +44,7 @@ from ..structures.arch import semicircular_arch
 from ..structures.dome import hemispherical_dome
 from ..structures.assembly import Assembly, Block, Interface
 from ..structures.geometry import box
+from .walls import lact3_wall, tilt_angle
 
 __all__ = [
     "CASES",
@@ -392,6 +396,23 @@ NONASSOC_CASES: tuple[ValidationCase, ...] = (
 )
 
 CASES = CASES + NONASSOC_CASES
+
+# ------------------------------------------------------------------- walls on a tilting table
+_LACT3 = "LACT3 v1.0 (code, 2025)"
+
+WALL_CASES: tuple[ValidationCase, ...] = (
+    ValidationCase(
+        "lact3_wall_tilt", _LACT3, "LACT3_SolverTest.m (its test; no paper read)",
+        "collapse tilt (deg), its sample wall with a door and a window, phi 26 deg, c = 0, associative", 16.73,
+        lambda: tilt_angle(lact3_wall(), 26.0), "the sample wall: 182 blocks on a slab, table tilted towards +x", 0.015,
+        "a code's own test value, not a publication's: LACT3 steps the tilt up, halving the step below its "
+        "converging tolerance (0.01 deg), reports the last tilt at which the wall still carries load, printed "
+        "to 0.01 deg; the collapse tilt is within 0.015 deg of the printed one. tce 16.7376 (lambda = tan theta); "
+        "towards -x the same wall fails at 10.63 deg",
+    ),
+)
+
+CASES = CASES + WALL_CASES
 
 COLUMNS = ["case", "source", "where", "quantity", "published", "tce", "difference", "tolerance", "ok",
            "discretisation", "time_s"]
