@@ -61,7 +61,7 @@ for 3D blocks [2]_:
    the sliding contacts, 3., did not decrease), the scheme goes on from the plain step the
    extrapolation replaced and extrapolates no more (the approach is not linear over the
    distance: on LACT3's sample wall, ``docs/validation.md``, an extrapolation along a mode of
-   ratio 0.994 raised the error from 6e-5 W to 4e-4 W, and each of 21 more would have been
+   ratio 0.994 raised the error from 6e-5 W to 4e-4 W, and each of 15 more would have been
    refused too). The extrapolation only chooses the next capacities; a state is
    accepted by the test of 3. alone. The vault then converges after 53 to 70 iterations
    at 2.312301 to 2.312313 in any frame (the plain scheme's limit, after 400 iterations:
