@@ -271,6 +271,49 @@ def gilbert_arch() -> None:
     _save(fig, "validation_gilbert_arch.png")
 
 
+def lact3_arch() -> None:
+    """The sample arch of LACT3 v1.0 (arch_1) on a tilting table: the collapse tilt against the number
+    of voussoirs (the LP of the same voussoirs and the continuous ring of the same embrace
+    beside it) and against the friction angle, with the source's 17.10 deg at 25 voussoirs,
+    30 deg."""
+    from tce.quality.validation import TILT_FRICTION_ANGLE, TILT_RADII, TILT_VOUSSOIRS, tilting_arch
+    from tce.quality.walls import tilt_angle
+
+    published = PUBLISHED["lact3_arch_tilt"]
+    ri, re = TILT_RADII
+    t, start = (re - ri) / ((re + ri) / 2), np.pi / 27
+    ns = [5, 9, 15, 25, 45, 85, 165, 325]
+    tce = [tilt_angle(tilting_arch(n), TILT_FRICTION_ANGLE) for n in ns]
+    lp = [np.degrees(np.arctan(lateral_ref.capacity(t, n, "facets", start=start))) for n in ns]
+    ring = np.degrees(np.arctan(lateral_ref.capacity(t, 4000, start=start)))
+    print("voussoirs", ns)
+    print("tce tilt ", [f"{v:.5f}" for v in tce])
+    print("LP tilt  ", [f"{v:.5f}" for v in lp])
+    print("ring     ", f"{ring:.5f}")
+    phis = [15, 17.5, 20, 22.5, 25, 26, 27, 27.5, 28, 29, 30, 32.5, 35, 40, 45]
+    by_phi = [tilt_angle(tilting_arch(), p) for p in phis]
+    print("phi      ", phis)
+    print("tce tilt ", [f"{v:.4f}" for v in by_phi])
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11.5, 4.5))
+    a.semilogx(ns, tce, "o", mfc="none", ms=8, color="C0", label="tce, friction angle 30 deg")
+    a.semilogx(ns, lp, "-", lw=1, color="C0", label="LP over the same voussoirs (no sliding)")
+    a.axhline(ring, color="k", ls=":", label=f"LP, continuous ring of the same embrace ({ring:.3f})")
+    allowed = [[0.005], [0.021]]  # a last stable tilt: the collapse lies up to two 0.0078 deg steps above, +-0.005 rounding
+    a.errorbar([TILT_VOUSSOIRS], [published], yerr=allowed, fmt="r*", ms=11, capsize=3,
+               label=f"LACT3 v1.0 test: {published:.2f} deg at 25 voussoirs")
+    a.set_xticks(ns, [str(n) for n in ns])
+    a.minorticks_off()
+    _decorate(a, "voussoirs (embrace 166.7 deg, t/R = 0.163)", "tilt at collapse (deg)",
+              "LACT3's arch_1 on a tilting table: the discretisation")
+    b.plot(phis, by_phi, "o-", color="C0", label="tce, 25 voussoirs")
+    b.axhline(tce[ns.index(TILT_VOUSSOIRS)], color="grey", ls="--", lw=0.8, label="no sliding (Heyman)")
+    b.errorbar([30.0], [published], yerr=allowed, fmt="r*", ms=11, capsize=3, label="LACT3 v1.0 test, friction angle 30 deg")
+    _decorate(b, "friction angle (deg)", "tilt at collapse (deg)", "the same arch against the friction angle",
+              loc="lower right")
+    _save(fig, "validation_lact3_arch.png")
+
+
+
 def lact3_tilt() -> None:
     """The sample wall of LACT3 v1.0 on a tilting table: its mechanism at phi = 26 deg, and the
     collapse tilt against the friction angle (both directions) with LACT3's test value."""
@@ -316,7 +359,7 @@ def lact3_tilt() -> None:
 
 
 STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity, crushing_arch,
-         gilbert_arch, lact3_tilt)
+         gilbert_arch, lact3_tilt, lact3_arch)
 
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)

@@ -27,10 +27,14 @@ with the next slack of :data:`FACE_SLACKS` (1e-8: every step of that dome then h
 canonical state), and those quantities move by at most that fraction. An answer counts as
 solved only when it passes the caller's residual check (``residual_tol``, the check every
 reported state passes), and at the last slack a warm solver that fails is followed by a
-fresh one (equilibrated for this problem): the thin face is as hard for an interior-point
-method as a load next to its limit (the admissible set is a sliver). On the paper's arch
-under a 1 mm transversal motion (3D SOCP, load path with step 0.02), Clarabel's
-``AlmostSolved`` answers missed the check by up to 2x (cone residual 1.8e-9) and were taken
+fresh one (equilibrated for this problem), then by one with robust settings
+(:meth:`tce.core.clarabel_solver.SolverOptions.settings`): the thin face is as hard for an
+interior-point method as a load next to its limit (the admissible set is a sliver). The
+robust one decided the limit step of a 6 m ring under 0.3 m of fill with passive restraint
+(kp = 3, one 100 kN wheel at x = -1.8 m, tests/test_passive_study.py), where the others stop
+``AlmostSolved`` 3.2e-8 off equilibrium (18 iterations; measured on branch h24d,
+2026-11-24). On the paper's arch under a 1 mm transversal motion (3D SOCP, load path with
+step 0.02), Clarabel's ``AlmostSolved`` answers missed the check by up to 2x (cone residual 1.8e-9) and were taken
 as solved, so the 1e-8 slack was never tried, and 2 of 14 steps (lambda 0.02 and 0.24) were
 left undecided; now all 14 are decided (measured on branch hdef, 2026-11-24).
 
@@ -57,9 +61,10 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from .clarabel_solver import ClarabelSolver, SolverOptions
+from .passive import Restraint
 from .problem import ConicProblem, Formulation, _cones, with_bounded_forces
 
-__all__ = ["FACE_SLACK", "FACE_SLACKS", "SAME_STATE", "Canonical", "CanonicalSolver", "canonical_b", "canonical_problem",
+__all__ = ["FACE_SLACK", "FACE_SLACKS", "SAME_STATE", "Canonical", "CanonicalSolver", "Check", "canonical_b", "canonical_problem",
            "RESTRAINT_WEIGHT", "restrained_canonical_problem"]
 
 #: slack of the energy bound of the optimal face, relative to the optimum
@@ -76,9 +81,30 @@ SAME_STATE = 1e-6
 
 
 def canonical_b(f: Formulation, b: NDArray[np.float64], bound: float) -> NDArray[np.float64]:
-    """Right-hand side of :func:`canonical_problem` (what a warm solver updates)."""
-    m, nz, h = f.A_eq.shape[0], f.law.n_zero, f.law_h
-    return np.concatenate([b[:m], h[:nz], [bound], h[nz:]])
+    """Right-hand side of :func:`canonical_problem` (what a warm solver updates) from the TCE
+    problem's ``b`` (:func:`tce.core.problem.tce_b`, followed by the bounds of
+    :func:`tce.core.problem.with_bounded_forces` for :func:`restrained_canonical_problem`):
+    ``b`` with the energy bound inserted after the law's zero rows."""
+    i = f.A_eq.shape[0] + f.law.n_zero
+    return np.concatenate([b[:i], [bound], b[i:]])
+
+
+def _insert_row(A: sp.csc_matrix, i: int, row: NDArray[np.float64]) -> sp.csc_matrix:
+    """``A`` (CSC, sorted indices) with the nonzeros of the dense ``row`` inserted as row ``i``:
+    the arrays ``sp.vstack([A[:i], row, A[i:]]).tocsc()`` has, without the stacking (which
+    took most of a planar load path's 0.8 ms of set-up of its canonical solver)."""
+    cols = np.flatnonzero(row)
+    ptr = A.indptr
+    above = np.concatenate([[0], np.cumsum(A.indices < i)])  # entries of rows < i, counted
+    at = ptr[cols] + (above[ptr[cols + 1]] - above[ptr[cols]])  # each new entry's place in its column
+    indices = np.where(A.indices < i, A.indices, A.indices + 1)
+    counts = np.zeros(A.shape[1], dtype=ptr.dtype)
+    counts[cols] = 1
+    return sp.csc_matrix(
+        (np.insert(A.data, at, row[cols]), np.insert(indices, at, i).astype(A.indices.dtype),
+         ptr + np.concatenate([[0], np.cumsum(counts)]).astype(ptr.dtype)),
+        shape=(A.shape[0] + 1, A.shape[1]),
+    )
 
 
 def canonical_problem(f: Formulation, b: NDArray[np.float64], q: NDArray[np.float64], bound: float) -> ConicProblem:
@@ -93,9 +119,8 @@ def canonical_problem(f: Formulation, b: NDArray[np.float64], q: NDArray[np.floa
     m, n = f.A_eq.shape
     c = f.model.compliance(1.0, 1.0)
     P = sp.diags(c / c.max()).tocsc()
-    M = law.M.tocsr()
     nz = law.n_zero
-    A = sp.vstack([f.A_eq, -M[:nz], sp.csr_matrix(q.reshape(1, -1)), -M[nz:]]).tocsc()
+    A = _insert_row(f.constraints, m + nz, q)
     cones = _cones(("zero", m + nz), ("nonneg", law.n_nonneg + 1), n_soc=law.n_soc)
     return ConicProblem("canonical", P, np.zeros(n), A, canonical_b(f, b, bound), cones)
 
@@ -134,6 +159,8 @@ class Canonical:
     forces : (n,) ndarray or None
         Physical forces (kN) of the canonical state; None when its solve failed or missed
         the residual check at every slack (the solver's answer is kept, uniqueness unknown).
+    restraint_forces : (k,) ndarray or None
+        Its passive restraint forces (kN; None without a restraint or without a state).
     residuals : tuple of float or None
         The caller's residuals of ``forces`` (equilibrium, contact law).
     unique : bool or None
@@ -143,70 +170,79 @@ class Canonical:
     """
 
     forces: NDArray[np.float64] | None
+    restraint_forces: NDArray[np.float64] | None
     residuals: tuple[float, float] | None
     unique: bool | None
     solve_time: float
     setup_time: float
 
 
+#: What :meth:`CanonicalSolver.state` checks: scaled unknowns -> (forces (kN), restraint forces
+#: (kN) or None, (equilibrium, contact-law) residuals)
+Check = Callable[[NDArray[np.float64]], tuple[NDArray[np.float64], NDArray[np.float64] | None, tuple[float, float]]]
+
+
 class CanonicalSolver:
-    """Canonical states for one formulation; a warm Clarabel solver per support motion
-    (a load path changes only the right-hand side and the energy bound)."""
+    """Canonical states for one formulation; a warm Clarabel solver per support motion and
+    passive restraint (a load path changes only the right-hand side and the energy bound)."""
 
     def __init__(self, f: Formulation, options: SolverOptions) -> None:
         self.f = f
         self.options = options
         self._warm: ClarabelSolver | None = None
         self._q: NDArray[np.float64] | None = None
+        self._restraint: Restraint | None = None
 
     def state(
-        self,
-        b: NDArray[np.float64],
-        q: NDArray[np.float64],
-        F: NDArray[np.float64],
-        residuals: Callable[[NDArray[np.float64]], tuple[float, float]],
+        self, b: NDArray[np.float64], q: NDArray[np.float64], x: NDArray[np.float64], check: Check,
+        restraint: Restraint | None = None,
     ) -> Canonical:
-        """The canonical state of the optimal answer ``F`` (kN) of the TCE problem with scaled
-        right-hand side ``b`` (:func:`tce.core.problem.tce_b`) and scaled objective ``q``.
+        """The canonical state of the optimal answer ``x`` (scaled unknowns: ``F / W``, then the
+        restraint's ``p / W``) of the TCE problem with scaled right-hand side ``b``
+        (:func:`tce.core.problem.tce_b`, then the restraint's bounds,
+        :func:`tce.core.problem.bounded_b`) and scaled objective ``q`` (``n``).
 
-        ``residuals`` gives the equilibrium and contact-law residuals of physical forces
-        (:meth:`tce.core.problem.Formulation.residuals_scaled`); a slack's answer is taken
-        when both are within ``options.residual_tol``, else the next slack is tried."""
-        f = self.f
-        W = f.scaling.force
-        x = F / W
-        value = float(q @ x)
+        ``check`` gives the forces and the equilibrium and contact-law residuals of scaled
+        unknowns; a slack's answer is taken when both residuals are within
+        ``options.residual_tol``, else the next slack is tried."""
+        n = self.f.n
+        value = float(q @ x[:n])
         solve_time = setup_time = 0.0
         for slack in FACE_SLACKS:
             # relative to the optimum itself (an absolute slack would move the quantities the
             # energy fixes, e.g. a thrust, by slack / |value|), with a floor at the rounding of q x
-            bound = value + slack * abs(value) + 1e-15 * float(np.abs(q) @ np.abs(x))
-            for solver in self._solvers(b, q, bound, fresh=slack == FACE_SLACKS[-1]):
+            bound = value + slack * abs(value) + 1e-15 * float(np.abs(q) @ np.abs(x[:n]))
+            for solver in self._solvers(b, q, bound, restraint, fresh=slack == FACE_SLACKS[-1]):
                 sol = solver.solve()
                 solve_time += sol.solve_time
                 setup_time += sol.setup_time
                 if not sol.solved:
                     continue
-                Fc = f.forces(sol.x)
-                res = residuals(Fc)
+                F, p, res = check(sol.x)
                 if max(res) <= self.options.residual_tol:
                     same = float(np.abs(sol.x - x).max(initial=0.0)) <= SAME_STATE
-                    return Canonical(Fc, res, same, solve_time, setup_time)
-        return Canonical(None, None, None, solve_time, setup_time)
+                    return Canonical(F, p, res, same, solve_time, setup_time)
+        return Canonical(None, None, None, None, solve_time, setup_time)
 
     def _solvers(
-        self, b: NDArray[np.float64], q: NDArray[np.float64], bound: float, fresh: bool
+        self, b: NDArray[np.float64], q: NDArray[np.float64], bound: float, restraint: Restraint | None, fresh: bool
     ) -> Iterator[ClarabelSolver]:
         """The warm solver set to ``(b, q, bound)``; then, with ``fresh`` (the last slack) or
-        when it was set up for another ``q``, a new one. The warm solver keeps the
-        equilibration of its first problem; a new one solved the step it could not (lambda
-        0.24 of the 3D arch)."""
+        when it was set up for another ``q`` or restraint, a new one. The warm solver keeps
+        the equilibration of its first problem; a new one solved the step it could not
+        (lambda 0.24 of the 3D arch)."""
         f = self.f
-        if self._warm is not None and self._q is q:
+        if self._warm is not None and self._q is q and self._restraint is restraint:
             self._warm.update(b=canonical_b(f, b, bound))
             yield self._warm
             if not fresh:
                 return
-        self._warm = ClarabelSolver(canonical_problem(f, b, q, bound), self.options.settings(kkt=f.kkt))
-        self._q = q
+        if restraint is None:
+            problem = canonical_problem(f, b, q, bound)
+        else:
+            problem = restrained_canonical_problem(f, b[: -2 * restraint.size], q, bound, restraint.G, restraint.capacity)
+        self._warm = ClarabelSolver(problem, self.options.settings(kkt=f.kkt))
+        self._q, self._restraint = q, restraint
         yield self._warm
+        if fresh:
+            yield ClarabelSolver(problem, self.options.settings(robust=True, kkt=f.kkt))

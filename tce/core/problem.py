@@ -77,6 +77,7 @@ __all__ = [
     "restrained_tce_problem",
     "tce_b",
     "tce_problem",
+    "bounded_b",
     "with_bounded_forces",
 ]
 
@@ -608,9 +609,15 @@ def with_bounded_forces(problem: ConicProblem, columns: sp.spmatrix, upper: NDAr
     eye = sp.identity(k, format="csr")
     A = sp.bmat([[problem.A, columns], [None, -eye], [None, eye]], format="csc", dtype=float)
     P = sp.block_diag([problem.P, sp.csc_matrix((k, k))], format="csc")
-    return ConicProblem(problem.name, P, np.concatenate([problem.q, np.zeros(k)]), A,
-                        np.concatenate([problem.b, np.zeros(k), np.asarray(upper, dtype=float)]),
+    return ConicProblem(problem.name, P, np.concatenate([problem.q, np.zeros(k)]), A, bounded_b(problem.b, upper),
                         problem.cones + (("nonneg", 2 * k),))
+
+
+def bounded_b(b: NDArray[np.float64], upper: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``b`` of :func:`with_bounded_forces`' problem from its base problem's ``b`` and the bounds
+    ``upper`` (what a warm solver of the bounded problem updates): ``(b, 0, upper)``."""
+    upper = np.asarray(upper, dtype=float)
+    return np.concatenate([b, np.zeros(len(upper)), upper])
 
 
 def restrained_tce_problem(

@@ -41,6 +41,15 @@ phase-1 residual close to ``feas_tol`` is decided again with tight tolerances), 
 feasible, bounded problem is retried: first with a fresh solver equilibrated for this
 problem (``rescaled``; the warm solver keeps the scaling of its first problem), then with
 robust settings. The result always says what decided (``retry``).
+
+A fill's passive restraint (:mod:`tce.core.passive`) is ``k`` more unknowns of the same
+problems, ``0 <= p <= capacity`` in the equilibrium rows and without energy
+(:func:`tce.core.problem.with_bounded_forces`: :func:`tce.core.problem.restrained_tce_problem`,
+:func:`tce.core.problem.restrained_phase1_problem`,
+:func:`tce.core.canonical.restrained_canonical_problem`): the warm solvers, the verdicts,
+the retries, the residual check (``G p`` in the equilibrium rows, the bounds in the law's
+violation) and the canonical state are those of the problem without it. Its recession
+directions are the self-stresses (a bounded ``p`` has none).
 """
 
 from __future__ import annotations
@@ -60,9 +69,9 @@ from .loads import LoadPattern, as_pattern, check_in_plane, load_vectors
 from .passive import Restraint, passive_restraint
 from .material import Material
 from .model import InterfaceMap, Model
-from .canonical import FACE_SLACKS, SAME_STATE, CanonicalSolver, restrained_canonical_problem
-from .problem import (Formulation, phase1_b, phase1_problem, q_scale, recession_problem, restrained_phase1_problem,
-                      restrained_tce_problem, tce_b, tce_problem)
+from .canonical import Check, CanonicalSolver
+from .problem import (ConicProblem, Formulation, bounded_b, phase1_b, phase1_problem, q_scale, recession_problem,
+                      restrained_phase1_problem, restrained_tce_problem, tce_b, tce_problem)
 from .result import STATUSES, WRENCH_COMPONENTS, XYZ, Result
 
 if TYPE_CHECKING:
@@ -274,12 +283,15 @@ class TCESolver:
         self.scaling = self.formulation.scaling
         self._warm: ClarabelSolver | None = None
         self._warm_q: NDArray[np.float64] | None = None
+        self._warm_restraint: Restraint | None = None
         #: (copy of the last U, its q, the U array itself, whether q is rescaled, whether anything moves)
         self._q_last: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], bool, bool] | None = None
         self._feas: ClarabelSolver | None = None
+        self._feas_restraint: Restraint | None = None
         self._recession_cache: dict[bytes, tuple[float, float, NDArray[np.float64]]] = {}
         self._vectors_last: tuple[LoadPattern, tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None
-        self._restraint_last: tuple[LoadPattern, Restraint | None] = (None, None)
+        #: (the last pattern's fill, its restraint): one Restraint per fill, so the warm solvers stay
+        self._restraint_last: tuple[Any, Restraint | None] | None = None
         self._canonical: CanonicalSolver | None = None
 
     # ------------------------------------------------------------ problem vectors
@@ -291,12 +303,13 @@ class TCESolver:
             return last[1]
         v = load_vectors(self.model, loads)
         self._vectors_last = (loads, v)
-        self._restraint_last = (loads, passive_restraint(self.model, loads.fill))
+        if self._restraint_last is None or self._restraint_last[0] != loads.fill:
+            self._restraint_last = (loads.fill, passive_restraint(self.model, loads.fill))
         return v
 
     def restraint(self, loads: LoadPattern) -> Restraint | None:
         """The passive restraint of the pattern's fill (:func:`tce.core.passive.passive_restraint`),
-        None without one; kept with :meth:`vectors`' last pattern."""
+        None without one; kept while the patterns' fill is the same (a moving vehicle)."""
         self.vectors(loads)
         return self._restraint_last[1]
 
@@ -323,52 +336,87 @@ class TCESolver:
         check_in_plane(self.model, loads, {n: U[6 * i : 6 * i + 6] for i, n in enumerate(names)})
 
     # ------------------------------------------------------------ clarabel calls
-    def _main(self, U: NDArray[np.float64], b: NDArray[np.float64]) -> Solution:
-        """The warm solver for the scaled right-hand side ``b`` (:func:`tce.core.problem.tce_b`):
-        set up on the first call, then only its vectors are updated (``b`` alone while ``U`` is
-        unchanged; iterative refinement as ``options.refine``)."""
+    def _bounded(self, b: NDArray[np.float64], restraint: Restraint | None) -> NDArray[np.float64]:
+        """``b`` of a problem followed by the rows of the restraint's bounds
+        (:func:`tce.core.problem.bounded_b`; ``b`` itself without a restraint)."""
+        return b if restraint is None else bounded_b(b, restraint.capacity / self.scaling.force)
+
+    def _problem(self, b: NDArray[np.float64], U: NDArray[np.float64], restraint: Restraint | None) -> ConicProblem:
+        """The TCE problem of the scaled right-hand side ``b`` (:meth:`_bounded` of
+        :func:`tce.core.problem.tce_b`): :func:`tce.core.problem.tce_problem`, with the
+        restraint's bounded columns (:func:`tce.core.problem.restrained_tce_problem`)."""
+        if restraint is None:
+            return tce_problem(self.formulation, b, U)
+        return restrained_tce_problem(self.formulation, b[: -2 * restraint.size], U, restraint.G, restraint.capacity)
+
+    def _check(self, b: NDArray[np.float64], restraint: Restraint | None) -> Check:
+        """Scaled unknowns of the TCE problem of ``b`` -> (forces (kN), restraint forces (kN) or
+        None, (equilibrium, contact-law) residuals): the check every ``optimal`` answer passes.
+        The restraint's forces enter the equilibrium residual and their bounds the law's."""
+        f, W = self.formulation, self.scaling.force
+        b_eq = b[: f.A_eq.shape[0]]
+
+        def check(x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64] | None, tuple[float, float]]:
+            F = f.forces(x)
+            if restraint is None:
+                return F, None, f.residuals_scaled(F, b_eq)
+            p = x[f.n : f.n + restraint.size] * W
+            eq, law = f.residuals_scaled(F, b_eq - (restraint.G @ p) / f.row_div)
+            bound = float(np.maximum(-p, p - restraint.capacity).max(initial=0.0)) / W
+            return F, p, (eq, max(law, bound))
+        return check
+
+    def _main(self, U: NDArray[np.float64], b: NDArray[np.float64], restraint: Restraint | None) -> Solution:
+        """The warm solver for the scaled right-hand side ``b`` (:meth:`_bounded` of
+        :func:`tce.core.problem.tce_b`): set up on the first call and for a new restraint, then
+        only its vectors are updated (``b`` alone while ``U`` is unchanged; iterative
+        refinement as ``options.refine``)."""
         f, q = self.formulation, self._q(U)
-        if self._q_last[3] or self._warm is None:
+        if self._q_last[3] or self._warm is None or restraint is not self._warm_restraint:
             settings = self.options.settings(refine=self.options.refine, kkt=f.kkt, b_norm=_b_norm(b))
             if self._q_last[3]:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
-                return solve_once(tce_problem(f, b, U), settings)
-            self._warm = ClarabelSolver(tce_problem(f, b, U), settings)
+                return solve_once(self._problem(b, U, restraint), settings)
+            self._warm = ClarabelSolver(self._problem(b, U, restraint), settings)
+            self._warm_restraint = restraint
         elif q is self._warm_q:
             self._warm.update(b=b)
         else:
-            self._warm.update(q=q, b=b)
+            self._warm.update(q=q if restraint is None else np.concatenate([q, np.zeros(restraint.size)]), b=b)
         self._warm_q = q
         return self._warm.solve()
 
-    def phase1(self, lam: float, alpha: float | None = None, loads: LoadPattern | None = None) -> tuple[float, float, str]:
-        """Smallest equilibrium residual reachable by admissible forces at multiplier ``lam``
-        of the pattern ``loads`` (or the default pattern in direction ``alpha``).
+    def _phase1(self, rhs: NDArray[np.float64], restraint: Restraint | None = None) -> tuple[float, float, str]:
+        """Smallest equilibrium residual reachable by admissible forces for the right-hand
+        side ``rhs`` (with the restraint's bounded forces when given).
 
-        Solves :func:`tce.core.problem.phase1_problem` (always feasible and bounded).
-        Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol`` means the load is
+        Solves :func:`tce.core.problem.phase1_problem` (always feasible and bounded; with a
+        restraint, :func:`tce.core.problem.restrained_phase1_problem`; ``r`` at index ``n`` in
+        both). Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol`` means the load is
         carried. A residual that is undecided (NaN) or lies within ``PHASE1_BAND`` times
-        ``feas_tol`` is decided again with tight tolerances
-        (:meth:`SolverOptions.settings`); the status then ends with ``tight: ...``.
-        """
-        return self._phase1(self.rhs(lam, alpha, loads))
-
-    def _phase1(self, rhs: NDArray[np.float64]) -> tuple[float, float, str]:
-        """:meth:`phase1` for a right-hand side ``rhs``."""
+        ``feas_tol`` is decided again with tight tolerances (:meth:`SolverOptions.settings`);
+        the status then ends with ``tight: ...``."""
         f = self.formulation
-        if self._feas is None:
-            self._feas = ClarabelSolver(phase1_problem(f, rhs), self.options.settings(kkt=self.formulation.kkt))
+
+        def problem() -> ConicProblem:
+            if restraint is None:
+                return phase1_problem(f, rhs)
+            return restrained_phase1_problem(f, rhs, restraint.G, restraint.capacity)
+
+        if self._feas is None or restraint is not self._feas_restraint:
+            self._feas = ClarabelSolver(problem(), self.options.settings(kkt=self.formulation.kkt))
+            self._feas_restraint = restraint
         else:
-            self._feas.update(b=phase1_b(f, rhs))
+            self._feas.update(b=self._bounded(phase1_b(f, rhs), restraint))
         sol = self._feas.solve()
-        r = float(sol.x[-1]) if sol.solved else float("nan")
+        r = float(sol.x[f.n]) if sol.solved else float("nan")
         t, status = sol.solve_time, sol.status
         if not r <= self.options.feas_tol and not r > self.PHASE1_BAND * self.options.feas_tol:
             # undecided, or too close to feas_tol for the default tolerances: decide again
             # with tight ones (a fresh solver, so also a fresh equilibration)
-            sol = solve_once(phase1_problem(f, rhs), self.options.settings(tight=True, kkt=f.kkt))
+            sol = solve_once(problem(), self.options.settings(tight=True, kkt=f.kkt))
             t += sol.solve_time
             if sol.solved:
-                r = float(np.nanmin([r, float(sol.x[-1])]))  # each is reached by some admissible state
+                r = float(np.nanmin([r, float(sol.x[f.n])]))  # each is reached by some admissible state
             status = f"{status}, tight: {sol.status}"
         return r, t, status
 
@@ -429,24 +477,23 @@ class TCESolver:
         """:meth:`solve` for a scene already checked: finite ``lam``, a load pattern (or the
         direction ``alpha`` of the default one) and ``U`` the stacked motions (m, rad) of a
         scene this model can carry (the hot path of a load path;
-        :class:`tce.core.analysis.Analysis` checks each scene once)."""
+        :class:`tce.core.analysis.Analysis` checks each scene once). The pattern's passive
+        restraint, if any, adds its bounded forces to every problem (module docstring)."""
         t0 = time.perf_counter() if t0 is None else t0
         pattern = loads if isinstance(loads, LoadPattern) else as_pattern(loads)
         b_fixed, b_live = self.vectors(pattern)
         rhs = b_fixed + lam * b_live
         restraint = self.restraint(pattern)
-        if restraint is not None:
-            return self._solve_restrained(lam, pattern, U, rhs, restraint, t0)
-        b = tce_b(self.formulation, rhs)
-        b_eq = b[: self.formulation.A_eq.shape[0]]
-        sol = self._main(U, b)
+        f = self.formulation
+        b = self._bounded(tce_b(f, rhs), restraint)
+        check = self._check(b, restraint)
+        sol = self._main(U, b, restraint)
         stime, setup = sol.solve_time, sol.setup_time
         notes = [f"clarabel: {sol.status}"]
-        status, retry, F, res = "numerical", "", None, None
+        status, retry, F, p, res = "numerical", "", None, None, None
 
         if sol.solved:
-            F = self.formulation.forces(sol.x)
-            res = self.formulation.residuals_scaled(F, b_eq)
+            F, p, res = check(sol.x)
             if self._passes(res):
                 status = "optimal"
             else:
@@ -455,10 +502,10 @@ class TCESolver:
             status = "infeasible"
         if status == "numerical" and sol.status != "PrimalInfeasible":
             # Clarabel's verdict is not clean (or claims unboundedness): decide feasibility first.
-            r, t, fstat = self._phase1(rhs)
+            r, t, fstat = self._phase1(rhs, restraint)
             stime += t
             notes.append(f"phase-1 residual {r:.3g} ({fstat})")
-            rigid = self.formulation.D is None
+            rigid = f.D is None
             if not np.isfinite(r):
                 retry = "phase-1 failed"
             elif r > self.options.feas_tol:
@@ -466,6 +513,7 @@ class TCESolver:
             elif sol.status == "DualInfeasible" and rigid:
                 status, retry = "unbounded", ""
             elif rigid and np.any(U):
+                # the restraint's forces are bounded: the recession directions are the self-stresses
                 val, t = self.recession(U)
                 stime += t
                 notes.append(f"recession {val:.3g}")
@@ -477,101 +525,32 @@ class TCESolver:
             for name, robust in (("rescaled", False), ("robust settings", True)):
                 if status != "numerical":
                     break
-                sol2 = solve_once(tce_problem(self.formulation, b, U), self.options.settings(
-                    robust=robust, kkt=self.formulation.kkt, b_norm=_b_norm(b)))
+                sol2 = solve_once(self._problem(b, U, restraint), self.options.settings(
+                    robust=robust, kkt=f.kkt, b_norm=_b_norm(b)))
                 stime += sol2.solve_time
                 setup += sol2.setup_time
                 notes.append(f"{name} retry: {sol2.status}")
                 if sol2.solved:
-                    F2 = self.formulation.forces(sol2.x)
-                    res = self.formulation.residuals_scaled(F2, b_eq)
+                    F2, p2, res = check(sol2.x)
                     if self._passes(res):
-                        status, retry, F = "optimal", name, F2
+                        status, retry, F, p = "optimal", name, F2, p2
         unique = None
         if status != "optimal":
-            F = res = None
-        elif self.formulation.D is None and self.options.canonical:
-            can = self._canonical_solver().state(b, self._q(U), F, lambda Fc: self.formulation.residuals_scaled(Fc, b_eq))
+            F = p = res = None
+        elif f.D is None and self.options.canonical:
+            x = (F if p is None else np.concatenate([F, p])) / self.scaling.force
+            can = self._canonical_solver().state(b, self._q(U), x, check, restraint)
             stime += can.solve_time
             setup += can.setup_time
             if can.forces is not None and can.residuals is not None:
-                F, res, unique = can.forces, can.residuals, can.unique
+                F, p, res, unique = can.forces, can.restraint_forces, can.residuals, can.unique
             else:
                 notes.append("canonical state not found: the solver's state kept")
+        if restraint is not None:
+            notes.append(f"passive restraint: {restraint.size} bounded forces")
+            p = np.full(restraint.size, np.nan) if p is None else p
         return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,
-                            sol.iterations, retry, "; ".join(notes), unique)
-
-    def _solve_restrained(
-        self, lam: float, pattern: LoadPattern, U: NDArray[np.float64], rhs: NDArray[np.float64], restraint: Restraint,
-        t0: float,
-    ) -> TCEResult:
-        """:meth:`solve_scene` with the fill's passive restraint: the forces ``0 <= p <= capacity``
-        are unknowns of the TCE problem (:func:`tce.core.problem.restrained_tce_problem`), so
-        the states and the load path see the same admissible set as the direct limit.
-
-        One cold solve; an unclear answer is decided by the restrained phase-1 problem
-        (:func:`tce.core.problem.restrained_phase1_problem`) and retried with robust settings.
-        A rigid optimum is replaced by its canonical state
-        (:func:`tce.core.canonical.restrained_canonical_problem`), which decides ``unique``. An
-        unbounded rigid TCE under support motions is reported ``numerical``, not proven.
-        """
-        f, W, k = self.formulation, self.scaling.force, restraint.size
-        b = tce_b(f, rhs)
-        n_eq = f.A_eq.shape[0]
-        problem = restrained_tce_problem(f, b, U, restraint.G, restraint.capacity)
-        status, retry, F, p, res = "numerical", "", None, None, None
-        notes, stime, setup, iterations = [], 0.0, 0.0, 0
-
-        def check(x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], tuple[float, float]]:
-            Fx, px = f.forces(x), x[f.n : f.n + k] * W
-            eq, law = f.residuals_scaled(Fx, b[:n_eq] - (restraint.G @ px) / f.row_div)
-            bound = float(np.maximum(-px, px - restraint.capacity).max(initial=0.0)) / W
-            return Fx, px, (eq, max(law, bound))
-
-        for name, robust in (("", False), ("robust settings", True)):
-            sol = solve_once(problem, self.options.settings(robust=robust, kkt=f.kkt, b_norm=_b_norm(b)))
-            stime, setup = stime + sol.solve_time, setup + sol.setup_time
-            iterations = iterations or sol.iterations
-            notes.append(f"{name + ' retry: ' if name else ''}clarabel: {sol.status}")
-            if sol.solved:
-                F2, p2, res2 = check(sol.x)
-                if self._passes(res2):
-                    status, retry, F, p, res = "optimal", name, F2, p2, res2
-                    break
-                notes.append("residual check failed")
-            elif sol.status == "PrimalInfeasible":
-                status = "infeasible"
-                break
-            if not name:
-                psol = solve_once(restrained_phase1_problem(f, rhs, restraint.G, restraint.capacity),
-                                  self.options.settings(tight=True, kkt=f.kkt))
-                stime += psol.solve_time
-                r = float(psol.x[f.n]) if psol.solved else float("nan")
-                notes.append(f"phase-1 residual {r:.3g} ({psol.status})")
-                if r > self.options.feas_tol:
-                    status, retry = "infeasible", "phase-1 (tight)"
-                    break
-        unique = None
-        if status == "optimal" and f.D is None and self.options.canonical:
-            x = np.concatenate([F, p]) / W
-            q = self._q(U)
-            value = float(q[: f.n] @ x[: f.n])
-            for slack in FACE_SLACKS:  # as tce.core.canonical.CanonicalSolver.state, one cold solve per slack
-                bound = value + slack * abs(value) + 1e-15 * float(np.abs(q) @ np.abs(x[: f.n]))
-                csol = solve_once(restrained_canonical_problem(f, b, q, bound, restraint.G, restraint.capacity),
-                                  self.options.settings(kkt=f.kkt))
-                stime, setup = stime + csol.solve_time, setup + csol.setup_time
-                if csol.solved:
-                    Fc, pc, resc = check(csol.x)
-                    if self._passes(resc):
-                        unique = float(np.abs(csol.x - x).max(initial=0.0)) <= SAME_STATE
-                        F, p, res = Fc, pc, resc
-                        break
-            else:
-                notes.append("canonical state not found: the solver's state kept")
-        notes.append(f"passive restraint: {k} bounded forces")
-        return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,
-                            iterations, retry, "; ".join(notes), unique, restraint_forces=p if p is not None else np.full(k, np.nan))
+                            sol.iterations, retry, "; ".join(notes), unique, restraint_forces=p)
 
     def _canonical_solver(self) -> CanonicalSolver:
         """The warm solver of canonical states (built on first use)."""

@@ -22,7 +22,8 @@ Sources:
   ``lambda_90max = 0.178`` (Fig. 9), printed to three digits.
 - LACT3 v1.0 (Y. Hua, M. Buzzetti, N. Pingaro, L. C. M. da Silva, G. Milani, 2025; repository
   GabrieleMilani/LACT3_v1.0), its solver test: the collapse tilt of its sample wall, 16.73 deg
-  at a friction angle of 26 deg (a code's test value, not a publication's; :mod:`tce.quality.walls`).
+  at a friction angle of 26 deg (:mod:`tce.quality.walls`), and of its sample arch ``arch_1``,
+  17.10 deg at 30 deg (:func:`tilting_arch`): a code's test values, not a publication's.
 """
 
 from __future__ import annotations
@@ -40,7 +41,7 @@ from ..analysis.nonassoc import nonassociative_limit
 from ..analysis.thickness import arch_minimum_thickness, minimum_thickness
 from ..core.analysis import Analysis
 from ..core.material import Material
-from ..structures.arch import semicircular_arch
+from ..structures.arch import segmental_arch, semicircular_arch
 from ..structures.dome import hemispherical_dome
 from ..structures.assembly import Assembly, Block, Interface
 from ..structures.geometry import box
@@ -58,6 +59,7 @@ __all__ = [
     "nonassoc_min_ratio",
     "run_validation",
     "stress_block_column",
+    "tilting_arch",
 ]
 
 #: voussoirs of the arch cases in the command and the suite (the figures go to 640)
@@ -413,6 +415,43 @@ WALL_CASES: tuple[ValidationCase, ...] = (
 )
 
 CASES = CASES + WALL_CASES
+
+# ------------------------------------------------------- the arch on a tilting table (LACT3's arch_1)
+#: LACT3's sample arch (Hua, Buzzetti, Pingaro, da Silva & Milani, ``sample/arch_1.dxf``, mm there):
+#: a semicircle of 27 radial voussoirs of 20/3 deg, intrados radius 317 mm, extrados 373.3 mm,
+#: whose lowest voussoir on each side is part of the base, so that 25 voussoirs stand on two
+#: skewbacks inclined at pi/27 above the springing line; friction angle 30 deg, no cohesion.
+TILT_RADII = (0.317, 0.3733)
+TILT_VOUSSOIRS = 25
+TILT_FRICTION_ANGLE = 30.0
+
+
+def tilting_arch(voussoirs: int = TILT_VOUSSOIRS, depth: float = 0.1) -> Assembly:
+    """LACT3's arch_1 (m): the circular ring of :data:`TILT_RADII` between skewbacks at
+    ``pi/27`` above the springing line (embrace ``25 pi/27``), cut into ``voussoirs`` equal
+    radial voussoirs (25 in the source), as :func:`tce.structures.arch.segmental_arch`:
+    intrados span ``2 ri cos(pi/27)``, rise ``ri (1 - sin(pi/27))``, thickness ``re - ri``."""
+    ri, re = TILT_RADII
+    start = math.pi / 27.0
+    return segmental_arch(2.0 * ri * math.cos(start), ri * (1.0 - math.sin(start)), re - ri, depth, voussoirs,
+                          UNIT_WEIGHT)
+
+
+TILTING_CASES: tuple[ValidationCase, ...] = (
+    ValidationCase(
+        "lact3_arch_tilt", _LACT3, "LACT3_SolverTest.m (its test; no paper read)",
+        "collapse tilt (deg) of its sample arch, 25 voussoirs, phi 30 deg, c = 0, associative", 17.10,
+        lambda: tilt_angle(tilting_arch(), TILT_FRICTION_ANGLE),
+        f"their arch: {TILT_VOUSSOIRS} radial voussoirs, mu = tan 30 deg", 0.02,
+        "a code's own test value, not a publication's: LACT3 prints, to 0.01 deg, the last tilt at "
+        "which the arch stands, found by halving a 1 deg step until it is below 0.01 deg (LACT3.m's "
+        "defaults): at most 0.016 deg below the collapse, and 0.005 of rounding; tce 17.1057 = "
+        "atan(0.3077487), which the LP of the same voussoirs (tests/reference/lateral_arch.py) gives "
+        "to 1e-11; four hinges, no joint slides, so the friction angle does not enter",
+    ),
+)
+
+CASES = CASES + TILTING_CASES
 
 COLUMNS = ["case", "source", "where", "quantity", "published", "tce", "difference", "tolerance", "ok",
            "discretisation", "time_s"]

@@ -17,7 +17,10 @@ moments ``Sx = int x dW``, ``Sz = int z dW``) onto the rest the force
 
 ``shell="ring"``: ``m`` cuts, each part an annular sector (its centroid at radius
 ``(2/3)(re^3 - ri^3)/(re^2 - ri^2) sin(b/2)/(b/2)`` on its bisector): the continuous arch as
-``m`` grows. With a finite compressive strength ``f = fc / (gamma R)`` (dimensionless) every
+``m`` grows. An arch of embrace ``pi - 2 a`` (``start=a``: its springing joints on the radii at
+``a`` above the springing line, as a semicircle whose lowest parts are built into the supports)
+has its cuts from ``b = a`` to ``b = pi - a`` and the parts ``[a, b]``; the equations are the
+same. With a finite compressive strength ``f = fc / (gamma R)`` (dimensionless) every
 joint is a rigid-plastic stress block: the compressed zone ``N / f`` is centred on the pressure
 point, so ``ri + N / (2 f) <= rho <= re - N / (2 f)``, i.e.
 ``N^2 / (2 f) <= Sx + lam Sz - M0 - ri N`` and ``N^2 / (2 f) <= re N - (Sx + lam Sz - M0)``: convex,
@@ -37,15 +40,16 @@ from scipy.optimize import linprog
 TOLERANCES = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
 
 
-def _moments(t: float, m: int, shell: str) -> tuple[np.ndarray, ...]:
-    """Angles ``b`` of the cuts and the weight and first moments of the parts ``[0, b]``."""
+def _moments(t: float, m: int, shell: str, start: float = 0.0) -> tuple[np.ndarray, ...]:
+    """Angles ``b`` of the cuts and the weight and first moments of the parts ``[start, b]``."""
     ri, re = 1.0 - t / 2.0, 1.0 + t / 2.0
-    b = np.linspace(0.0, np.pi, m + 1)
+    b = np.linspace(start, np.pi - start, m + 1)
     if shell == "ring":
+        h = (b - start) / 2  # half-angle of the sector [start, b], its bisector at start + h
         rc = np.ones_like(b) * (2.0 / 3.0) * (re**3 - ri**3) / (re**2 - ri**2)
-        rc[1:] *= np.sin(b[1:] / 2) / (b[1:] / 2)
-        w = t * b
-        return b, w, -w * rc * np.cos(b / 2), w * rc * np.sin(b / 2)
+        rc[1:] *= np.sin(h[1:]) / h[1:]
+        w = t * (b - start)
+        return b, w, -w * rc * np.cos(start + h), w * rc * np.sin(start + h)
     if shell != "facets":
         raise ValueError(f"unknown shell {shell!r}")
     area, sx, sz = np.zeros(m + 1), np.zeros(m + 1), np.zeros(m + 1)
@@ -63,12 +67,15 @@ def _moments(t: float, m: int, shell: str) -> tuple[np.ndarray, ...]:
     return b, np.cumsum(area), np.cumsum(sx), np.cumsum(sz)
 
 
-def capacity(t: float, m: int = 2000, shell: str = "ring", strength: float | None = None) -> float | None:
+def capacity(t: float, m: int = 2000, shell: str = "ring", strength: float | None = None,
+             start: float = 0.0) -> float | None:
     """Largest ``lam`` (horizontal acceleration / g) the arch of thickness ratio ``t`` carries
     (None if it does not stand under self-weight); ``strength``: ``fc / (gamma R)``, None for
-    unlimited."""
+    unlimited; ``start``: angle (rad) of the springing joints above the springing line, for an
+    arch of embrace ``pi - 2 start`` (its springing joints on the radii at ``start`` and
+    ``pi - start`` from the left springing; 0: the semicircle)."""
     ri, re = 1.0 - t / 2.0, 1.0 + t / 2.0
-    b, w, sx, sz = _moments(t, m, shell)
+    b, w, sx, sz = _moments(t, m, shell, start)
     s, c = np.sin(b), np.cos(b)
     zero = np.zeros_like(b)
     # variables x = (Rx, Rz, M0, lam): N = n_rows x - n_rhs; rho N = Sx + lam Sz - M0 = mom x + sx
