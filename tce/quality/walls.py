@@ -28,7 +28,7 @@ from ..core.analysis import Analysis
 from ..core.material import Material
 from ..structures.assembly import Assembly, Block
 from ..structures.contacts import detect_interfaces
-from ..structures.geometry import prism
+from ..structures.geometry import prisms
 
 __all__ = ["LACT3_DOOR", "LACT3_WINDOW", "lact3_wall", "tilt_angle"]
 
@@ -97,13 +97,14 @@ def lact3_wall(tilt: float = 0.0, unit_weight: float = 25.0, depth: float = 1.0)
         rects += [(x0, x1, c * h, (c + 1) * h) for x0, x1 in _course(c, length, unit, (LACT3_DOOR, LACT3_WINDOW), lintel)]
     t = math.radians(tilt)
     rot = np.array([[math.cos(t), 0.0, math.sin(t)], [0.0, 1.0, 0.0], [-math.sin(t), 0.0, math.cos(t)]])
-    blocks = []
-    for k, (x0, x1, z0, z1) in enumerate(rects):
-        loop = np.array([[x0, 0.0, z0], [x1, 0.0, z0], [x1, 0.0, z1], [x0, 0.0, z1]])
-        shift = np.array([0.0, depth, 0.0])
-        blocks.append(Block("base" if k == 0 else f"b{k}", prism(loop @ rot.T, (loop + shift) @ rot.T), unit_weight, k == 0))
-    bare = Assembly(tuple(blocks), ())
-    return Assembly(bare.blocks, tuple(detect_interfaces(bare)))
+    x0, x1, z0, z1 = np.array(rects).T
+    zero = np.zeros_like(x0)
+    loops = np.stack([np.stack([x0, zero, z0], 1), np.stack([x1, zero, z0], 1), np.stack([x1, zero, z1], 1),
+                      np.stack([x0, zero, z1], 1)], axis=1)  # (n, 4, 3), the face at y = 0
+    shift = np.array([0.0, depth, 0.0])
+    solids = prisms(loops @ rot.T, (loops + shift) @ rot.T)
+    blocks = tuple(Block("base" if k == 0 else f"b{k}", solid, unit_weight, k == 0) for k, solid in enumerate(solids))
+    return Assembly(blocks, tuple(detect_interfaces(blocks)))
 
 
 def tilt_angle(assembly: Assembly, friction_angle: float, alpha: float = 0.0) -> float:
