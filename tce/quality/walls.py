@@ -21,6 +21,7 @@ collapses when the lateral multiplier of its weights, tce's ``lambda``, reaches
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -28,9 +29,9 @@ from ..core.analysis import Analysis
 from ..core.material import Material
 from ..structures.assembly import Assembly, Block
 from ..structures.contacts import detect_interfaces
-from ..structures.geometry import prisms
+from ..structures.geometry import Polyhedron, prisms
 
-__all__ = ["LACT3_DOOR", "LACT3_WINDOW", "lact3_wall", "tilt_angle"]
+__all__ = ["LACT3_DOOR", "LACT3_WINDOW", "lact3_wall", "tilt_angle", "tilted"]
 
 #: the door of the LACT3 wall: x from 0.25 to 0.5 m, open in courses 1 to 24 (0 is the bottom course)
 LACT3_DOOR = (0.25, 0.5, 1, 24)
@@ -64,8 +65,8 @@ def _course(c: int, length: float, unit: float, openings: tuple[tuple[float, flo
     return out
 
 
-def lact3_wall(tilt: float = 0.0, unit_weight: float = 25.0, depth: float = 1.0) -> Assembly:
-    """The sample wall of LACT3 v1.0 (``sample/wall.dxf``), on a support slab, optionally tilted.
+def lact3_wall(unit_weight: float = 25.0, depth: float = 1.0) -> Assembly:
+    """The sample wall of LACT3 v1.0 (``sample/wall.dxf``), upright on a support slab.
 
     A wall 2.0 m long and 1.5 m high of 27 courses (1.5/27 m each) of 0.25 m units in running
     bond (half units at the ends of the odd courses), with a door 0.25 m wide next to its left
@@ -74,10 +75,6 @@ def lact3_wall(tilt: float = 0.0, unit_weight: float = 25.0, depth: float = 1.0)
 
     Parameters
     ----------
-    tilt : float
-        Rotation of the whole assembly about the y axis (degrees), positive lifting the
-        wall's left end (x = 0) so that gravity pulls towards +x along the table: the tilting
-        table of LACT3. 0 builds the wall upright.
     unit_weight : float
         kN/m^3 (without cohesion the tilt angle does not depend on it).
     depth : float
@@ -95,16 +92,28 @@ def lact3_wall(tilt: float = 0.0, unit_weight: float = 25.0, depth: float = 1.0)
     for c in range(courses):
         lintel = LACT3_WINDOW[:2] if c == lintel_course else None
         rects += [(x0, x1, c * h, (c + 1) * h) for x0, x1 in _course(c, length, unit, (LACT3_DOOR, LACT3_WINDOW), lintel)]
-    t = math.radians(tilt)
-    rot = np.array([[math.cos(t), 0.0, math.sin(t)], [0.0, 1.0, 0.0], [-math.sin(t), 0.0, math.cos(t)]])
     x0, x1, z0, z1 = np.array(rects).T
     zero = np.zeros_like(x0)
     loops = np.stack([np.stack([x0, zero, z0], 1), np.stack([x1, zero, z0], 1), np.stack([x1, zero, z1], 1),
                       np.stack([x0, zero, z1], 1)], axis=1)  # (n, 4, 3), the face at y = 0
     shift = np.array([0.0, depth, 0.0])
-    solids = prisms(loops @ rot.T, (loops + shift) @ rot.T)
+    solids = prisms(loops, loops + shift)
     blocks = tuple(Block("base" if k == 0 else f"b{k}", solid, unit_weight, k == 0) for k, solid in enumerate(solids))
     return Assembly(blocks, tuple(detect_interfaces(blocks)))
+
+
+def tilted(assembly: Assembly, degrees: float) -> Assembly:
+    """``assembly`` on a table tilted by ``degrees`` about the y axis: every vertex, interface
+    point and normal rotated, positive lowering the +x end (so that gravity pulls towards +x
+    along the table, as LACT3 tilts its table). The blocks, their weights and the interfaces
+    are the same; the lateral multiplier at which the upright assembly collapses is
+    ``tan`` of the tilt at which this one does (:func:`tilt_angle`)."""
+    t = math.radians(degrees)
+    q = np.array([[math.cos(t), 0.0, math.sin(t)], [0.0, 1.0, 0.0], [-math.sin(t), 0.0, math.cos(t)]])
+    blocks = tuple(replace(b, shape=Polyhedron(b.shape.vertices @ q.T, b.shape.faces)) for b in assembly.blocks)
+    faces = tuple(replace(f, points=np.asarray(f.points) @ q.T, normal=np.asarray(f.normal) @ q.T)
+                  for f in assembly.interfaces)
+    return Assembly(blocks, faces, assembly.meta)
 
 
 def tilt_angle(assembly: Assembly, friction_angle: float, alpha: float = 0.0) -> float:

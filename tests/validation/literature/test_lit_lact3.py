@@ -28,7 +28,7 @@ import pytest
 from _atlas import check_case
 
 from tce import Analysis, Material
-from tce.quality.walls import LACT3_DOOR, LACT3_WINDOW, lact3_wall, tilt_angle
+from tce.quality.walls import LACT3_DOOR, LACT3_WINDOW, lact3_wall, tilt_angle, tilted
 
 PHI = 26.0
 H = 1.5 / 27  # course height (m)
@@ -70,5 +70,5 @@ def test_the_tilted_wall_stands_below_the_angle_and_not_above():
     under self-weight alone below the angle and has no admissible state above it."""
     theta = tilt_angle(lact3_wall(), PHI)
     mat = Material(friction=math.tan(math.radians(PHI)))
-    assert Analysis(lact3_wall(tilt=theta - 0.01), mat).solve(0.0).status == "optimal"
-    assert Analysis(lact3_wall(tilt=theta + 0.01), mat).solve(0.0).status == "infeasible"
+    assert Analysis(tilted(lact3_wall(), theta - 0.01), mat).solve(0.0).status == "optimal"
+    assert Analysis(tilted(lact3_wall(), theta + 0.01), mat).solve(0.0).status == "infeasible"

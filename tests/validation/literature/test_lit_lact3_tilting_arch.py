@@ -35,18 +35,14 @@ of the same embrace carries 0.3066997 (17.0508 deg); 25 joints leave fewer place
 """
 
 import math
-from dataclasses import replace
 
-import numpy as np
 import pytest
 from _atlas import check_case
 
 from reference import lateral_arch as ref
 from tce import Analysis, Material
-from tce.structures.assembly import Assembly, Interface
-from tce.structures.geometry import Polyhedron
 from tce.quality.validation import TILT_FRICTION_ANGLE, TILT_RADII, tilting_arch
-from tce.quality.walls import tilt_angle
+from tce.quality.walls import tilt_angle, tilted
 
 MU = math.tan(math.radians(TILT_FRICTION_ANGLE))
 START = math.pi / 27.0
@@ -61,16 +57,6 @@ def ratio() -> float:
     """t/R of the arch, R the centreline radius."""
     ri, re = TILT_RADII
     return (re - ri) / ((re + ri) / 2.0)
-
-
-def tilted(asm: Assembly, degrees: float) -> Assembly:
-    """The assembly on a table tilted by ``degrees`` about the y axis (+x end down for > 0)."""
-    a = math.radians(degrees)
-    q = np.array([[math.cos(a), 0.0, math.sin(a)], [0.0, 1.0, 0.0], [-math.sin(a), 0.0, math.cos(a)]])
-    blocks = tuple(replace(b, shape=Polyhedron(b.shape.vertices @ q.T, b.shape.faces)) for b in asm.blocks)
-    faces = tuple(Interface(f.a, f.b, np.asarray(f.points) @ q.T, np.asarray(f.normal) @ q.T, f.stiffness)
-                  for f in asm.interfaces)
-    return Assembly(blocks, faces, asm.meta)
 
 
 def test_published_value():
