@@ -62,7 +62,7 @@ from numpy.typing import NDArray
 
 from .clarabel_solver import ClarabelSolver, SolverOptions
 from .passive import Restraint
-from .problem import ConicProblem, Formulation, _cones, with_bounded_forces
+from .problem import ConicProblem, Formulation, _cones, _equilibrium_columns, with_bounded_forces
 
 __all__ = ["FACE_SLACK", "FACE_SLACKS", "SAME_STATE", "Canonical", "CanonicalSolver", "Check", "canonical_b", "canonical_problem",
            "RESTRAINT_WEIGHT", "restrained_canonical_problem"]
@@ -142,8 +142,8 @@ def restrained_canonical_problem(
     fill's stiffness). The objective stays strictly convex: the canonical state is unique."""
     W = f.scaling.force
     k = G.shape[1]
-    rows = f.law.M.shape[0] + 1
-    cols = sp.vstack([sp.csr_matrix(G * (W / f.row_div)[:, None]), sp.csr_matrix((rows, k))])
+    # zero in the energy row too: it comes after the equilibrium rows
+    cols = sp.vstack([_equilibrium_columns(f, G), sp.csr_matrix((1, k))])
     out = with_bounded_forces(canonical_problem(f, b, q, bound), cols, np.asarray(capacity, dtype=float) / W)
     n = out.P.shape[0] - k
     P = sp.block_diag([out.P[:n, :n], sp.identity(k) * RESTRAINT_WEIGHT], format="csc")
