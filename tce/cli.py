@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import functools
 import logging
 import math
 import os
@@ -295,11 +296,12 @@ EXIT_FAULT, EXIT_STRICT = 3, 4
 EXIT_PIPE = 141
 
 
-def _draw(ds, folder: Path, jobs: int) -> list[Path]:
-    """The figures and view of a finished run (the study's ``[plots]``), drawn into its folder."""
+def _draw(ds, folder: Path, jobs: int, drawers=None) -> list[Path]:
+    """The figures and view of a finished run (the study's ``[plots]``), drawn into its folder
+    (by ``drawers``, :class:`tce.plot.drawers.Drawers`, when given)."""
     from . import plot
 
-    return plot.write_figures(ds, folder, jobs=jobs)
+    return plot.write_figures(ds, folder, jobs=jobs, draw=drawers.draw if drawers else None)
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -314,10 +316,16 @@ def _run(args: argparse.Namespace) -> int:
         raise UsageError(str(exc)) from None
     kept = f"finished scenarios are kept in {args.out / study.name / 'scenarios'}"
     bar = _Bar(study.name)
+    drawers = None
+    if not args.no_plots:  # figures drawn by processes made ready while the run solves (issue 24)
+        from .plot.drawers import Drawers, cpu_free
+
+        drawers = Drawers.start(args.jobs or os.cpu_count() or 1) if args.jobs != 1 and cpu_free() else None
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,
-            progress=bar, plots=None if args.no_plots else _draw, fresh=args.fresh,
+            progress=bar, plots=None if args.no_plots else functools.partial(_draw, drawers=drawers),
+            fresh=args.fresh,
         )
     except RunError as exc:
         raise UsageError(str(exc)) from None
@@ -346,6 +354,9 @@ def _run(args: argparse.Namespace) -> int:
         bar.close()
         print(f"tce: interrupted ({exc or 'SIGINT'}); {kept}: run the same command again to resume", file=sys.stderr)
         return exit_code(exc)
+    finally:
+        if drawers is not None:
+            drawers.close()
     bar.close()
     counts = {o: list(report.outcomes.values()).count(o) for o in OUTCOMES}
     counts.update({o: n for o, n in Counter(report.outcomes.values()).items() if o not in counts})

@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 from matplotlib.axes import Axes
-from matplotlib.collections import LineCollection
+from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.colors import to_hex
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -1005,12 +1005,11 @@ def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[o
         y0 = top - (i + 1) * row_h
         ax = fig.add_axes((0.7 / width, y0 / height, n * pitch * inch / width, (row_h - 0.3) / height))
         ax.set_axis_off()
-        for j, poly in enumerate(outlines):
-            x = j * pitch
-            ax.add_patch(Polygon(poly + [x, 0.0], closed=True, facecolor=draw.BLOCK_COLOUR, edgecolor=draw.EDGE_COLOUR,
-                                 linewidth=0.5))
-            ax.plot([x + poly[:, 0].min(), x + poly[:, 0].max()], [0.0, 0.0], color="#777777", linewidth=0.5,
-                    linestyle="--")
+        placed = [poly + [j * pitch, 0.0] for j, poly in enumerate(outlines)]  # side by side, to scale
+        ax.add_collection(PolyCollection(placed, closed=True, facecolors=draw.BLOCK_COLOUR,
+                                         edgecolors=draw.EDGE_COLOUR, linewidths=0.5))
+        ax.add_collection(LineCollection([[(p[:, 0].min(), 0.0), (p[:, 0].max(), 0.0)] for p in placed],
+                                         colors="#777777", linewidths=0.5, linestyles="--"))
         xs = np.arange(n) * pitch + points[:, 0]
         ax.plot(xs, points[:, 1], linestyle="none", marker=MARKERS[i % len(MARKERS)], markersize=4,
                 color=colours[i], zorder=5, clip_on=False, gid=f"transversal:{st.scenario}:{st.lam:g}")

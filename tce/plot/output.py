@@ -175,10 +175,15 @@ def _builders() -> dict[str, Callable]:
     }
 
 
+def temporary(path: Path) -> Path:
+    """The temporary file :func:`render` writes ``path`` through."""
+    return path.with_name(f".{path.name}.tmp")
+
+
 def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
     """Draw one task and write its file (atomically: a temporary file, then a rename)."""
     path = Path(outdir) / task.name
-    tmp = path.with_name(f".{path.name}.tmp")
+    tmp = temporary(path)
     out = _builders()[task.kind](ds, *task.args)
     try:
         if isinstance(out, str):
@@ -201,7 +206,8 @@ def _subset(ds: xr.Dataset, task: Task) -> xr.Dataset:
 
 
 def write_figures(
-    ds: xr.Dataset, outdir: Path | str, spec: PlotSpec | None = None, jobs: int = 1, tag: str = ""
+    ds: xr.Dataset, outdir: Path | str, spec: PlotSpec | None = None, jobs: int = 1, tag: str = "",
+    draw: Callable[[xr.Dataset, list[Task], Path], list[Path]] | None = None,
 ) -> list[Path]:
     """Write every figure of ``spec`` (default: the study's ``[plots]``) into ``outdir``.
 
@@ -216,6 +222,9 @@ def write_figures(
         Worker processes for the drawing (used from :data:`PARALLEL_AT` files on).
     tag : str
         Appended to every file stem (figures drawn on demand).
+    draw : callable, optional
+        ``draw(ds, tasks, outdir) -> files`` draws the tasks instead of this process and ``jobs``
+        (:meth:`tce.plot.drawers.Drawers.draw`: processes ``tce run`` made ready while it solved).
 
     Returns
     -------
@@ -232,6 +241,8 @@ def write_figures(
     tasks = figure_tasks(ds, spec, tag)
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
+    if draw is not None:
+        return draw(ds, tasks, outdir)
     if jobs > 1 and len(tasks) >= PARALLEL_AT:
         import joblib
 

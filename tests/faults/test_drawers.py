@@ -1,0 +1,257 @@
+"""Figures drawn by the processes ``tce run`` prepares while it solves (:mod:`tce.plot.drawers`):
+the same files as drawing in the run's process, and the same faults: a full disk reported as
+one line naming the file, a drawer that dies replaced by the run's process, Ctrl-C and
+``kill -9`` leaving no drawer and no temporary file behind."""
+
+from __future__ import annotations
+
+import errno
+import logging
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+from pathlib import Path
+
+import matplotlib.figure
+import pytest
+import xarray as xr
+
+from tce.cli import main
+from tce.plot import output
+from tce.plot import drawers as drawers_module
+from tce.plot.drawers import Drawers, cpu_free
+from tce.study import runner
+from tce.study.schema import parse_study
+
+from .common import TINY, as_from_a_shell, clean, errors, leftovers, write
+
+#: the tiny study without its sweep, both scenarios drawn: four PNG files and the view
+DRAWN = TINY.replace("[sweep]\nfriction = [0.8, 2.0]", "[material]\nfriction = 0.8") + '\n[plots]\nscenarios = ["none", "outward"]\nkinds = ["states", "thrust", "thrust_lines", "mechanism", "view"]\n'
+
+
+@pytest.fixture(scope="module")
+def finished(tmp_path_factory) -> xr.Dataset:
+    study = parse_study(DRAWN, "study.toml")
+    return xr.load_dataset(runner.run_study(study, tmp_path_factory.mktemp("finished"), jobs=1).results)
+
+
+@pytest.fixture
+def start():
+    """Start drawers (after the test's patches: they are forked with them), closed after the test."""
+    started = []
+
+    def go() -> Drawers:
+        d = Drawers.start(2)
+        if d is None:
+            pytest.skip("drawers need Linux and two usable cores")
+        started.append(d)
+        return d
+
+    yield go
+    for d in started:
+        d.close()
+
+
+def _elsewhere(request) -> bool:
+    """Run this test in a fresh pytest process when this one has other threads (left by other
+    tests: tce forks drawers only from a single-threaded process), and say whether it did."""
+    if threading.active_count() == 1:
+        return False
+    assert "TCE_TEST_ALONE" not in os.environ, f"threads in a fresh pytest process: {threading.enumerate()}"
+    done = subprocess.run([sys.executable, "-m", "pytest", "-v", "-p", "no:cacheprovider", "-p", "no:xdist",
+                           request.node.nodeid], cwd=request.config.rootpath, capture_output=True, text=True,
+                          timeout=600, env=dict(os.environ, TCE_TEST_ALONE="1"))
+    assert done.returncode == 0 and "1 passed" in done.stdout, done.stdout[-4000:]
+    return True
+
+
+def _gone(pids: list[int], within: float = 5.0) -> None:
+    """Every process of ``pids`` ends within ``within`` seconds (a zombie has ended)."""
+    end = time.monotonic() + within
+    while any(runner._alive(pid) for pid in pids):
+        assert time.monotonic() < end, f"processes {[p for p in pids if runner._alive(p)]} are still running"
+        time.sleep(0.05)
+
+
+def test_the_same_files_in_the_same_order(finished, start, tmp_path, request) -> None:
+    if _elsewhere(request):
+        return
+    here = output.write_figures(finished, tmp_path / "here")
+    drawers = start()
+    there = output.write_figures(finished, tmp_path / "there", draw=drawers.draw)
+    assert [p.name for p in there] == [p.name for p in here] and len(here) >= 5
+    for a, b in zip(here, there):
+        assert a.read_bytes() == b.read_bytes(), a.name
+    assert not leftovers(tmp_path)
+    drawers.close()  # idle drawers end on their own when the run closes its pipes
+    assert drawers.process.exitcode == 0
+
+
+#: a drawer's imports, in a fresh process: matplotlib imported after _lean_artists, then the figures
+LEAN = """
+import sys
+import xarray as xr
+from tce.plot import drawers, output
+assert "matplotlib.artist" not in sys.modules
+drawers._lean_artists()
+from matplotlib.lines import Line2D
+assert Line2D.set.__doc__ is None  # the docstring was not written
+line = Line2D([], [])
+line.set(color="red", lw=3.0)  # set works as before, aliases too
+assert line.get_color() == "red" and line.get_linewidth() == 3.0
+output.write_figures(xr.load_dataset(sys.argv[1]), sys.argv[2])
+"""
+
+
+def test_lean_artists_draw_the_same_bytes(finished, tmp_path) -> None:
+    """Matplotlib imported as a drawer imports it (no docstrings for ``set``) draws every file
+    byte for byte as imported as usual (this process)."""
+    here = output.write_figures(finished, tmp_path / "here")
+    finished.to_netcdf(tmp_path / "results.nc")
+    subprocess.run([sys.executable, "-c", LEAN, str(tmp_path / "results.nc"), str(tmp_path / "there")],
+                   check=True, timeout=300)
+    for a in here:
+        assert a.read_bytes() == (tmp_path / "there" / a.name).read_bytes(), a.name
+
+
+def test_no_drawers_with_one_job_or_one_core(monkeypatch) -> None:
+    assert Drawers.start(1) is None
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0})
+    assert Drawers.start(2) is None
+
+
+def test_no_drawers_while_other_programs_hold_the_cpus(tmp_path, monkeypatch) -> None:
+    pressure = tmp_path / "cpu"
+    real_open = open
+
+    def fake_open(path, *args, **kwargs):
+        return real_open(pressure if path == "/proc/pressure/cpu" else path, *args, **kwargs)
+
+    monkeypatch.setattr("builtins.open", fake_open)
+    pressure.write_text("some avg10=81.91 avg60=88.71 avg300=81.65 total=14732235240\n"
+                        "full avg10=0.00 avg60=0.00 avg300=0.00 total=0\n")
+    assert cpu_free() is False
+    pressure.write_text("some avg10=3.10 avg60=88.71 avg300=81.65 total=14732235240\n")
+    assert cpu_free() is True
+    pressure.unlink()  # no pressure information: the cores decide
+    assert cpu_free() is True
+
+
+def _fail_on(name: str, how):
+    """``Figure.savefig`` patched to call ``how(fname)`` for the file ``name`` in a drawer."""
+    savefig, run = matplotlib.figure.Figure.savefig, os.getpid()
+
+    def patched(self, fname, *args, **kwargs):
+        if os.getpid() != run and isinstance(fname, Path) and fname.name == f".{name}.tmp":
+            how(fname)
+        return savefig(self, fname, *args, **kwargs)
+
+    return patched
+
+
+def _full(fname) -> None:
+    raise OSError(errno.ENOSPC, "No space left on device", str(fname))
+
+
+def test_a_full_disk_in_a_drawer_is_the_runs_figure_fault(tmp_path, monkeypatch, capsys, request) -> None:
+    if _elsewhere(request):
+        return
+    monkeypatch.setattr(drawers_module, "cpu_free", lambda: True)  # drawers however busy the machine is
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", _fail_on("thrust.png", _full))
+    out = tmp_path / "out"
+    assert main(["run", str(write(tmp_path, DRAWN)), "--out", str(out), "--no-report"]) == 3
+    err = capsys.readouterr().err
+    clean(err)
+    (line,) = errors(err)
+    assert "no space left on the device" in line and ".thrust.png.tmp" in line
+    assert (out / "tiny" / "results.nc").exists() and "tce plot" in err and not leftovers(out)
+
+
+def test_a_drawer_that_dies_is_replaced_by_the_run(finished, start, tmp_path, monkeypatch, caplog, request) -> None:
+    if _elsewhere(request):
+        return
+    here = output.write_figures(finished, tmp_path / "here")
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig",
+                        _fail_on("thrust.png", lambda fname: os.kill(os.getpid(), signal.SIGKILL)))
+    logger = logging.getLogger("tce.plot.drawers")
+    logger.addHandler(caplog.handler)  # whatever an earlier main() made of the "tce" logger
+    try:
+        there = output.write_figures(finished, tmp_path / "there", draw=start().draw)
+    finally:
+        logger.removeHandler(caplog.handler)
+    assert [p.name for p in there] == [p.name for p in here]
+    assert all(a.read_bytes() == b.read_bytes() for a, b in zip(here, there))
+    assert "while drawing thrust.png: drawing it here" in caplog.text and not leftovers(tmp_path)
+
+
+def test_ctrl_c_while_drawers_draw(finished, start, tmp_path, monkeypatch, request) -> None:
+    if _elsewhere(request):
+        return
+    pids = tmp_path / "pids"
+    pids.mkdir()
+
+    def stuck(fname) -> None:  # a drawer half-way through writing its file
+        Path(fname).write_bytes(b"half")
+        (pids / str(os.getpid())).touch()
+        time.sleep(60)
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", _fail_on("thrust.png", stuck))
+    drawers = start()
+
+    def interrupt(signum, frame):  # Ctrl-C once a drawer is stuck
+        if any(pids.iterdir()):
+            raise KeyboardInterrupt
+
+    before = signal.signal(signal.SIGALRM, interrupt)
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 0.1, 0.1)
+        with pytest.raises(KeyboardInterrupt):
+            output.write_figures(finished, tmp_path / "out", draw=drawers.draw)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, before)
+    (stuck_pid,) = [int(p.name) for p in pids.iterdir()]
+    assert not leftovers(tmp_path / "out")  # its pipe closed: it writes nothing more
+    _gone([stuck_pid, drawers.process.pid])
+
+
+def test_kill_9_of_the_run_ends_its_drawers(tmp_path) -> None:
+    """The drawers die with ``tce run`` (a parent-death signal), even one stuck in a figure."""
+    hook = tmp_path / "hook"
+    hook.mkdir()
+    (hook / "sitecustomize.py").write_text(textwrap.dedent(f"""
+        import os, time
+        from pathlib import Path
+        import matplotlib.figure
+        savefig = matplotlib.figure.Figure.savefig
+        def stuck(self, fname, *args, **kwargs):
+            if not isinstance(fname, (str, os.PathLike)):  # the drawer's warm-up
+                return savefig(self, fname, *args, **kwargs)
+            Path({str(tmp_path)!r}, "drawer-" + str(os.getpid())).touch()
+            time.sleep(120)
+        matplotlib.figure.Figure.savefig = stuck
+        import tce.plot.drawers
+        tce.plot.drawers.cpu_free = lambda: True  # drawers however busy the machine is
+    """))
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=os.pathsep.join([str(hook), os.environ.get("PYTHONPATH", "")]))
+    cmd = [sys.executable, "-m", "tce.cli", "run", str(write(tmp_path, DRAWN)), "--out", str(tmp_path / "out"),
+           "--no-report"]
+    run = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True,
+                           preexec_fn=as_from_a_shell)
+    try:
+        end = time.monotonic() + 120
+        while len(list(tmp_path.glob("drawer-*"))) < 2:  # both drawers inside a figure
+            assert time.monotonic() < end and run.poll() is None, run.stderr.read() if run.poll() is not None else ""
+            time.sleep(0.05)
+        run.kill()
+        run.wait()
+        _gone([int(p.name.split("-")[1]) for p in tmp_path.glob("drawer-*")])
+    finally:
+        if run.poll() is None:
+            run.kill()
+        run.communicate()
+    assert (tmp_path / "out" / "tiny" / "results.nc").exists()
