@@ -18,6 +18,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from .figures import COLOURS, MARKERS
+from .output import save_png
 
 __all__ = ["SWEPT", "bracket_figure", "write_material_figures"]
 
@@ -92,5 +93,5 @@ def write_material_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
     if fig is None:
         return []
     path = Path(outdir) / "bracket.png"
-    fig.savefig(path, dpi=150)
+    save_png(fig, path, dpi=150)
     return [path]

@@ -64,8 +64,10 @@ def _data_uri(png: bytes) -> str:
 
 
 def _figure_png(fig) -> bytes:
+    from ..plot.output import save_png
+
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110)
+    save_png(fig, buf, dpi=110)
     return buf.getvalue()
 
 

@@ -91,13 +91,13 @@ def test_the_same_files_in_the_same_order(finished, start, tmp_path, request) ->
     assert drawers.process.exitcode == 0
 
 
-#: a drawer's imports, in a fresh process: matplotlib imported after _lean_artists, then the figures
+#: the tce program's imports before it draws, in a fresh process: matplotlib made lean, then the figures
 LEAN = """
 import sys
 import xarray as xr
-from tce.plot import drawers, output
-assert "matplotlib.artist" not in sys.modules
-drawers._lean_artists()
+from tce.plot import output
+from tce.plot.lean import lean_matplotlib
+assert "matplotlib.artist" not in sys.modules and lean_matplotlib()
 from matplotlib.lines import Line2D
 assert Line2D.set.__doc__ is None  # the docstring was not written
 line = Line2D([], [])
@@ -108,8 +108,8 @@ output.write_figures(xr.load_dataset(sys.argv[1]), sys.argv[2])
 
 
 def test_lean_artists_draw_the_same_bytes(finished, tmp_path) -> None:
-    """Matplotlib imported as a drawer imports it (no docstrings for ``set``) draws every file
-    byte for byte as imported as usual (this process)."""
+    """Matplotlib imported as the ``tce`` program imports it (:func:`tce.plot.lean.lean_matplotlib`:
+    no docstrings for ``set``) draws every file byte for byte as imported as usual (this process)."""
     here = output.write_figures(finished, tmp_path / "here")
     finished.to_netcdf(tmp_path / "results.nc")
     subprocess.run([sys.executable, "-c", LEAN, str(tmp_path / "results.nc"), str(tmp_path / "there")],
