@@ -418,3 +418,26 @@ def test_drawing_reports_progress_file_by_file(planar: xr.Dataset, tmp_path: Pat
     lines = [r.getMessage() for r in caplog.records if r.name == "tce.study.progress"]
     assert any(re.match(r"figures: 5/5 files \(view\.html\), \d+ s", m) for m in lines), lines
     assert (jobs == 2) == any("drawing 5 files on 2 workers" in r.getMessage() for r in caplog.records)
+
+
+def test_png_files_draw_text_unhinted_and_leave_matplotlib_as_it_was() -> None:
+    """save_png applies PNG_RC (text without FreeType's hinting: issue 24) to its own file only."""
+    import io
+
+    import matplotlib
+
+    from tce.plot.output import PNG_RC, save_png
+
+    def png(how) -> bytes:
+        fig = Figure(figsize=(2, 1))
+        fig.text(0.1, 0.5, "H along the span x (kN) λ", fontsize=8)
+        buf = io.BytesIO()
+        how(fig, buf)
+        return buf.getvalue()
+
+    before = dict(matplotlib.rcParams)
+    ours = png(lambda fig, buf: save_png(fig, buf, dpi=100))
+    assert dict(matplotlib.rcParams) == before
+    with matplotlib.rc_context(PNG_RC):
+        assert png(lambda fig, buf: fig.savefig(buf, format="png", dpi=100)) == ours
+    assert png(lambda fig, buf: fig.savefig(buf, format="png", dpi=100)) != ours  # hinted: other pixels
