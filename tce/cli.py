@@ -300,7 +300,7 @@ def _draw(ds, folder: Path, jobs: int, drawers=None) -> list[Path]:
     """The figures and view of a finished run (the study's ``[plots]``), drawn into its folder
     (by ``drawers``, :class:`tce.plot.drawers.Drawers`, when given)."""
     from . import plot
-    from .plot.lean import lean_matplotlib
+    from .plot.rendering import lean_matplotlib
 
     if drawers is None:  # drawn here: matplotlib imported without its docstrings (the drawers do the same)
         lean_matplotlib()
@@ -491,7 +491,7 @@ def _spec(ds, **given):
 
 def _plot(args: argparse.Namespace) -> int:
     from .plot.data import slug
-    from .plot.lean import lean_matplotlib
+    from .plot.rendering import lean_matplotlib
     from .plot.output import write_figures
 
     lean_matplotlib()
@@ -552,7 +552,7 @@ def _export(args: argparse.Namespace) -> int:
 
 def _write_report(results: Path, out: Path | None = None, figures: list[Path] | None = None, pdf: bool = True):
     """The calculation report (:func:`tce.report.write_report`); a results file it cannot read is a usage error."""
-    from .plot.lean import lean_matplotlib
+    from .plot.rendering import lean_matplotlib
     from .report import write_report
 
     lean_matplotlib()

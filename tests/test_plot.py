@@ -426,7 +426,7 @@ def test_png_files_draw_text_unhinted_and_leave_matplotlib_as_it_was() -> None:
 
     import matplotlib
 
-    from tce.plot.output import PNG_RC, save_png
+    from tce.plot.rendering import PNG_RC, save_png
 
     def png(how) -> bytes:
         fig = Figure(figsize=(2, 1))

@@ -1,11 +1,13 @@
 """Draw a run's figures in processes that got ready while the run solved (issue 24).
 
 Figures cost a ``tce run`` of the paper's arch more than its solving: importing matplotlib and
-tce's figure modules (about 0.35 CPU-s) and drawing them (0.6-0.9 CPU-s), against 1.2-1.4 CPU-s
-for the whole run without figures. None of the imports needs the results, and the figures do
-not need each other. :meth:`Drawers.start` therefore forks one process, early in the run, that
-imports those modules and draws a small figure (fonts loaded, caches filled) while the run
-solves; once warm it forks the others from itself (a fork of a warm process is ready at once).
+tce's figure modules (0.20-0.22 CPU-s made lean, :func:`tce.plot.rendering.lean_matplotlib`; 0.31-0.36 otherwise) and
+drawing them (0.55-0.75 CPU-s for Fig. 9's six files), against 1.0-1.3 CPU-s for the whole run
+without figures. None of the imports needs the results, and the figures do not need each
+other. :meth:`Drawers.start` therefore forks one process, early in the run, that imports those
+modules and draws a small figure (fonts loaded, caches filled) while the run solves; once warm
+it forks the others from itself (a fork of a warm process is ready at once). On the paper's
+arch the first is warm just as the run hands its results over.
 When the results are written, :meth:`Drawers.draw` hands the figures out one at a time to
 whichever drawer is free, as the runner hands out scenarios, and collects the files in the
 order of :func:`tce.plot.output.figure_tasks`. On two cores the imports overlap the solving
@@ -83,7 +85,7 @@ def _warm() -> None:
     """Import every figure module and draw a small figure with text (loads the fonts)."""
     import io
 
-    from .lean import lean_matplotlib
+    from .rendering import lean_matplotlib
 
     lean_matplotlib()
     from matplotlib.figure import Figure
@@ -221,6 +223,7 @@ class Drawers:
                 return
             k = queue.popleft()
             busy[conn] = k
+            bar.doing(tasks[k].name)  # the file last handed out, as drawing here names the file under way
             try:
                 conn.send((_subset(ds, tasks[k]), tasks[k], str(outdir)))
             except OSError:  # it died: drawn here or by another
@@ -245,7 +248,6 @@ class Drawers:
                         k = busy.pop(conn)
                         if reply[0] == "drawn":
                             files[k] = reply[1]
-                            bar.note(reply[1].name)
                             bar.update()
                         elif failure is None:
                             failure = reply[1:]

@@ -18,7 +18,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from .figures import COLOURS, MARKERS
-from .output import save_png
+from .rendering import save_png
 
 __all__ = ["SWEPT", "bracket_figure", "write_material_figures"]
 

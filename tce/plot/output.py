@@ -36,7 +36,6 @@ import logging
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, BinaryIO
 
 import numpy as np
 import xarray as xr
@@ -54,25 +53,15 @@ from .data import (
     swept_parameters,
 )
 from ..study.progress import Progress, track
+from .rendering import PNG, save_png
 from .states import missing_states, solve_states
 
-if TYPE_CHECKING:
-    from matplotlib.figure import Figure
-
-__all__ = ["PARALLEL_AT", "figure_tasks", "save_png", "write_figures"]
+__all__ = ["PARALLEL_AT", "figure_tasks", "write_figures"]
 
 log = logging.getLogger(__name__)
 
 #: render in parallel (when ``jobs > 1``) from this many files on
 PARALLEL_AT = 8
-#: PNG options: a screen resolution and fast compression (drawing, not squeezing, is the cost)
-PNG = dict(dpi=100, pil_kwargs={"compress_level": 1})
-#: matplotlib settings of every PNG file tce writes (:func:`save_png`): text drawn without
-#: FreeType's hinting. Matplotlib 3.11 renders each glyph on its own, and unhinted glyphs
-#: took 20-25% less of the CPU drawing the paper's figures (0.55 against 0.74 CPU-s for
-#: Fig. 9's five files, medians of 8 interleaved rounds, issue 24); the letters are the same
-#: shapes, their stems a little softer at 100 dpi.
-PNG_RC = {"text.hinting": "no_hinting"}
 
 
 @dataclass(frozen=True)
@@ -183,15 +172,6 @@ def _builders() -> dict[str, Callable]:
         "settlement": settlement.settlement_curves,
         "settlement_shapes": settlement.settlement_shapes,
     }
-
-
-def save_png(fig: Figure, target: Path | BinaryIO, **kwargs: Any) -> None:
-    """Write ``fig`` as PNG into ``target`` (a path or a binary file) with :data:`PNG_RC`;
-    ``kwargs`` go to :meth:`matplotlib.figure.Figure.savefig` (``dpi``, ...)."""
-    import matplotlib
-
-    with matplotlib.rc_context(PNG_RC):
-        fig.savefig(target, format="png", **kwargs)
 
 
 def temporary(path: Path) -> Path:

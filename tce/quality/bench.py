@@ -947,7 +947,8 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
             kinds = {"--no-plots": ["--no-plots"], "figures (--no-report)": ["--no-report"],
                      "figures (--no-report), --jobs 1: drawn in the run's process": ["--no-report", "--jobs", "1"],
                      "figures and report (default)": []}
-            runs = _interleaved(study, Path(tmp) / "out", kinds, repeats)
+            # five rounds: a run of the arch takes about a second, and this machine's noise is 10-20%
+            runs = _interleaved(study, Path(tmp) / "out", kinds, 1 if quick else 5)
             plain_cpu = statistics.median(g["cpu"] for g in runs["--no-plots"])
             plain_wall = statistics.median(g["wall"] for g in runs["--no-plots"])
             for label, gs in runs.items():

@@ -64,7 +64,7 @@ def _data_uri(png: bytes) -> str:
 
 
 def _figure_png(fig) -> bytes:
-    from ..plot.output import save_png
+    from ..plot.rendering import save_png
 
     buf = io.BytesIO()
     save_png(fig, buf, dpi=110)

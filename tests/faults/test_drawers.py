@@ -96,7 +96,7 @@ LEAN = """
 import sys
 import xarray as xr
 from tce.plot import output
-from tce.plot.lean import lean_matplotlib
+from tce.plot.rendering import lean_matplotlib
 assert "matplotlib.artist" not in sys.modules and lean_matplotlib()
 from matplotlib.lines import Line2D
 assert Line2D.set.__doc__ is None  # the docstring was not written
@@ -108,7 +108,7 @@ output.write_figures(xr.load_dataset(sys.argv[1]), sys.argv[2])
 
 
 def test_lean_artists_draw_the_same_bytes(finished, tmp_path) -> None:
-    """Matplotlib imported as the ``tce`` program imports it (:func:`tce.plot.lean.lean_matplotlib`:
+    """Matplotlib imported as the ``tce`` program imports it (:func:`tce.plot.rendering.lean_matplotlib`:
     no docstrings for ``set``) draws every file byte for byte as imported as usual (this process)."""
     here = output.write_figures(finished, tmp_path / "here")
     finished.to_netcdf(tmp_path / "results.nc")
