@@ -853,9 +853,14 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
 
 
 # ---------------------------------------------------------------------------- mechanism
-def mechanism_view(ds: xr.Dataset, names: Sequence[str]) -> Figure:
+def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | None = None) -> Figure:
     """The collapse mechanism shared by ``names``: blocks displaced (exaggerated) over their
     original outlines, hinge lines marked.
+
+    ``drawn`` are the scenarios the figures draw (default: every scenario of ``ds``); the title
+    says "every scenario drawn" when ``names`` are all of them, else names them. It does not
+    depend on which scenarios ``ds`` holds: a drawer receives only those a figure reads
+    (:func:`tce.plot.output.figure_tasks`).
 
     A vertex ``p`` of a block with centroid ``c`` and velocities ``(v, w)`` moves to
     ``p + s (v + w x (p - c))``; ``s`` makes the largest vertex displacement
@@ -896,7 +901,8 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str]) -> Figure:
     width = 5.0
     lmax = float(value(ds, "lambda_max", s0))
     lam = f"λmax = {lmax:.3f}" if math.isfinite(lmax) else "the direct limit"
-    who = "every scenario drawn" if len(names) > 1 and len(names) == len(ds["scenario"]) else join_names(names, 4)
+    drawn = list(drawn) if drawn is not None else scenarios(ds)
+    who = "every scenario drawn" if len(names) > 1 and set(names) == set(drawn) else join_names(names, 4)
     title = (_wrap(f"collapse mechanism at {lam}, shared by {who}", width) +
              f"\n(exaggerated: largest displacement drawn {scale * dmax:.2f} m)")
     sheet = _Sheet(1, 1, lo, hi, width, 0.16 * (title.count("\n") + 1) + 0.1,

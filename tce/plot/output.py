@@ -145,7 +145,7 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
             elif kind == "base":
                 pages.append((tuple(group), tuple(steps)))
             elif kind == "mechanism":
-                pages += [(tuple(g),) for g in mechanism_groups(ds, group)]
+                pages += [(tuple(g), tuple(names)) for g in mechanism_groups(ds, group)]
         if kind == "mechanism" and not pages:
             skipped.append("mechanism (no scenario drawn has one)")
         for k, args in enumerate(pages):

@@ -91,6 +91,25 @@ def test_the_same_files_in_the_same_order(finished, start, tmp_path, request) ->
     assert drawers.process.exitcode == 0
 
 
+#: the tiny study with its sweep, three of its four scenarios drawn, every kind that applies
+SWEPT = TINY + '\n[plots]\nscenarios = ["none/friction=0.8", "none/friction=2", "outward/friction=0.8"]\nkinds = ["states", "thrust", "thrust_lines", "base", "mechanism", "view", "summary"]\n'
+
+
+def test_each_file_drawn_from_what_its_drawer_receives_is_the_same(tmp_path) -> None:
+    """A drawer receives only the part of the results a file reads (output._subset): every file
+    drawn from it is the same, byte for byte, as drawn from the whole dataset (a mechanism's
+    title once said "every scenario drawn" for a group that was all of its part only)."""
+    ds = xr.load_dataset(runner.run_study(parse_study(SWEPT, "study.toml"), tmp_path / "run", jobs=1).results)
+    tasks = output.figure_tasks(ds, output.plot_spec(ds))
+    assert {t.kind for t in tasks} >= {"states", "thrust", "mechanism", "view", "summary"}
+    for folder in ("whole", "part"):
+        (tmp_path / folder).mkdir()
+    for t in tasks:
+        whole = output.render(ds, t, tmp_path / "whole")
+        part = output.render(output._subset(ds, t), t, tmp_path / "part")
+        assert whole.read_bytes() == part.read_bytes(), t.name
+
+
 #: the tce program's imports before it draws, in a fresh process: matplotlib made lean, then the figures
 LEAN = """
 import sys
