@@ -506,8 +506,6 @@ def _plot(args: argparse.Namespace) -> int:
     from .plot.data import slug
     from .plot.output import write_figures
 
-    _drawing_here(args.program)
-
     ds = _open_results(args.results)
     on_demand = args.scenario is not None or args.step is not None
     kinds = args.kind or (["states"] if on_demand else None)
@@ -516,6 +514,7 @@ def _plot(args: argparse.Namespace) -> int:
         raise UsageError("--scenario: no scenario selected")
     tag = slug("_".join([*(args.scenario or []), *(f"lam{s}" for s in args.step or [])]))[:80] if on_demand else ""
     outdir = _out_folder(args.out or args.results.parent)
+    _drawing_here(args.program)  # once the command is known to draw (a bad file or key: exit 2 first)
     with _writing(outdir):
         figures = write_figures(ds, outdir, spec, jobs=args.jobs, tag=tag)
     for f in figures if on_demand else []:

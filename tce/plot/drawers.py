@@ -1,8 +1,8 @@
 """Draw a run's figures in processes that got ready while the run solved (issue 24).
 
 Figures cost a ``tce run`` of the paper's arch more than its solving: importing matplotlib and
-tce's figure modules (0.20-0.22 CPU-s made lean, :func:`tce.plot.rendering.lean_matplotlib`; 0.31-0.36 otherwise) and
-drawing them (0.55-0.75 CPU-s for Fig. 9's six files), against 1.0-1.3 CPU-s for the whole run
+tce's figure modules (0.20-0.25 CPU-s made lean, :func:`tce.plot.rendering.lean_matplotlib`;
+0.31-0.36 otherwise) and drawing them (0.55-0.75 CPU-s for Fig. 9's six files), against 1.0-1.3 CPU-s for the whole run
 without figures. None of the imports needs the results, and the figures do not need each
 other. :meth:`Drawers.start` therefore forks one process, early in the run, that imports those
 modules and draws a small figure (fonts loaded, caches filled) while the run solves; once warm
@@ -87,10 +87,11 @@ def _die_with(parent: int) -> None:
 
 
 def _warm() -> None:
-    """Import every figure module and draw a small figure with text (loads the fonts)."""
+    """Import every figure module and draw a small figure with text (loads the fonts), saved
+    as the figures are (:func:`tce.plot.rendering.save_png`)."""
     import io
 
-    from .rendering import lean_matplotlib
+    from .rendering import lean_matplotlib, save_png
 
     lean_matplotlib()
     from matplotlib.figure import Figure
@@ -103,7 +104,7 @@ def _warm() -> None:
     ax.plot([0, 1], [0, 1], label="λ")
     ax.set_title("warm")
     ax.legend()
-    fig.savefig(io.BytesIO(), format="png")
+    save_png(fig, io.BytesIO())
 
 
 def _serve(conn: mp.connection.Connection) -> None:
