@@ -538,7 +538,7 @@ def _view(args: argparse.Namespace) -> int:
     _out_folder(out.parent)
     page = view_html(ds, spec.scenarios)
     with _writing(out):
-        out.write_text(page, encoding="utf-8")
+        out.write_bytes(page)
     print(out)
     if args.open:
         import webbrowser

@@ -420,24 +420,35 @@ def test_drawing_reports_progress_file_by_file(planar: xr.Dataset, tmp_path: Pat
     assert (jobs == 2) == any("drawing 5 files on 2 workers" in r.getMessage() for r in caplog.records)
 
 
-def test_png_files_draw_text_unhinted_and_leave_matplotlib_as_it_was() -> None:
-    """save_png applies PNG_RC (text without FreeType's hinting: issue 24) to its own file only."""
+def test_png_files_have_matplotlibs_pixels_unhinted_text_and_leave_matplotlib_as_it_was() -> None:
+    """save_png's own encoder (issue 24) writes the pixels matplotlib's PNG writer writes, both
+    decoded by Pillow, with PNG_RC (text without FreeType's hinting) applied to its own file only;
+    the figure keeps its resolution and canvas."""
     import io
 
     import matplotlib
+    from PIL import Image
 
     from tce.plot.rendering import PNG_RC, save_png
 
-    def png(how) -> bytes:
-        fig = Figure(figsize=(2, 1))
-        fig.text(0.1, 0.5, "H along the span x (kN) λ", fontsize=8)
+    def png(how) -> tuple:
+        fig = Figure(figsize=(2.13, 1.07), dpi=72, facecolor="#fffdf0")
+        ax = fig.add_axes((0.2, 0.2, 0.7, 0.6))
+        ax.plot([0, 1, 2], [0, 1, 0.5], "o-", alpha=0.5)
+        fig.text(0.1, 0.9, "H along the span x (kN) λ", fontsize=8)
+        canvas = fig.canvas
         buf = io.BytesIO()
         how(fig, buf)
-        return buf.getvalue()
+        assert fig.dpi == 72 and fig.canvas is canvas
+        image = Image.open(io.BytesIO(buf.getvalue()))
+        return image.size, image.info.get("dpi"), np.asarray(image.convert("RGBA"))
 
     before = dict(matplotlib.rcParams)
-    ours = png(lambda fig, buf: save_png(fig, buf, dpi=100))
+    size, dpi, ours = png(lambda fig, buf: save_png(fig, buf, dpi=110))
     assert dict(matplotlib.rcParams) == before
+    assert size == (234, 117) and dpi == pytest.approx((110, 110), abs=0.01)  # 2.13 x 1.07 in at 110 dpi, truncated as Agg does
     with matplotlib.rc_context(PNG_RC):
-        assert png(lambda fig, buf: fig.savefig(buf, format="png", dpi=100)) == ours
-    assert png(lambda fig, buf: fig.savefig(buf, format="png", dpi=100)) != ours  # hinted: other pixels
+        theirs = png(lambda fig, buf: fig.savefig(buf, format="png", dpi=110))
+    assert theirs[0] == size and np.array_equal(theirs[2], ours)
+    hinted = png(lambda fig, buf: fig.savefig(buf, format="png", dpi=110))[2]
+    assert not np.array_equal(hinted, ours)  # hinted: other pixels

@@ -115,7 +115,7 @@ def test_vertex_forces_add_up_to_resultants_and_reactions(results: Path) -> None
 # ---------------------------------------------------------------------------- view
 def test_view_page_is_self_contained(results: Path) -> None:
     ds = xr.load_dataset(results)
-    page = view_html(ds)
+    page = view_html(ds).decode("utf-8")
     assert len(page) > 1_000_000 and "Plotly.newPlot" in page
     assert not re.search(r"<(script|link|img)[^>]+(src|href)=", page)  # nothing loaded from elsewhere
     payload = re.search(r'<script type="application/json" id="data">(.*?)</script>', page, re.S).group(1)

@@ -63,7 +63,7 @@ def test_view_in_chromium(browser, tmp_path: Path) -> None:
     report = run_study(parse_study(STUDY, tmp_path / "b.toml"), tmp_path, jobs=1)
     ds = xr.load_dataset(report.results)
     page = tmp_path / "view.html"
-    page.write_text(view_html(ds), encoding="utf-8")
+    page.write_bytes(view_html(ds))
     browser.get(page.as_uri())
     wait_for(browser, "const p = document.getElementById('plot'); return p && p.data && p.data.length === 9 && "
                       "p.querySelector('canvas') !== null")

@@ -53,7 +53,7 @@ from .data import (
     swept_parameters,
 )
 from ..study.progress import Progress, track
-from .rendering import PNG, save_png
+from .rendering import save_png
 from .states import missing_states, solve_states
 
 __all__ = ["PARALLEL_AT", "figure_tasks", "write_figures"]
@@ -185,10 +185,10 @@ def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
     tmp = temporary(path)
     out = _builders()[task.kind](ds, *task.args)
     try:
-        if isinstance(out, str):
-            tmp.write_text(out, encoding="utf-8")
+        if isinstance(out, bytes):  # a page (view.html)
+            tmp.write_bytes(out)
         else:
-            save_png(out, tmp, **PNG)
+            save_png(out, tmp)
         tmp.replace(path)
     finally:
         tmp.unlink(missing_ok=True)

@@ -16,12 +16,11 @@ import threading
 import time
 from pathlib import Path
 
-import matplotlib.figure
 import pytest
 import xarray as xr
 
 from tce.cli import main
-from tce.plot import output
+from tce.plot import output, rendering
 from tce.plot import drawers as drawers_module
 from tce.plot.drawers import Drawers, cpu_free
 from tce.study import runner
@@ -95,10 +94,11 @@ def test_the_same_files_in_the_same_order(finished, start, tmp_path, request) ->
 SWEPT = TINY + '\n[plots]\nscenarios = ["none/friction=0.8", "none/friction=2", "outward/friction=0.8"]\nkinds = ["states", "thrust", "thrust_lines", "base", "mechanism", "view", "summary"]\n'
 
 
-def test_each_file_drawn_from_what_its_drawer_receives_is_the_same(tmp_path) -> None:
-    """A drawer receives only the part of the results a file reads (output._subset): every file
-    drawn from it is the same, byte for byte, as drawn from the whole dataset (a mechanism's
-    title once said "every scenario drawn" for a group that was all of its part only)."""
+def test_each_file_drawn_from_what_a_worker_receives_is_the_same(tmp_path) -> None:
+    """A worker of ``tce plot --jobs`` receives only the part of the results a file reads
+    (output._subset; a drawer of ``tce run`` receives the whole): every file drawn from it is the
+    same, byte for byte, as drawn from the whole dataset (a mechanism's title once said "every
+    scenario drawn" for a group that was all of its part only)."""
     ds = xr.load_dataset(runner.run_study(parse_study(SWEPT, "study.toml"), tmp_path / "run", jobs=1).results)
     tasks = output.figure_tasks(ds, output.plot_spec(ds))
     assert {t.kind for t in tasks} >= {"states", "thrust", "mechanism", "view", "summary"}
@@ -114,7 +114,7 @@ def test_each_file_drawn_from_what_its_drawer_receives_is_the_same(tmp_path) -> 
 LEAN = """
 import sys
 import xarray as xr
-from tce.plot import output
+from tce.plot import output, rendering
 from tce.plot.rendering import lean_matplotlib
 assert "matplotlib.artist" not in sys.modules and lean_matplotlib()
 from matplotlib.lines import Line2D
@@ -160,27 +160,28 @@ def test_no_drawers_while_other_programs_hold_the_cpus(tmp_path, monkeypatch) ->
     assert cpu_free() is True
 
 
-def _fail_on(name: str, how):
-    """``Figure.savefig`` patched to call ``how(fname)`` for the file ``name`` in a drawer."""
-    savefig, run = matplotlib.figure.Figure.savefig, os.getpid()
+def _fail_on(name: str, how, monkeypatch) -> None:
+    """Make a drawer call ``how(path)`` as it opens the file ``name`` to write it
+    (:func:`tce.plot.rendering.save_png`'s ``open``)."""
+    run = os.getpid()
 
-    def patched(self, fname, *args, **kwargs):
-        if os.getpid() != run and isinstance(fname, Path) and fname.name == f".{name}.tmp":
-            how(fname)
-        return savefig(self, fname, *args, **kwargs)
+    def opening(path, *args, **kwargs):
+        if os.getpid() != run and Path(path).name == f".{name}.tmp":
+            how(path)
+        return open(path, *args, **kwargs)
 
-    return patched
+    monkeypatch.setattr(rendering, "open", opening, raising=False)
 
 
-def _full(fname) -> None:
-    raise OSError(errno.ENOSPC, "No space left on device", str(fname))
+def _full(path) -> None:
+    raise OSError(errno.ENOSPC, "No space left on device")  # as a write says it: no file name
 
 
 def test_a_full_disk_in_a_drawer_is_the_runs_figure_fault(tmp_path, monkeypatch, capsys, request) -> None:
     if _elsewhere(request):
         return
     monkeypatch.setattr(drawers_module, "cpu_free", lambda: True)  # drawers however busy the machine is
-    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", _fail_on("thrust.png", _full))
+    _fail_on("thrust.png", _full, monkeypatch)
     out = tmp_path / "out"
     assert main(["run", str(write(tmp_path, DRAWN)), "--out", str(out), "--no-report"]) == 3
     err = capsys.readouterr().err
@@ -194,8 +195,7 @@ def test_a_drawer_that_dies_is_replaced_by_the_run(finished, start, tmp_path, mo
     if _elsewhere(request):
         return
     here = output.write_figures(finished, tmp_path / "here")
-    monkeypatch.setattr(matplotlib.figure.Figure, "savefig",
-                        _fail_on("thrust.png", lambda fname: os.kill(os.getpid(), signal.SIGKILL)))
+    _fail_on("thrust.png", lambda path: os.kill(os.getpid(), signal.SIGKILL), monkeypatch)
     logger = logging.getLogger("tce.plot.drawers")
     logger.addHandler(caplog.handler)  # whatever an earlier main() made of the "tce" logger
     try:
@@ -218,7 +218,7 @@ def test_ctrl_c_while_drawers_draw(finished, start, tmp_path, monkeypatch, reque
         (pids / str(os.getpid())).touch()
         time.sleep(60)
 
-    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", _fail_on("thrust.png", stuck))
+    _fail_on("thrust.png", stuck, monkeypatch)
     drawers = start()
 
     def interrupt(signum, frame):  # Ctrl-C once a drawer is stuck
@@ -245,14 +245,11 @@ def test_kill_9_of_the_run_ends_its_drawers(tmp_path) -> None:
     (hook / "sitecustomize.py").write_text(textwrap.dedent(f"""
         import os, time
         from pathlib import Path
-        import matplotlib.figure
-        savefig = matplotlib.figure.Figure.savefig
-        def stuck(self, fname, *args, **kwargs):
-            if not isinstance(fname, (str, os.PathLike)):  # the drawer's warm-up
-                return savefig(self, fname, *args, **kwargs)
+        import tce.plot.rendering
+        def stuck(path, *args, **kwargs):  # opening a figure's file (the warm-up writes into memory)
             Path({str(tmp_path)!r}, "drawer-" + str(os.getpid())).touch()
             time.sleep(120)
-        matplotlib.figure.Figure.savefig = stuck
+        tce.plot.rendering.open = stuck
         import tce.plot.drawers
         tce.plot.drawers.cpu_free = lambda: True  # drawers however busy the machine is
     """))

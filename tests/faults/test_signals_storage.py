@@ -14,11 +14,11 @@ import sys
 import time
 from pathlib import Path
 
-import matplotlib.figure
 import numpy as np
 import pytest
 import xarray as xr
 
+from tce.plot import rendering
 from tce.study import results, runner
 from tce.cli import main
 from tce.study.schema import parse_study
@@ -121,16 +121,15 @@ def test_a_closed_output_pipe_ends_quietly(finished: Path) -> None:
 
 def test_a_disk_that_fills_while_figures_are_drawn(tmp_path: Path, monkeypatch, capsys) -> None:
     out = tmp_path / "out"
-    savefig = matplotlib.figure.Figure.savefig
     drawn = []
 
-    def full(self, fname, *args, **kwargs):
-        drawn.append(fname)
+    def full(path, *args, **kwargs):  # the second PNG file fills the disk (a write names no file)
+        drawn.append(path)
         if len(drawn) == 2:
-            raise OSError(errno.ENOSPC, "No space left on device", str(fname))
-        return savefig(self, fname, *args, **kwargs)
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return open(path, *args, **kwargs)
 
-    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", full)
+    monkeypatch.setattr(rendering, "open", full, raising=False)
     text = TINY.replace("[sweep]\nfriction = [0.8, 2.0]", "[material]\nfriction = 0.8")
     assert main(["run", str(write(tmp_path, text)), "--out", str(out), "--jobs", "1"]) == 3
     err = capsys.readouterr().err
