@@ -322,22 +322,33 @@ def _draw(ds, folder: Path, jobs: int, drawers=None, program: bool = False) -> l
 
 
 def _run(args: argparse.Namespace) -> int:
+    if args.scheduler and args.backend != "dask":
+        raise UsageError("--scheduler needs --backend dask")
+    drawers = None
+    if not args.no_plots and args.jobs != 1:  # figures drawn by processes made ready while the run solves (issue 24)
+        from .plot.drawers import Drawers, cpu_free
+
+        # first of all: the first drawer imports matplotlib while this process imports the
+        # runner, reads the study and solves (on Fig. 9, ready before the results are)
+        drawers = Drawers.start(args.jobs or os.cpu_count() or 1) if cpu_free() else None
+    try:
+        return _run_study(args, drawers)
+    finally:
+        if drawers is not None:  # a bad study, Ctrl-C: the drawers end with the command
+            drawers.close()
+
+
+def _run_study(args: argparse.Namespace, drawers) -> int:
+    """``tce run`` once its drawers (:class:`tce.plot.drawers.Drawers`, or None) are started."""
     from .study.runner import OUTCOMES, FigureFault, RunError, RunFault, run_study
     from .study.schema import StudyError, load_study
 
-    if args.scheduler and args.backend != "dask":
-        raise UsageError("--scheduler needs --backend dask")
     try:
         study = load_study(args.study)
     except StudyError as exc:
         raise UsageError(str(exc)) from None
     kept = f"finished scenarios are kept in {args.out / study.name / 'scenarios'}"
     bar = _Bar(study.name)
-    drawers = None
-    if not args.no_plots:  # figures drawn by processes made ready while the run solves (issue 24)
-        from .plot.drawers import Drawers, cpu_free
-
-        drawers = Drawers.start(args.jobs or os.cpu_count() or 1) if args.jobs != 1 and cpu_free() else None
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,

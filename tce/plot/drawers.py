@@ -4,15 +4,17 @@ Figures cost a ``tce run`` of the paper's arch more than its solving: importing 
 tce's figure modules (0.20-0.25 CPU-s made lean, :func:`tce.plot.rendering.lean_matplotlib`;
 0.31-0.36 otherwise) and drawing them (0.55-0.75 CPU-s for Fig. 9's six files), against 1.0-1.3 CPU-s for the whole run
 without figures. None of the imports needs the results, and the figures do not need each
-other. :meth:`Drawers.start` therefore forks one process, early in the run, that imports those
-modules and draws a small figure (fonts loaded, caches filled) while the run solves; once warm
-it forks the others from itself (a fork of a warm process is ready at once). On the paper's
-arch the first is warm just as the run hands its results over.
+other. :meth:`Drawers.start` therefore forks one process as ``tce run`` starts (before the run
+imports its runner and reads the study: :mod:`tce.cli`), that imports those modules and draws a
+small figure (fonts loaded, caches filled) while the run solves; once warm it forks the others
+from itself (a fork of a warm process is ready at once). On the paper's arch the first is warm
+about as the run hands its results over.
 When the results are written, :meth:`Drawers.draw` hands the figures out one at a time to
-whichever drawer is free, the costliest kinds first (:data:`COST`), and collects the files in
-the order of :func:`tce.plot.output.figure_tasks`. On two cores the imports overlap the solving
-and the drawing is split in two, so a run with figures waits about half of what drawing them
-costs; the CPU spent is the same as drawing them in the run's own process.
+whichever drawer is free, the costliest kinds first (:data:`COST`), the dataset with a drawer's
+first figure only, and collects the files in the order of
+:func:`tce.plot.output.figure_tasks`. On two cores the imports overlap the solving and the
+drawing is split in two, so a run with figures waits about half of what drawing them costs; the
+CPU spent is about that of drawing them in the run's own process.
 
 Drawers are used only where they should not be slower than drawing in the run's process: on
 Linux (a fork, a parent-death signal), with at least two cores usable, more than one job
@@ -87,8 +89,9 @@ def _die_with(parent: int) -> None:
 
 
 def _warm() -> None:
-    """Import every figure module and draw a small figure with text (loads the fonts), saved
-    as the figures are (:func:`tce.plot.rendering.save_png`)."""
+    """Import every figure module, read plotly.js (:func:`tce.plot.view.plotly_js`, 11 ms) and
+    draw a small figure with text (loads the fonts), saved as the figures are
+    (:func:`tce.plot.rendering.save_png`)."""
     import io
 
     from .rendering import lean_matplotlib, save_png
@@ -97,8 +100,10 @@ def _warm() -> None:
     from matplotlib.figure import Figure
 
     from .output import _builders
+    from .view import plotly_js
 
     _builders()
+    plotly_js()
     fig = Figure(figsize=(1, 1))
     ax = fig.add_subplot()
     ax.plot([0, 1], [0, 1], label="λ")
@@ -108,15 +113,20 @@ def _warm() -> None:
 
 
 def _serve(conn: mp.connection.Connection) -> None:
-    """Draw the tasks the run sends on ``conn``, replying with the file or the failure."""
+    """Draw the tasks the run sends on ``conn``, replying with the file or the failure.
+
+    A message is ``(ds, task, outdir)``; ``ds`` is the results dataset with the first task and
+    None after it (the one kept is drawn)."""
     from .output import render
 
+    ds = None
     while True:
         try:
             msg = conn.recv()
         except (EOFError, OSError):  # the run closed its end
             return
-        ds, task, outdir = msg
+        sent, task, outdir = msg
+        ds = sent if sent is not None else ds
         try:
             reply: tuple = ("drawn", render(ds, task, Path(outdir)))
         except Exception as exc:  # noqa: BLE001 - raised again in the run's process
@@ -157,11 +167,9 @@ def _first(conns: list, run_ends: list, parent: int) -> None:
         conns[k].close()
     _serve(conns[0])
     conns[0].close()
-    while True:  # reap the others
-        try:
-            os.wait()
-        except ChildProcessError:
-            break
+    # not waiting for the others: they end as their pipes close (the run closes them all at
+    # once, with no figure under way) or die with this process; the run waits for this one
+    # only (each exit takes 7-8 ms on Fig. 9, and one waited for the other)
 
 
 def cpu_free(limit: float = PRESSURE_LIMIT) -> bool:
@@ -187,6 +195,8 @@ class Drawers:
     def __init__(self, process: mp.process.BaseProcess, conns: list) -> None:
         self.process = process
         self.conns = conns
+        #: whether :meth:`draw` handed out a figure (else :meth:`close` need not wait for them)
+        self.drew = False
 
     @classmethod
     def start(cls, n: int) -> Drawers | None:
@@ -217,21 +227,25 @@ class Drawers:
         """Draw ``tasks`` (:func:`tce.plot.output.figure_tasks`) of ``ds`` into ``outdir``.
 
         Returns the files in task order; raises the first failure (module docstring)."""
-        from .output import _subset, render, temporary
+        from .output import render, temporary
 
         queue = deque(sorted(range(len(tasks)), key=lambda k: -COST.get(tasks[k].kind, _USUAL)))
         busy: dict[Any, int] = {}
         files: dict[int, Path] = {}
         failure: tuple | None = None
+        given: set[Any] = set()  # drawers that hold ``ds``
 
         def feed(conn: Any) -> None:
             if not queue or failure is not None:
                 return
             k = queue.popleft()
             busy[conn] = k
+            self.drew = True
             bar.doing(tasks[k].name)  # the file last handed out, as drawing here names the file under way
-            try:
-                conn.send((_subset(ds, tasks[k]), tasks[k], str(outdir)))
+            try:  # the dataset once (a drawer keeps it): 0.8 ms to pickle Fig. 9's, against
+                # 2.5 ms for the part each file reads (output._subset, as tce plot --jobs sends)
+                conn.send((None if conn in given else ds, tasks[k], str(outdir)))
+                given.add(conn)
             except OSError:  # it died: drawn here or by another
                 del busy[conn]
                 queue.appendleft(k)
@@ -287,11 +301,14 @@ class Drawers:
         self.close()
 
     def close(self) -> None:
-        """End the drawers (each ends when its pipe closes; the first waits for the others).
-        Idempotent."""
+        """End the drawers: each ends when its pipe closes, the others at the latest with the
+        first, which this waits for; drawers never handed a figure (a bad study, a failed run)
+        are killed: they may still be warming up, and have no file to finish. Idempotent."""
         for conn in self.conns:
             conn.close()
         self.conns = []
+        if not self.drew:
+            self.process.kill()
         self.process.join(_GRACE)
         if self.process.is_alive():
             self.process.kill()
