@@ -137,6 +137,27 @@ def test_lean_artists_draw_the_same_bytes(finished, tmp_path) -> None:
         assert a.read_bytes() == (tmp_path / "there" / a.name).read_bytes(), a.name
 
 
+def test_a_bad_study_kills_the_drawers_it_started(tmp_path, monkeypatch, capsys, request) -> None:
+    """The first drawer is forked before the study is read (it warms up meanwhile): a study
+    that does not load exits 2, nothing written, its drawer killed rather than waited for."""
+    if _elsewhere(request):
+        return
+    monkeypatch.setattr(drawers_module, "cpu_free", lambda: True)  # drawers however busy the machine is
+    started = []
+    start = Drawers.start.__func__
+
+    def recorded(cls, n):
+        started.append(start(cls, n))
+        return started[-1]
+
+    monkeypatch.setattr(Drawers, "start", classmethod(recorded))
+    out = tmp_path / "out"
+    assert main(["run", str(write(tmp_path, TINY + "\n[bogus]\nkey = 1\n")), "--out", str(out)]) == 2
+    assert "bogus" in capsys.readouterr().err and not out.exists()
+    (drawers,) = started
+    assert drawers is not None and drawers.process.exitcode == -signal.SIGKILL
+
+
 def test_no_drawers_with_one_job_or_one_core(monkeypatch) -> None:
     assert Drawers.start(1) is None
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0})
