@@ -421,7 +421,7 @@ def test_drawing_reports_progress_file_by_file(planar: xr.Dataset, tmp_path: Pat
 
 
 def test_png_files_have_matplotlibs_pixels_unhinted_text_and_leave_matplotlib_as_it_was() -> None:
-    """save_png's own encoder (issue 24) writes the pixels matplotlib's PNG writer writes, both
+    """tce's own PNG encoder (png_bytes, issue 24) writes the pixels matplotlib's PNG writer writes, both
     decoded by Pillow, with PNG_RC (text without FreeType's hinting) applied to its own file only;
     the figure keeps its resolution and canvas."""
     import io
@@ -429,7 +429,7 @@ def test_png_files_have_matplotlibs_pixels_unhinted_text_and_leave_matplotlib_as
     import matplotlib
     from PIL import Image
 
-    from tce.plot.rendering import PNG_RC, save_png
+    from tce.plot.rendering import PNG_RC, png_bytes
 
     def png(how) -> tuple:
         fig = Figure(figsize=(2.13, 1.07), dpi=72, facecolor="#fffdf0")
@@ -444,7 +444,7 @@ def test_png_files_have_matplotlibs_pixels_unhinted_text_and_leave_matplotlib_as
         return image.size, image.info.get("dpi"), np.asarray(image.convert("RGBA"))
 
     before = dict(matplotlib.rcParams)
-    size, dpi, ours = png(lambda fig, buf: save_png(fig, buf, dpi=110))
+    size, dpi, ours = png(lambda fig, buf: buf.write(png_bytes(fig, dpi=110)))
     assert dict(matplotlib.rcParams) == before
     assert size == (234, 117) and dpi == pytest.approx((110, 110), abs=0.01)  # 2.13 x 1.07 in at 110 dpi, truncated as Agg does
     with matplotlib.rc_context(PNG_RC):

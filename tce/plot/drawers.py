@@ -90,11 +90,9 @@ def _die_with(parent: int) -> None:
 
 def _warm() -> None:
     """Import every figure module, read plotly.js (:func:`tce.plot.view.plotly_js`, 11 ms) and
-    draw a small figure with text (loads the fonts), saved as the figures are
-    (:func:`tce.plot.rendering.save_png`)."""
-    import io
-
-    from .rendering import lean_matplotlib, save_png
+    draw a small figure with text (loads the fonts), encoded as the figures are
+    (:func:`tce.plot.rendering.png_bytes`)."""
+    from .rendering import lean_matplotlib, png_bytes
 
     lean_matplotlib()
     from matplotlib.figure import Figure
@@ -109,7 +107,7 @@ def _warm() -> None:
     ax.plot([0, 1], [0, 1], label="λ")
     ax.set_title("warm")
     ax.legend()
-    save_png(fig, io.BytesIO())
+    png_bytes(fig)
 
 
 def _serve(conn: mp.connection.Connection) -> None:

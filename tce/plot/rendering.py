@@ -11,8 +11,9 @@ byte (``tests/faults/test_drawers.py``). It is called by the ``tce`` command bef
 (:mod:`tce.cli`, the figure drawers of :mod:`tce.plot.drawers`), never on import: a program that
 imports tce keeps matplotlib's docstrings.
 
-:func:`save_png` writes every PNG file tce makes, with :data:`PNG_RC`: matplotlib's Agg canvas
-draws the figure and :func:`png_bytes` encodes its pixels. Matplotlib's own PNG writer (Pillow)
+:func:`png_bytes` makes every PNG image tce writes (:func:`save_png` writes it as a file; the
+report embeds it), with :data:`PNG_RC`: matplotlib's Agg canvas draws the figure and tce encodes
+its pixels. Matplotlib's own PNG writer (Pillow)
 chooses a filter for every row, which took 10-15 ms of each of Fig. 9's files at the lowest
 compression; rows without a filter and zlib at level 1 take 2-6 ms and make files of about the
 same size (issue 24). The pixels are those matplotlib writes (``tests/test_plot.py`` decodes
@@ -25,7 +26,7 @@ import struct
 import sys
 import zlib
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, BinaryIO
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -34,7 +35,7 @@ __all__ = ["DPI", "PNG_RC", "lean_matplotlib", "png_bytes", "save_png"]
 
 #: resolution of the figures' PNG files (dots per inch): a screen's
 DPI = 100
-#: matplotlib settings of every PNG file tce writes (:func:`save_png`): text drawn without
+#: matplotlib settings of every PNG image tce makes (:func:`png_bytes`): text drawn without
 #: FreeType's hinting. Matplotlib 3.11 renders each glyph on its own, and unhinted glyphs
 #: took about 13% less of the CPU drawing the paper's figures (Fig. 9's five PNG files: 0.54
 #: and 0.58 against 0.62 and 0.68 CPU-s, the fastest of 8 interleaved rounds in two runs; issue
@@ -61,23 +62,20 @@ def lean_matplotlib() -> bool:
     return True
 
 
-def save_png(fig: Figure, target: Path | BinaryIO, dpi: float = DPI) -> None:
-    """Write ``fig`` at ``dpi`` as a PNG file into ``target`` (a path or a binary file).
+def save_png(fig: Figure, path: Path, dpi: float = DPI) -> None:
+    """Write ``fig`` at ``dpi`` as the PNG file ``path`` (:func:`png_bytes`).
 
     Raises
     ------
     OSError
-        ``target`` cannot be written (its ``filename`` is the path: a full disk names the file).
+        ``path`` cannot be written (its ``filename`` is the path: a full disk names the file).
     """
     data = png_bytes(fig, dpi)
-    if not isinstance(target, (str, Path)):
-        target.write(data)
-        return
     try:
-        with open(target, "wb") as fh:
+        with open(path, "wb") as fh:
             fh.write(data)
     except OSError as exc:
-        exc.filename = exc.filename or str(target)
+        exc.filename = exc.filename or str(path)
         raise
 
 

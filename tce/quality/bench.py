@@ -711,11 +711,10 @@ def run_env() -> dict[str, str]:
 
 @functools.lru_cache(maxsize=1)
 def _compile_tce() -> None:
-    """Compile tce's modules once per process (``compileall``: into its ``__pycache__``
-    folders, which git ignores)."""
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    """Compile tce's modules once per process (``compileall``, which writes bytecode whatever
+    ``PYTHONDONTWRITEBYTECODE`` says: into tce's ``__pycache__`` folders, which git ignores)."""
     subprocess.run([sys.executable, "-m", "compileall", "-q", str(Path(__file__).resolve().parents[1])],
-                   env=env, check=True, capture_output=True)
+                   check=True, capture_output=True)
 
 
 def _tce_run(study: Path, out: Path, args: Sequence[str], program: bool = True) -> float:

@@ -11,7 +11,6 @@ with the reason.
 from __future__ import annotations
 
 import base64
-import io
 import logging
 import os
 import shutil
@@ -64,11 +63,9 @@ def _data_uri(png: bytes) -> str:
 
 
 def _figure_png(fig) -> bytes:
-    from ..plot.rendering import save_png
+    from ..plot.rendering import png_bytes
 
-    buf = io.BytesIO()
-    save_png(fig, buf, dpi=110)
-    return buf.getvalue()
+    return png_bytes(fig, dpi=110)
 
 
 def _kind(path: Path) -> str:
