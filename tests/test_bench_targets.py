@@ -81,6 +81,16 @@ def test_figure_target_by_wall_is_a_line_of_its_own():
     assert t["tce run fig9_outofplane: with figures at most 1.5x its own --no-plots run (wall)"][1] is False
 
 
+def test_figure_target_by_wall_quotes_the_run_by_run_ratio():
+    """The ratio of the runs of each round (same speed of this shared machine) is quoted; the target is
+    still the ratio of the medians."""
+    rows = _figure_rows((2.0, 1.2), (3.1, 2.6))
+    rows[1]["note"] = ("CPU 2.60 s, 2.17x --no-plots (CPU); wall 1.55x --no-plots, 1.45x (1.30-1.62x) run by run "
+                       "in the same rounds; drawers usable (CPUs free) in 5 of 5 runs; load average 1.2 (1-2)")
+    assert _targets(rows)["tce run fig9_outofplane: with figures at most 1.5x its own --no-plots run (wall)"] == (
+        "1.55x (3.10 / 2.00 s; load average 1.2 (1-2); 1.45x (1.30-1.62x) run by run in the same rounds)", False)
+
+
 def test_drawers_against_drawing_in_the_runs_process():
     key = "tce run fig9_outofplane: figures by the drawers no slower than drawn in the run's process (--jobs 1; wall)"
     assert _targets(_figure_rows((2.0, 1.2), (2.8, 2.6), here=(3.4, 2.5)))[key] == ("0.82x (2.80 / 3.40 s; CPU 1.04x)", True)

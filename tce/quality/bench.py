@@ -979,11 +979,14 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
             plain_wall = statistics.median(g["wall"] for g in runs["--no-plots"])
             for label, gs in runs.items():
                 cpu, wall = statistics.median(g["cpu"] for g in gs), statistics.median(g["wall"] for g in gs)
+                paired = [g["wall"] / p["wall"] for g, p in zip(gs, runs["--no-plots"])]
                 rows.append(_row("sweeps", f"tce run {name}", label, n_solves=len(gs), time_s=wall,
                                  time_min_s=min(g["wall"] for g in gs), cpu_s=cpu,
                                  note=f"CPU {cpu:.2f} s, {cpu / plain_cpu:.2f}x --no-plots (CPU); wall "
-                                      f"{wall / plain_wall:.2f}x --no-plots; drawers usable (CPUs free) in "
-                                      f"{sum(g['cpu_free'] for g in gs)} of {len(gs)} runs; {_load(gs)}"))
+                                      f"{wall / plain_wall:.2f}x --no-plots, {statistics.median(paired):.2f}x "
+                                      f"({min(paired):.2f}-{max(paired):.2f}x) run by run in the same rounds; "
+                                      f"drawers usable (CPUs free) in {sum(g['cpu_free'] for g in gs)} of "
+                                      f"{len(gs)} runs; {_load(gs)}"))
         for name in () if quick else PAPER_STUDIES:
             if not (root / f"{name}.toml").exists():
                 continue
@@ -1373,8 +1376,10 @@ def evaluate_targets(df: pd.DataFrame) -> list[tuple[str, str, bool]]:
             # the drawers (tce.plot.drawers) overlap the figures' imports with the solve and split the
             # drawing: a gain in wall time only, which a machine busy with other sessions hides
             load = figs.note.rpartition("; ")[2]
+            paired = next((p.partition(", ")[2] for p in figs.note.split("; ") if "run by run" in p), "")
             out.append((f"{case}: with figures at most 1.5x its own --no-plots run (wall)",
-                        f"{figs.time_s / plain.time_s:.2f}x ({figs.time_s:.2f} / {plain.time_s:.2f} s; {load})",
+                        f"{figs.time_s / plain.time_s:.2f}x ({figs.time_s:.2f} / {plain.time_s:.2f} s; {load}"
+                        f"{'; ' + paired if paired else ''})",
                         bool(figs.time_s <= 1.5 * plain.time_s)))
             here = next((g.loc[k] for k in g.index if k.startswith("figures (--no-report), --jobs 1")), None)
             if here is not None:
