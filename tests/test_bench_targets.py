@@ -81,6 +81,14 @@ def test_figure_target_by_wall_is_a_line_of_its_own():
     assert t["tce run fig9_outofplane: with figures at most 1.5x its own --no-plots run (wall)"][1] is False
 
 
+def test_run_by_run_pairs_the_runs_of_each_round():
+    from tce.quality.bench import run_by_run
+
+    assert run_by_run([{"wall": 3.0}, {"wall": 1.5}], [{"wall": 2.0}, {"wall": 1.0}]) == [1.5, 1.5]
+    with pytest.raises(ValueError):
+        run_by_run([{"wall": 3.0}], [{"wall": 2.0}, {"wall": 1.0}])
+
+
 def test_figure_target_by_wall_quotes_the_run_by_run_ratio():
     """The ratio of the runs of each round (same speed of this shared machine) is quoted; the target is
     still the ratio of the medians."""

@@ -911,6 +911,12 @@ def _load(gs: Sequence[dict[str, Any]]) -> str:
     return f"load average {statistics.median(loads):.1f} ({min(loads):.1f}-{max(loads):.1f})"
 
 
+def run_by_run(runs: Sequence[dict[str, Any]], base: Sequence[dict[str, Any]]) -> list[float]:
+    """The wall time of each of ``runs`` over that of ``base`` in the same round (both from
+    :func:`_interleaved`: round k of each variant is item k)."""
+    return [g["wall"] / b["wall"] for g, b in zip(runs, base, strict=True)]
+
+
 def _interleaved(study: Path, out: Path, variants: dict[str, list[str]], repeats: int) -> dict[str, list[dict[str, Any]]]:
     """``repeats`` measured runs (:func:`measured_run`) of each variant (``label -> tce run
     arguments``), interleaved, every other round in reverse order."""
@@ -979,7 +985,7 @@ def _sweeps(quick: bool) -> list[dict[str, Any]]:
             plain_wall = statistics.median(g["wall"] for g in runs["--no-plots"])
             for label, gs in runs.items():
                 cpu, wall = statistics.median(g["cpu"] for g in gs), statistics.median(g["wall"] for g in gs)
-                paired = [g["wall"] / p["wall"] for g, p in zip(gs, runs["--no-plots"])]
+                paired = run_by_run(gs, runs["--no-plots"])
                 rows.append(_row("sweeps", f"tce run {name}", label, n_solves=len(gs), time_s=wall,
                                  time_min_s=min(g["wall"] for g in gs), cpu_s=cpu,
                                  note=f"CPU {cpu:.2f} s, {cpu / plain_cpu:.2f}x --no-plots (CPU); wall "
