@@ -250,7 +250,7 @@ def test_strengths_are_sweepable() -> None:
 def test_study_dataset_carries_the_bracket_and_the_figure(tmp_path: Path) -> None:
     from tce.study.runner import run_study
 
-    from tce.plot.materials import write_material_figures
+    from tce.plot.output import Task, render
 
     study = parse_study(STUDY, tmp_path / "study.toml")
     report = run_study(study, tmp_path, jobs=1)  # no figures; the bracket one below
@@ -260,7 +260,7 @@ def test_study_dataset_carries_the_bracket_and_the_figure(tmp_path: Path) -> Non
     assert np.all(ds["lambda_nonassoc"].values <= ds["lambda_assoc"].values * (1 + 1e-7))
     assert ds["lambda_nonassoc"].attrs["units"] == "1" and "nonassoc_iterations" in ds
     assert np.all(ds["nonassoc_consistency"].values <= 1e-6) and ds["nonassoc_consistency"].attrs["units"] == "1"
-    assert write_material_figures(ds, tmp_path) == [tmp_path / "bracket.png"]
+    assert render(ds, Task("bracket.png", "bracket", ()), tmp_path) == tmp_path / "bracket.png"
     assert (tmp_path / "bracket.png").stat().st_size > 10_000
 
 

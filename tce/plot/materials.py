@@ -11,16 +11,14 @@ Like :mod:`tce.plot.figures`, it reads the dataset only and builds figures witho
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
 from .figures import COLOURS, MARKERS
-from .rendering import save_png
 
-__all__ = ["SWEPT", "bracket_figure", "write_material_figures"]
+__all__ = ["SWEPT", "bracket_figure"]
 
 #: swept material parameters, in the order one is chosen for the horizontal axis
 SWEPT = ("friction", "compressive_strength", "cohesion", "tensile_strength")
@@ -85,13 +83,3 @@ def bracket_figure(ds: xr.Dataset) -> Figure | None:
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="best")
     return fig
-
-
-def write_material_figures(ds: xr.Dataset, outdir: Path) -> list[Path]:
-    """Write ``bracket.png`` when the study sweeps a material parameter; the files written."""
-    fig = bracket_figure(ds)
-    if fig is None:
-        return []
-    path = Path(outdir) / "bracket.png"
-    save_png(fig, path, dpi=150)
-    return [path]
