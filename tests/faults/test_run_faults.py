@@ -68,14 +68,15 @@ def test_killed_worker_is_named_and_the_others_are_kept(study, reference, tmp_pa
 def test_ctrl_c_keeps_a_finished_scenario_not_yet_returned(study, reference, tmp_path, jobs: str) -> None:
     out = tmp_path / "out"
     finished = "none/friction=2"
-    # with two workers, none/friction=0.8 is the other worker's: the interrupt waits for its file
+    # the interrupt is sent once two scenario files are written: this one's and another (with two
+    # workers, whichever the other worker finished first: under load it need not be none/friction=0.8)
     run = tce_run(write(tmp_path), out, "--jobs", jobs, fault=f"interrupt:{finished}:2")
     assert run.returncode == 130, run.stderr
     clean(run.stderr)
     said = [line for line in run.stderr.strip().splitlines() if not line.startswith("tce: tiny: ")]  # progress lines
     assert "interrupted" in run.stderr and len(said) <= 2
     kept = files(study, out)
-    assert kept[finished] and kept["none/friction=0.8"]  # written before the parent was told
+    assert kept[finished] and sum(kept.values()) >= 2  # both written before the parent was told
     assert not leftovers(out)
     resume_equals(study, reference, out, reused=sum(kept.values()))
 
