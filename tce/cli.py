@@ -383,7 +383,7 @@ def _run_study(args: argparse.Namespace, drawers) -> int:
         print(f"tce: interrupted ({exc or 'SIGINT'}); {kept}: run the same command again to resume", file=sys.stderr)
         return exit_code(exc)
     finally:
-        if drawers is not None:
+        if drawers is not None:  # done with: they end before the report is written (_run closes them too)
             drawers.close()
     bar.close()
     counts = {o: list(report.outcomes.values()).count(o) for o in OUTCOMES}

@@ -859,8 +859,8 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
 
     ``drawn`` are the scenarios the figures draw (default: every scenario of ``ds``); the title
     says "every scenario drawn" when ``names`` are all of them, else names them. It does not
-    depend on which scenarios ``ds`` holds: a drawer receives only those a figure reads
-    (:func:`tce.plot.output.figure_tasks`).
+    depend on which scenarios ``ds`` holds: a worker of ``tce plot --jobs`` receives only those
+    a figure reads (``tce.plot.output._subset``).
 
     A vertex ``p`` of a block with centroid ``c`` and velocities ``(v, w)`` moves to
     ``p + s (v + w x (p - c))``; ``s`` makes the largest vertex displacement

@@ -11,7 +11,6 @@ Like :mod:`tce.plot.figures`, it reads the dataset only and builds figures witho
 
 from __future__ import annotations
 
-
 import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
