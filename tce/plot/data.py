@@ -141,14 +141,29 @@ def scenarios(ds: xr.Dataset) -> list[str]:
     return [str(s) for s in ds["scenario"].values]
 
 
-def value(ds: xr.Dataset, name: str, scenario: str) -> NDArray:
-    """``ds[name]`` of one scenario as an ndarray (other dimensions in their stored order).
+def value(ds: xr.Dataset, name: str, scenario: str, dims: Sequence[str] | None = None) -> NDArray:
+    """``ds[name]`` of one scenario as an ndarray, its other dimensions in the order ``dims``
+    (default: their stored order).
 
     Indexes by position (the figures read hundreds of these: label-based selection would
-    cost more than the drawing)."""
+    cost more than the drawing; xarray's ``sel`` and ``transpose`` take 0.2-1 ms each)."""
     var = ds.variables[name]
-    k = ds.indexes["scenario"].get_loc(scenario)
-    return np.asarray(var.values[(slice(None),) * var.dims.index("scenario") + (k,)])
+    k = ds.get_index("scenario").get_loc(scenario)
+    out = np.asarray(var.values[(slice(None),) * var.dims.index("scenario") + (k,)])
+    if dims is None:
+        return out
+    rest = [d for d in var.dims if d != "scenario"]
+    return out.transpose([rest.index(d) for d in dims])
+
+
+def block_rows(ds: xr.Dataset, name: str, scenario: str, asm: Assembly) -> NDArray[np.float64]:
+    """``ds[name]`` (dimensions ``scenario, block, ...``) of one scenario, a row per block of
+    ``asm`` in its order (a geometry sweep stores the blocks of every structure)."""
+    rows = ds.get_index("block").get_indexer(list(asm.names))
+    if np.any(rows < 0):
+        raise KeyError(f"{name}: blocks {[n for n, r in zip(asm.names, rows) if r < 0]} are not in the dataset")
+    rest = [d for d in ds.variables[name].dims if d != "scenario"]
+    return np.asarray(value(ds, name, scenario, ["block"] + [d for d in rest if d != "block"]), float)[rows]
 
 
 def text(ds: xr.Dataset, name: str, scenario: str, default: str = "") -> str:
@@ -175,11 +190,15 @@ def optimal_steps(ds: xr.Dataset, scenario: str) -> NDArray[np.int64]:
 
 def swept_parameters(ds: xr.Dataset, names: Sequence[str] | None = None) -> list[str]:
     """Swept coordinates along ``scenario`` that take more than one value among ``names``."""
-    sel = ds if names is None else ds.sel(scenario=list(names))
+    rows: slice | NDArray[np.int64] = slice(None)
+    if names is not None:
+        rows = ds.get_index("scenario").get_indexer(list(names))
+        if np.any(rows < 0):
+            raise KeyError(f"scenarios {[s for s, r in zip(names, rows) if r < 0]} are not in the dataset")
     out = []
     for p in SWEPT:
-        if p in sel.coords and sel[p].dims == ("scenario",):
-            v = np.asarray(sel[p].values, dtype=float)
+        if p in ds.coords and ds.variables[p].dims == ("scenario",):
+            v = np.asarray(ds.variables[p].values[rows], dtype=float)
             if len({round(x, 12) if math.isfinite(x) else "nan" for x in v}) > 1:
                 out.append(p)
     return out
@@ -348,10 +367,10 @@ PASSIVE_SHOWN = 1e-6
 
 def _notes(ds: xr.Dataset, scenario: str, step: int) -> str:
     notes = [outcome_note(ds, scenario)]
-    if "unique" in ds and float(ds["unique"].sel(scenario=scenario, step=step)) == 0.0:
+    if "unique" in ds and float(value(ds, "unique", scenario, ["step"])[step]) == 0.0:
         notes.append(NOT_UNIQUE)
     if "passive_force" in ds:
-        passive = float(ds["passive_force"].sel(scenario=scenario, step=step))
+        passive = float(value(ds, "passive_force", scenario, ["step"])[step])
         if math.isfinite(passive) and passive > PASSIVE_SHOWN:
             notes.append(f"the fill's passive restraint pushes {passive:.3g} kN horizontally on the ring "
                          "(its pieces are not drawn)")
@@ -414,7 +433,7 @@ def mechanism_groups(ds: xr.Dataset, names: Sequence[str]) -> list[list[str]]:
     for s in names:
         if "mechanism" not in ds:
             break
-        v = np.asarray(ds["mechanism"].sel(scenario=s).transpose("block", "dof").values, float)
+        v = np.asarray(value(ds, "mechanism", s, ["block", "dof"]), float)
         if np.all(np.isfinite(v)) and np.any(v):
             mech.append((s, v, value(ds, "interface_mode", s).astype(str)))
     groups: list[list[int]] = []
@@ -538,7 +557,7 @@ def support_forces(ds: xr.Dataset, scenario: str, frame: StructureFrame) -> dict
         ``frame.moment_axis``. NaN where the step is not optimal.
     """
     sup = [str(s) for s in ds["support"].values]
-    r = np.asarray(ds["reaction"].sel(scenario=scenario).transpose("step", "support", "component").values, float)
+    r = np.asarray(value(ds, "reaction", scenario, ["step", "support", "component"]), float)
     f, m = -r[..., :3], -r[..., 3:]
 
     def along(vec: NDArray[np.float64], axes: dict[str, NDArray[np.float64]]) -> NDArray[np.float64]:
@@ -591,9 +610,8 @@ def hinge_segments(ds: xr.Dataset, scenario: str, asm: Assembly) -> NDArray[np.f
     if "interface_mode" not in ds or "mechanism" not in ds:
         return np.empty((0, 2, 3))
     mode = value(ds, "interface_mode", scenario).astype(str)
-    hp = np.asarray(ds["hinge_point"].sel(scenario=scenario).transpose("interface", "xyz").values, float)
-    vel = np.asarray(ds["mechanism"].sel(scenario=scenario).sel(block=list(asm.names)).transpose("block", "dof").values,
-                     float)
+    hp = np.asarray(value(ds, "hinge_point", scenario, ["interface", "xyz"]), float)
+    vel = block_rows(ds, "mechanism", scenario, asm)
     if not np.all(np.isfinite(vel)):
         return np.empty((0, 2, 3))
     segs = []

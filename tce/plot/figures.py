@@ -66,6 +66,7 @@ from .data import (
     SWEPT,
     State,
     assembly,
+    block_rows,
     one_geometry,
     chain_interfaces,
     find_state,
@@ -198,12 +199,12 @@ class _Styles:
     @classmethod
     def of(cls, ds: xr.Dataset, names: Sequence[str]) -> _Styles:
         swept = swept_parameters(ds, names)
-        cases = [str(ds["settlement"].sel(scenario=s).values) if "settlement" in ds.coords else s for s in names]
+        cases = [str(value(ds, "settlement", s)) if "settlement" in ds.coords else s for s in names]
         order = list(dict.fromkeys(cases))
         style_of = {c: LINESTYLES[k % len(LINESTYLES)] for k, c in enumerate(order)}
         if swept:
             key = swept[0]
-            vals = [float(ds[key].sel(scenario=s)) for s in names]
+            vals = [float(value(ds, key, s)) for s in names]
             uniq = sorted(set(vals))
             palette = _palette(len(uniq))
             colour_of = {v: palette[k] for k, v in enumerate(uniq)}
@@ -255,7 +256,7 @@ def _facets(ds: xr.Dataset, names: Sequence[str], styles: _Styles, by_scenario: 
         return [("", list(names))]
     rows: dict[str, list[str]] = {}
     for s in names:
-        key = ", ".join(f"{p} = {float(ds[p].sel(scenario=s)):g}" for p in others)
+        key = ", ".join(f"{p} = {float(value(ds, p, s)):g}" for p in others)
         rows.setdefault(key, []).append(s)
     return list(rows.items())
 
@@ -507,11 +508,14 @@ class _Arrays:
     """Pressure points, resultants and torques of the scenarios of a figure, read once."""
 
     def __init__(self, ds: xr.Dataset, names: Sequence[str]) -> None:
-        sub = ds.sel(scenario=list(names))
         self.index = {s: k for k, s in enumerate(names)}
-        self.pp = np.asarray(sub["pressure_point"].transpose("scenario", "step", "interface", "xyz").values, float)
-        self.res = np.asarray(sub["resultant"].transpose("scenario", "step", "interface", "xyz").values, float)
-        self.tq = np.asarray(sub["torque"].transpose("scenario", "step", "interface").values, float)
+
+        def read(name: str, dims: list[str]) -> NDArray[np.float64]:
+            return np.stack([np.asarray(value(ds, name, s, dims), float) for s in names])
+
+        self.pp = read("pressure_point", ["step", "interface", "xyz"])
+        self.res = read("resultant", ["step", "interface", "xyz"])
+        self.tq = read("torque", ["step", "interface"])
 
     def state(self, st: State) -> tuple[NDArray, NDArray, NDArray]:
         i = self.index[st.scenario]
@@ -583,7 +587,7 @@ def _hinges(ax: Axes, ds: xr.Dataset, scenario: str, asm: Assembly, camera: draw
     elevation of a planar scenario, where they are seen end-on, a marker each."""
     if planar and camera == draw.Camera.elevation():
         mode = value(ds, "interface_mode", scenario).astype(str) if "interface_mode" in ds else np.array([])
-        hp = np.asarray(ds["hinge_point"].sel(scenario=scenario).transpose("interface", "xyz").values, float)
+        hp = np.asarray(value(ds, "hinge_point", scenario, ["interface", "xyz"]), float)
         hp = hp[(mode == "hinge") & np.all(np.isfinite(hp), axis=1)]
         xy = camera.project(hp) + offset
         ax.plot(xy[:, 0], xy[:, 1], linestyle="none", marker="o", markersize=6, markerfacecolor="white",
@@ -826,7 +830,7 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
                 st = find_state(ds, s, t)
                 if st.step is None:
                     continue
-                p = ds["pressure_point"].sel(scenario=s, step=st.step, interface=itf_names[k]).values
+                p = value(ds, "pressure_point", s, ["step", "interface", "xyz"])[st.step, k]
                 if not np.all(np.isfinite(p)):
                     continue
                 xy = p @ basis.T
@@ -877,8 +881,7 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
     names = list(names)
     s0 = names[0]
     asm = one_geometry(ds, names)
-    vel = np.asarray(ds["mechanism"].sel(scenario=s0).sel(block=list(asm.names)).transpose("block", "dof").values,
-                     float)
+    vel = block_rows(ds, "mechanism", s0, asm)
     verts = [np.asarray(b.shape.vertices, float) for b in asm.blocks]
     cen = asm.centroids
     disp = [vel[k, :3] + np.cross(vel[k, 3:], v - cen[k]) for k, v in enumerate(verts)]
@@ -936,8 +939,7 @@ def transversal_offsets(ds: xr.Dataset, st: State, asm: Assembly, chain: Sequenc
         ``y / (d/2)``: the pressure point's distance from the middle of the depth over half
         the joint's depth (``±1`` at the faces).
     """
-    pp = np.asarray(ds["pressure_point"].sel(scenario=st.scenario).transpose("step", "interface", "xyz").values,
-                    float)[st.step]
+    pp = np.asarray(value(ds, "pressure_point", st.scenario, ["step", "interface", "xyz"]), float)[st.step]
     outlines, points, shift = [], [], []
     for k in chain:
         itf = asm.interfaces[k]
@@ -1071,10 +1073,10 @@ def summary_figure(ds: xr.Dataset) -> Figure:
     if not params:
         raise ValueError("nothing is swept: the summary needs a swept parameter")
     names = scenarios(ds)
-    case = {s: (str(ds["settlement"].sel(scenario=s).values) if "settlement" in ds.coords else "") for s in names}
+    case = {s: (str(value(ds, "settlement", s)) if "settlement" in ds.coords else "") for s in names}
     lmax = {s: float(value(ds, "lambda_max", s)) for s in names}
     outcome = {s: text(ds, "outcome", s, "limit") for s in names}
-    par = {s: {p: float(ds[p].sel(scenario=s)) for p in params} for s in names}
+    par = {s: {p: float(value(ds, p, s)) for p in params} for s in names}
     cases = list(dict.fromkeys(case.values()))
     # cases with identical answers for every parameter set share a row
     sig = {c: tuple(sorted((tuple(par[s][p] for p in params), round(lmax[s], 9) if math.isfinite(lmax[s]) else outcome[s])

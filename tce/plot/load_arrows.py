@@ -16,6 +16,8 @@ from matplotlib.axes import Axes
 from matplotlib.lines import Line2D
 from numpy.typing import NDArray
 
+from .data import value
+
 __all__ = ["LOAD_COLOUR", "declared_loads", "draw_loads_2d", "draw_loads_3d"]
 
 LOAD_COLOUR = "#009E73"  # Okabe-Ito bluish green: apart from resultants (red) and hinges (blue)
@@ -27,9 +29,9 @@ def declared_loads(ds: xr.Dataset, scenario: str) -> tuple[NDArray, NDArray, NDA
     loads (padding dropped); None when the dataset has none."""
     if "load_point" not in ds:
         return None
-    p = np.asarray(ds["load_point"].sel(scenario=scenario).transpose("load", "xyz").values, dtype=float)
-    f = np.asarray(ds["load_force"].sel(scenario=scenario).transpose("load", "xyz").values, dtype=float)
-    live = np.asarray(ds["load_scaled"].sel(scenario=scenario).values, dtype=float)
+    p = np.asarray(value(ds, "load_point", scenario, ["load", "xyz"]), dtype=float)
+    f = np.asarray(value(ds, "load_force", scenario, ["load", "xyz"]), dtype=float)
+    live = np.asarray(value(ds, "load_scaled", scenario), dtype=float)
     ok = np.all(np.isfinite(p), axis=1) & np.all(np.isfinite(f), axis=1)
     return (p[ok], f[ok], live[ok] > 0.5) if ok.any() else None
 

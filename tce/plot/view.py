@@ -30,7 +30,9 @@ from numpy.typing import NDArray
 from ..core.model import lateral_direction
 from . import draw
 from ..structures.assembly import Assembly
-from .data import NOT_UNIQUE, assembly, geometry, hinge_segments, optimal_steps, outcome_note, scenarios, value
+from .data import (
+    NOT_UNIQUE, assembly, block_rows, geometry, hinge_segments, optimal_steps, outcome_note, scenarios, value,
+)
 from .figures import ARROW_FRACTION, MECHANISM_FRACTION, TORQUE_FRACTION, TORQUE_TOL
 from .load_arrows import declared_loads
 
@@ -123,8 +125,8 @@ def _scales(ds: xr.Dataset, names: Sequence[str], size: float) -> tuple[float, f
         ok = optimal_steps(ds, s)
         if not ok.size:
             continue
-        res = np.asarray(ds["resultant"].sel(scenario=s).isel(step=ok).values, float)
-        tq = np.asarray(ds["torque"].sel(scenario=s).isel(step=ok).values, float)
+        res = np.asarray(value(ds, "resultant", s, ["step", "interface", "xyz"]), float)[ok]
+        tq = np.asarray(value(ds, "torque", s, ["step", "interface"]), float)[ok]
         fmax = max(fmax, float(np.nanmax(np.linalg.norm(res, axis=-1), initial=0.0)))
         tmax = max(tmax, float(np.nanmax(np.abs(tq), initial=0.0)))
     force = draw.nice(ARROW_FRACTION * size / fmax) if fmax > 0 else 0.0
@@ -179,8 +181,7 @@ def _mechanism(ds: xr.Dataset, s: str) -> dict:
     asm = assembly(ds, s)
     if "mechanism" not in ds:
         return dict(edges=_lines([]), hinges=_lines([]), text="")
-    vel = np.asarray(ds["mechanism"].sel(scenario=s).sel(block=list(asm.names)).transpose("block", "dof").values,
-                     float)
+    vel = block_rows(ds, "mechanism", s, asm)
     if not (np.all(np.isfinite(vel)) and np.any(vel)):
         return dict(edges=_lines([]), hinges=_lines([]), text="no collapse mechanism")
     cen = asm.centroids
@@ -226,13 +227,12 @@ def view_data(ds: xr.Dataset, names: Sequence[str] | None = None) -> dict:
         centres, weights = asm.centroids[free], asm.weights[free]
         head = 0.03 * asm.size
         ok = optimal_steps(ds, s)
-        sub = ds.sel(scenario=s)
-        pp = np.asarray(sub["pressure_point"].transpose("step", "interface", "xyz").values, float)
-        res = np.asarray(sub["resultant"].transpose("step", "interface", "xyz").values, float)
-        tq = np.asarray(sub["torque"].transpose("step", "interface").values, float)
-        lam = np.asarray(sub["lam"].values, float)
-        unique = np.asarray(sub["unique"].values, float) if "unique" in ds else np.full(len(lam), np.nan)
-        alpha = float(sub["alpha"]) if "alpha" in ds.coords else 0.0
+        pp = np.asarray(value(ds, "pressure_point", s, ["step", "interface", "xyz"]), float)
+        res = np.asarray(value(ds, "resultant", s, ["step", "interface", "xyz"]), float)
+        tq = np.asarray(value(ds, "torque", s, ["step", "interface"]), float)
+        lam = np.asarray(value(ds, "lam", s), float)
+        unique = np.asarray(value(ds, "unique", s), float) if "unique" in ds else np.full(len(lam), np.nan)
+        alpha = float(value(ds, "alpha", s)) if "alpha" in ds.coords else 0.0
         fmax = float(np.nanmax(np.linalg.norm(res[ok], axis=-1), initial=0.0)) if ok.size else 0.0
         tol = TORQUE_TOL * fmax * asm.size
         outcome = outcome_note(ds, s)
