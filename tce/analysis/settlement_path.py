@@ -83,11 +83,11 @@ from numpy.typing import ArrayLike, NDArray
 import scipy.sparse as sp
 
 from ..core.material import Material
-from ..core.model import EZ, Plane, find_plane, lateral_direction
+from ..core.model import EZ, Plane, find_plane
 from ..core.result import Result
 from ..core.solve import check_settlements
 from ..structures.assembly import Assembly, Block
-from ..structures.geometry import Polyhedron
+from ..structures.geometry import Polyhedron, lateral_direction
 
 __all__ = ["MAX_STEPS", "SettlementPathResult", "check_path_scene", "rotation_matrices", "settlement_path"]
 

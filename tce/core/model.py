@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 
 from .. import display
 from ..structures.assembly import Assembly
-from ..structures.geometry import cross
+from ..structures.geometry import cross, lateral_direction
 
 __all__ = [
     "InterfaceMap",
@@ -42,19 +42,12 @@ __all__ = [
     "Plane",
     "build_model",
     "find_plane",
-    "lateral_direction",
     "motions_in_plane",
     "scene_in_plane",
 ]
 
 ModelKind = Literal["spatial", "planar"]
 EZ = np.array([0.0, 0.0, 1.0])
-
-
-def lateral_direction(alpha: float) -> NDArray[np.float64]:
-    """Unit horizontal vector at ``alpha`` degrees from +x towards +y."""
-    a = np.deg2rad(alpha)
-    return np.array([np.cos(a), np.sin(a), 0.0])
 
 
 @dataclass(frozen=True)

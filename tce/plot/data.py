@@ -18,7 +18,7 @@ Conventions
   about the span axis (right-hand rule), about the support centroid.
 - A drawn **state** is one step of one scenario, asked for by load multiplier or
   ``"max"`` (:func:`find_state`); two multipliers are the same step within
-  :data:`tce.study.runner.LAMBDA_TOL`.
+  :data:`tce.study.names.LAMBDA_TOL`.
 """
 
 from __future__ import annotations
@@ -36,10 +36,8 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
-from ..study.positions import critical_positions
-from ..study.runner import same_lambda
 from ..study.outcomes import outcome_words, status_words
-from ..study.schema import PLOT_KINDS, PlotsSection
+from ..study.names import PLOT_KINDS, same_lambda
 
 __all__ = [
     "PlotSpec",
@@ -225,7 +223,7 @@ class PlotSpec:
     scenarios : tuple of str
         Scenarios drawn in the per-scenario figures, the thrust curves and the view.
     kinds : tuple of str
-        Figure kinds (:data:`tce.study.schema.PLOT_KINDS`).
+        Figure kinds (:data:`tce.study.names.PLOT_KINDS`).
     """
 
     steps: tuple[Target, ...]
@@ -237,6 +235,8 @@ def critical_scenarios(ds: xr.Dataset) -> list[str]:
     """The critical scenario of every group of a load-position sweep, in dataset order (the
     scenarios the per-scenario figures show by default, :func:`plot_spec`; a group without a
     finite lambda_max shows its first position)."""
+    from ..study.positions import critical_positions  # the solvers: not imported by a figure drawer
+
     chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}
     return [str(s) for s in ds["scenario"].values if str(s) in chosen]
 
@@ -271,6 +271,8 @@ def plot_spec(
         if given is not None:
             table[key] = list(given)
     from pydantic import ValidationError
+
+    from ..study.schema import PlotsSection  # pydantic: not imported by a figure drawer
 
     try:
         section = PlotsSection.model_validate(table)

@@ -1,20 +1,24 @@
 """Draw a run's figures in processes that got ready while the run solved (issue 24).
 
-Figures cost a ``tce run`` of the paper's arch more than its solving: importing matplotlib and
-tce's figure modules (0.20-0.25 CPU-s made lean, :func:`tce.plot.rendering.lean_matplotlib`;
-0.31-0.36 otherwise) and drawing them (0.55-0.75 CPU-s for Fig. 9's six files), against 1.0-1.3 CPU-s for the whole run
-without figures. None of the imports needs the results, and the figures do not need each
-other. :meth:`Drawers.start` therefore forks one process as ``tce run`` starts (before the run
-imports its runner and reads the study: :mod:`tce.cli`), that imports those modules and draws a
-small figure (fonts loaded, caches filled) while the run solves; once warm it forks the others
-from itself (a fork of a warm process is ready at once). On the paper's arch the first is warm
-about as the run hands its results over.
-When the results are written, :meth:`Drawers.draw` hands the figures out one at a time to
-whichever drawer is free, the costliest kinds first (:data:`COST`), the dataset with a drawer's
-first figure only, and collects the files in the order of
-:func:`tce.plot.output.figure_tasks`. On two cores the imports overlap the solving and the
-drawing is split in two, so a run with figures waits about half of what drawing them costs; the
-CPU spent is about that of drawing them in the run's own process.
+Figures cost a ``tce run`` of the paper's arch more than its solving: importing xarray,
+matplotlib and tce's figure modules (0.7-0.85 CPU-s, matplotlib made lean,
+:func:`tce.plot.rendering.lean_matplotlib`) and drawing them (0.55-0.75 CPU-s for Fig. 9's six
+files), against 1.0-1.3 CPU-s for the whole run without figures. None of the imports needs the
+results, and the figures do not need each other. :meth:`Drawers.start` therefore forks one
+process as ``tce run`` starts (:mod:`tce.cli`, which imports neither numpy nor the study's
+schema before it), that imports those modules and nothing of the solvers (scipy, Clarabel,
+pydantic: the kinds whose modules need them are imported on :meth:`Drawers.prepare`, sent once
+the study is read) and draws a small figure (fonts loaded, caches filled) while the run
+imports, reads the study and solves; once warm it forks the others from itself (a fork of a
+warm process is ready at once). On the paper's arch the first is warm 0.15-0.35 s before the
+results are. As soon as the results are merged, :meth:`Drawers.draw` hands the figures out
+one at a time to whichever drawer is free, the costliest kinds first (:data:`COST`), the
+dataset with a drawer's first figure only; the run writes ``results.nc`` while the first ones
+are drawn, then puts each file in place as it comes back (a drawer leaves it under its
+temporary name), and returns them in the order of :func:`tce.plot.output.figure_tasks`. On two
+cores the imports overlap the solving and the drawing is split in two, so a run with figures
+waits about half of what drawing them costs; the CPU spent is that of drawing them in the
+run's own process plus the drawer's own imports of xarray (0.3-0.4 CPU-s).
 
 Drawers are used only where they should not be slower than drawing in the run's process: on
 Linux (a fork, a parent-death signal), with at least two cores usable, more than one job
@@ -25,7 +29,8 @@ free (:func:`cpu_free`). The drawers spend a little more CPU than the run's proc
 
 Faults are those of drawing in the run's process:
 
-- each figure is written atomically (:func:`tce.plot.output.render`); a failure (a full disk
+- each figure is written atomically (:func:`tce.plot.output.render`, put in place by the run
+  only once ``results.nc`` is written: a write that fails leaves no figure); a failure (a full disk
   is an :class:`OSError` naming the file) is raised in the run's process as if it had happened
   there, after the figures being drawn elsewhere are finished; no further figure is started;
 - a drawer that dies leaves its figure to be drawn again in the run's process, with the others
@@ -52,12 +57,15 @@ import threading
 import traceback
 from collections import deque
 from pathlib import Path
-from typing import Any
-
-import xarray as xr
+from typing import TYPE_CHECKING, Any
 
 from ..signals import quiet_children
 from ..study.progress import Progress
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable
+
+    import xarray as xr
 
 __all__ = ["PRESSURE_LIMIT", "Drawers", "cpu_free"]
 
@@ -89,18 +97,20 @@ def _die_with(parent: int) -> None:
 
 
 def _warm() -> None:
-    """Import every figure module, read plotly.js (:func:`tce.plot.view.plotly_js`, 11 ms) and
-    draw a small figure with text (loads the fonts), encoded as the figures are
+    """Import the figure modules of the paper's kinds (:func:`tce.plot.output.builder`; the
+    others on :meth:`Drawers.prepare`), read plotly.js (:func:`tce.plot.view.plotly_js`,
+    11 ms) and draw a small figure with text (loads the fonts), encoded as the figures are
     (:func:`tce.plot.rendering.png_bytes`)."""
     from .rendering import lean_matplotlib, png_bytes
 
     lean_matplotlib()
     from matplotlib.figure import Figure
 
-    from .output import _builders
+    from .output import builder
     from .view import plotly_js
 
-    _builders()
+    for kind in ("thrust", "view"):
+        builder(kind)
     plotly_js()
     fig = Figure(figsize=(1, 1))
     ax = fig.add_subplot()
@@ -113,9 +123,12 @@ def _warm() -> None:
 def _serve(conn: mp.connection.Connection) -> None:
     """Draw the tasks the run sends on ``conn``, replying with the file or the failure.
 
-    A message is ``(ds, task, outdir)``; ``ds`` is the results dataset with the first task and
-    None after it (the one kept is drawn)."""
-    from .output import render
+    A message is ``("prepare", kinds)`` (import what drawing those kinds needs, no reply) or
+    ``("draw", ds, task, outdir)``, where ``ds`` is the results dataset with the first task and
+    None after it (the one kept is drawn); the file is left under its temporary name
+    (:func:`tce.plot.output.render` with ``place=False``): the run puts it in place once
+    ``results.nc`` is written."""
+    from .output import builder, render
 
     ds = None
     while True:
@@ -123,10 +136,15 @@ def _serve(conn: mp.connection.Connection) -> None:
             msg = conn.recv()
         except (EOFError, OSError):  # the run closed its end
             return
-        sent, task, outdir = msg
+        if msg[0] == "prepare":
+            for kind in msg[1]:
+                with contextlib.suppress(Exception):  # drawing the kind will say what is wrong
+                    builder(kind)
+            continue
+        _, sent, task, outdir = msg
         ds = sent if sent is not None else ds
         try:
-            reply: tuple = ("drawn", render(ds, task, Path(outdir)))
+            reply: tuple = ("drawn", render(ds, task, Path(outdir), place=False))
         except Exception as exc:  # noqa: BLE001 - raised again in the run's process
             reply = ("failed", exc, traceback.format_exc())
         try:
@@ -221,8 +239,20 @@ class Drawers:
         log.debug("drawers: %d, the first is process %d", n, process.pid)
         return cls(process, ours)
 
-    def draw(self, ds: xr.Dataset, tasks: list, outdir: Path) -> list[Path]:
+    def prepare(self, kinds: Iterable[str]) -> None:
+        """Have the drawers import what drawing ``kinds`` needs beyond the paper's kinds (the
+        load-position and settlement figures import the solvers), while the run solves."""
+        for conn in self.conns:
+            with contextlib.suppress(OSError):  # a drawer that died: draw() finds out
+                conn.send(("prepare", tuple(kinds)))
+
+    def draw(self, ds: xr.Dataset, tasks: list, outdir: Path, written: Callable[[], None] | None = None) -> list[Path]:
         """Draw ``tasks`` (:func:`tce.plot.output.figure_tasks`) of ``ds`` into ``outdir``.
+
+        ``written()`` (``tce run`` writes ``results.nc`` with it) is called once every drawer has
+        its first figure, and before any file is put in place: the drawers leave each file
+        under its temporary name, renamed here as it comes back; if ``written`` raises, the
+        drawers are ended and no figure is left.
 
         Returns the files in task order; raises the first failure (module docstring)."""
         from .output import render, temporary
@@ -242,7 +272,7 @@ class Drawers:
             bar.doing(tasks[k].name)  # the file last handed out, as drawing here names the file under way
             try:  # the dataset once (a drawer keeps it): 0.8 ms to pickle Fig. 9's, against
                 # 2.5 ms for the part each file reads (output._subset, as tce plot --jobs sends)
-                conn.send((None if conn in given else ds, tasks[k], str(outdir)))
+                conn.send(("draw", None if conn in given else ds, tasks[k], str(outdir)))
                 given.add(conn)
             except OSError:  # it died: drawn here or by another
                 del busy[conn]
@@ -253,6 +283,8 @@ class Drawers:
             with Progress(len(tasks), "figures", unit="file") as bar:
                 for conn in list(self.conns):
                     feed(conn)
+                if written is not None:  # while they draw
+                    written()
                 while busy:
                     for conn in mp.connection.wait(list(busy)):
                         try:
@@ -264,8 +296,9 @@ class Drawers:
                             self._drop(conn)
                             continue
                         k = busy.pop(conn)
-                        if reply[0] == "drawn":
-                            files[k] = reply[1]
+                        if reply[0] == "drawn":  # under its temporary name: put in place
+                            files[k] = Path(outdir) / tasks[k].name
+                            Path(reply[1]).replace(files[k])
                             bar.update()
                         elif failure is None:
                             failure = reply[1:]
@@ -277,7 +310,7 @@ class Drawers:
                     files[k] = render(ds, tasks[k], outdir)
                     bar.update()
         except BaseException:
-            if busy:  # interrupted (Ctrl-C) while drawers draw: end them, remove what they left
+            if busy:  # interrupted (Ctrl-C, a failed write) while drawers draw: end them, remove what they left
                 self._kill()
                 for k in busy.values():
                     temporary(Path(outdir) / tasks[k].name).unlink(missing_ok=True)

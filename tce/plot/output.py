@@ -54,9 +54,8 @@ from .data import (
 )
 from ..study.progress import Progress, track
 from .rendering import save_png
-from .states import missing_states, solve_states
 
-__all__ = ["PARALLEL_AT", "figure_tasks", "write_figures"]
+__all__ = ["PARALLEL_AT", "builder", "figure_tasks", "render", "temporary", "write_figures"]
 
 log = logging.getLogger(__name__)
 
@@ -155,23 +154,31 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
     return tasks
 
 
-def _builders() -> dict[str, Callable]:
-    from . import capacity, figures, materials, settlement, view
+def builder(kind: str) -> Callable:
+    """The function drawing figures of ``kind``, its module imported on first use: a figure
+    drawer (:mod:`tce.plot.drawers`) imports the modules of the kinds it may draw and nothing
+    else (the load-position and settlement figures' modules import the solvers)."""
+    if kind == "capacity":
+        from .capacity import influence_line
 
-    return {
-        "capacity": capacity.influence_line,
-        "bracket": materials.bracket_figure,
-        "thrust": figures.thrust_curves,
-        "states": figures.states_figure,
-        "thrust_lines": figures.thrust_lines,
-        "transversal": figures.transversal_figure,
-        "base": figures.base_figure,
-        "mechanism": figures.mechanism_view,
-        "summary": figures.summary_figure,
-        "view": view.view_html,
-        "settlement": settlement.settlement_curves,
-        "settlement_shapes": settlement.settlement_shapes,
-    }
+        return influence_line
+    if kind == "bracket":
+        from .materials import bracket_figure
+
+        return bracket_figure
+    if kind in ("settlement", "settlement_shapes"):
+        from . import settlement
+
+        return settlement.settlement_curves if kind == "settlement" else settlement.settlement_shapes
+    if kind == "view":
+        from .view import view_html
+
+        return view_html
+    from . import figures
+
+    return {"thrust": figures.thrust_curves, "states": figures.states_figure, "thrust_lines": figures.thrust_lines,
+            "transversal": figures.transversal_figure, "base": figures.base_figure,
+            "mechanism": figures.mechanism_view, "summary": figures.summary_figure}[kind]
 
 
 def temporary(path: Path) -> Path:
@@ -179,19 +186,24 @@ def temporary(path: Path) -> Path:
     return path.with_name(f".{path.name}.tmp")
 
 
-def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
-    """Draw one task and write its file (atomically: a temporary file, then a rename)."""
+def render(ds: xr.Dataset, task: Task, outdir: Path, place: bool = True) -> Path:
+    """Draw one task and write its file atomically: the :func:`temporary` file, then renamed
+    to its name; with ``place=False``, left under the temporary name, which is returned (the
+    caller renames it)."""
     path = Path(outdir) / task.name
     tmp = temporary(path)
-    out = _builders()[task.kind](ds, *task.args)
+    out = builder(task.kind)(ds, *task.args)
     try:
         if isinstance(out, bytes):  # a page (view.html)
             tmp.write_bytes(out)
         else:
             save_png(out, tmp)
+        if not place:
+            return tmp
         tmp.replace(path)
-    finally:
+    except BaseException:
         tmp.unlink(missing_ok=True)
+        raise
     return path
 
 
@@ -206,7 +218,8 @@ def _subset(ds: xr.Dataset, task: Task) -> xr.Dataset:
 
 def write_figures(
     ds: xr.Dataset, outdir: Path | str, spec: PlotSpec | None = None, jobs: int = 1, tag: str = "",
-    draw: Callable[[xr.Dataset, list[Task], Path], list[Path]] | None = None,
+    draw: Callable[[xr.Dataset, list[Task], Path, Callable[[], None] | None], list[Path]] | None = None,
+    written: Callable[[], None] | None = None,
 ) -> list[Path]:
     """Write every figure of ``spec`` (default: the study's ``[plots]``) into ``outdir``.
 
@@ -222,17 +235,27 @@ def write_figures(
     tag : str
         Appended to every file stem (figures drawn on demand).
     draw : callable, optional
-        ``draw(ds, tasks, outdir) -> files`` draws the tasks instead of this process and ``jobs``
-        (:meth:`tce.plot.drawers.Drawers.draw`: processes ``tce run`` made ready while it solved).
+        ``draw(ds, tasks, outdir, written) -> files`` draws the tasks instead of this process and
+        ``jobs`` (:meth:`tce.plot.drawers.Drawers.draw`: processes ``tce run`` made ready while
+        it solved).
+    written : callable, optional
+        Called before any figure is put in place (``tce run`` writes ``results.nc`` with it;
+        what it raises is raised and no figure is left): first thing here, once the figures
+        are handed out with ``draw``.
 
     Returns
     -------
     list of pathlib.Path
         The files written, in the order of :func:`figure_tasks`.
     """
+    from .states import missing_states, solve_states  # the solvers: not imported by a figure drawer
+
     spec = spec or plot_spec(ds)
     todo = missing_states(ds, spec.scenarios, [t for t in spec.steps if t != "max"])
     if todo:
+        if written is not None:  # solving them takes a while: the results first
+            written()
+            written = None
         try:
             ds = solve_states(ds, todo)
         except ValueError as exc:
@@ -241,7 +264,9 @@ def write_figures(
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     if draw is not None:
-        return draw(ds, tasks, outdir)
+        return draw(ds, tasks, outdir, written)
+    if written is not None:
+        written()
     if jobs > 1 and len(tasks) >= PARALLEL_AT:
         import joblib
 

@@ -110,7 +110,7 @@ def png_bytes(fig: Figure, dpi: float = DPI) -> bytes:
         _chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)),  # 8 bits, RGBA, deflate, no interlace
         _chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1)),
         _chunk(b"tEXt", b"Software\0tce with Matplotlib " + matplotlib.__version__.encode("ascii")),
-        _chunk(b"IDAT", zlib.compress(rows.tobytes(), 1)),
+        _chunk(b"IDAT", zlib.compress(rows, 1)),
         _chunk(b"IEND", b""),
     ])
 

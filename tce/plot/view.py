@@ -27,9 +27,9 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from ..core.model import lateral_direction
 from . import draw
 from ..structures.assembly import Assembly
+from ..structures.geometry import lateral_direction
 from .data import (
     NOT_UNIQUE, assembly, block_rows, geometry, hinge_segments, optimal_steps, outcome_note, scenarios, value,
 )

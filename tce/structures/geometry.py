@@ -31,6 +31,7 @@ __all__ = [
     "cross",
     "frame_from_normal",
     "frames_from_normals",
+    "lateral_direction",
     "newell_normal",
     "oriented_polyhedra",
     "polygon_area",
@@ -626,3 +627,9 @@ def box(lo: ArrayLike, hi: ArrayLike) -> Polyhedron:
     bottom = [[x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0]]
     top = [[x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1]]
     return prism(bottom, top)
+
+
+def lateral_direction(alpha: float) -> NDArray[np.float64]:
+    """Unit horizontal vector at ``alpha`` degrees from +x towards +y."""
+    a = np.deg2rad(alpha)
+    return np.array([np.cos(a), np.sin(a), 0.0])

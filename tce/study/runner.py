@@ -60,6 +60,7 @@ from ..analysis.assessment import adequacy_factor
 from ..analysis.critical import critical_position
 from . import keys
 from .jobs import choose_jobs
+from .names import same_lambda
 from .positions import with_adequacy, with_critical
 from .results import (
     FolderLocked,
@@ -78,14 +79,12 @@ from ..signals import quiet_children
 from .settlement import settlement_vars
 
 __all__ = [
-    "LAMBDA_TOL",
     "FigureFault",
     "RunError",
     "RunFault",
     "RunReport",
     "missing_lambdas",
     "run_study",
-    "same_lambda",
     "solve_scenario",
     "with_drawn_states",
 ]
@@ -93,12 +92,11 @@ __all__ = [
 log = logging.getLogger(__name__)
 
 Backend = Literal["loky", "dask"]
-#: two load multipliers closer than this (relative to max(1, |lambda|)) are the same step
-LAMBDA_TOL = 1e-9
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
-#: draws a written results dataset: (dataset, study folder, processes) -> files written
-Draw = Callable[[xr.Dataset, Path, int], Sequence[Path]]
+#: draws a results dataset: (dataset, study folder, processes, write) -> files written, calling
+#: ``write()`` (which writes ``results.nc``) before it puts any figure in place
+Draw = Callable[[xr.Dataset, Path, int, Callable[[], None]], Sequence[Path]]
 #: outcomes of a load path, in the order the run summary lists them
 OUTCOMES = ("limit", "capped", "no_limit", "unbounded", "infeasible", "numerical")
 
@@ -225,11 +223,6 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
         factors = sc.loads["dead_factor"], sc.loads["live_factor"]
         ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
     return ds if crit is None else with_critical(ds, crit)
-
-
-def same_lambda(a: float, b: float) -> bool:
-    """Whether two load multipliers are the same step (within :data:`LAMBDA_TOL`)."""
-    return abs(a - b) <= LAMBDA_TOL * max(1.0, abs(a), abs(b))
 
 
 def missing_lambdas(solved: Sequence[float], wanted: Sequence[float], upper: float) -> list[float]:
@@ -643,9 +636,11 @@ def run_study(
         ``progress(done, total, steps)`` before the first scenario (``done = 0``) and after
         each scenario solved.
     plots : callable, optional
-        ``plots(ds, folder, jobs) -> list of Path``: draws the written results dataset into the
-        study's folder (still under its lock) with up to ``jobs`` processes; the files it
-        returns are :attr:`RunReport.figures`. The command line passes
+        ``plots(ds, folder, jobs, write) -> list of Path``: draws the results dataset into the
+        study's folder (still under its lock) with up to ``jobs`` processes, calling ``write()``
+        (which writes ``results.nc``, or raises :class:`RunFault`) before it puts any figure in
+        place, so that figures drawn elsewhere meanwhile never stand beside an unwritten
+        ``results.nc``; the files it returns are :attr:`RunReport.figures`. The command line passes
         :func:`tce.plot.write_figures` (the runner does not import :mod:`tce.plot`); default:
         no figures.
     fresh : bool
@@ -715,15 +710,20 @@ def run_study(
         if report.faults:
             raise RunFault(report)
         ds = merge_scenarios(study, parts)
-        try:
-            write_atomic(ds, report.results)
-        except StorageError as exc:
-            report.faults.append(str(exc))
-            raise RunFault(report) from None
-        log.info("wrote %s", report.results)
-        if plots:
+
+        def write() -> None:
             try:
-                report.figures = list(plots(ds, directory, jobs))
+                write_atomic(ds, report.results)
+            except StorageError as exc:
+                report.faults.append(str(exc))
+                raise RunFault(report) from None
+            log.info("wrote %s", report.results)
+
+        if not plots:
+            write()
+        else:
+            try:  # the figures may be drawn while results.nc is written, and are put in place after it
+                report.figures = list(plots(ds, directory, jobs, write))
             except OSError as exc:  # a full or unwritable disk: results.nc is written
                 report.faults.append(str(storage_error(Path(exc.filename or directory), exc)))
                 raise FigureFault(report) from None

@@ -54,6 +54,7 @@ from ..structures.io import MAX_BLOCKS, InputLimitError
 from ..structures.params import did_you_mean
 from . import guards
 from .guards import StudyError
+from .names import PLOT_KINDS
 
 __all__ = [
     "MAX_BLOCKS",
@@ -514,9 +515,6 @@ class SweepSection(_Strict):
         return [(k, list(v)) for k, v in self if v is not None]
 
 
-#: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
-PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "transversal", "base", "mechanism", "summary", "bracket",
-              "view", "settlement", "settlement_shapes")
 #: studies with more scenarios draw per-scenario figures only for those ``[plots] scenarios`` names
 MAX_DRAWN_SCENARIOS = 12
 
@@ -534,7 +532,7 @@ class PlotsSection(_Strict):
         the thrust curves and the interactive view. Default: every scenario when the study
         has at most :data:`MAX_DRAWN_SCENARIOS`, none otherwise (summary figures only).
     kinds : list of str, optional
-        Figure kinds among :data:`PLOT_KINDS`; default: every kind that applies except
+        Figure kinds among :data:`tce.study.names.PLOT_KINDS`; default: every kind that applies except
         ``"base"``.
     """
 

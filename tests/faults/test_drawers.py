@@ -126,6 +126,24 @@ output.write_figures(xr.load_dataset(sys.argv[1]), sys.argv[2])
 """
 
 
+#: what a drawer has imported once warm, in a fresh process: the figure modules, not the solvers
+WARM = """
+import sys
+import tce.cli, tce.plot.drawers
+assert "numpy" not in sys.modules  # tce run forks its first drawer before it imports numpy
+tce.plot.drawers._warm()
+heavy = [m for m in ("scipy.sparse", "clarabel", "pydantic", "tce.study.schema", "tce.core.model") if m in sys.modules]
+assert "matplotlib.figure" in sys.modules and "tce.plot.view" in sys.modules and not heavy, heavy
+"""
+
+
+def test_a_drawer_warms_up_without_the_solvers() -> None:
+    """A drawer forked as ``tce run`` starts imports xarray, matplotlib and the figure modules
+    only (issue 24: ready before the run's results, which it needs to draw)."""
+    done = subprocess.run([sys.executable, "-c", WARM], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+
+
 def test_lean_artists_draw_the_same_bytes(finished, tmp_path) -> None:
     """Matplotlib imported as the ``tce`` program imports it (:func:`tce.plot.rendering.lean_matplotlib`:
     no docstrings for ``set``) draws every file byte for byte as imported as usual (this process)."""
@@ -210,6 +228,30 @@ def test_a_full_disk_in_a_drawer_is_the_runs_figure_fault(tmp_path, monkeypatch,
     (line,) = errors(err)
     assert "no space left on the device" in line and ".thrust.png.tmp" in line
     assert (out / "tiny" / "results.nc").exists() and "tce plot" in err and not leftovers(out)
+
+
+def test_results_that_cannot_be_written_leave_no_figure(tmp_path, monkeypatch, capsys, request) -> None:
+    """The drawers draw while ``results.nc`` is written (issue 24): a write that fails once a
+    figure is drawn leaves neither that figure nor any other, and no temporary file."""
+    if _elsewhere(request):
+        return
+    monkeypatch.setattr(drawers_module, "cpu_free", lambda: True)  # drawers however busy the machine is
+    out = tmp_path / "out"
+    folder = out / "tiny"
+
+    def failing(ds, path) -> None:  # the disk fills up once a drawer has finished a file
+        end = time.monotonic() + 60
+        while not [p for p in [*folder.glob("*.png"), *folder.glob(".*.png.tmp")] if p.stat().st_size > 1000]:
+            assert time.monotonic() < end, "no figure was drawn while results.nc was written"
+            time.sleep(0.01)
+        time.sleep(0.2)
+        raise runner.StorageError(f"{path}: no space left on the device")
+
+    monkeypatch.setattr(runner, "write_atomic", failing)
+    assert main(["run", str(write(tmp_path, DRAWN)), "--out", str(out), "--no-report"]) == 3
+    err = capsys.readouterr().err
+    assert "results.nc: no space left on the device" in err and "results.nc was not written" in err
+    assert not list(folder.glob("*.png")) and not list(folder.glob("*.html")) and not leftovers(out)
 
 
 def test_a_drawer_that_dies_is_replaced_by_the_run(finished, start, tmp_path, monkeypatch, caplog, request) -> None:

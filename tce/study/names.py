@@ -1,0 +1,19 @@
+"""Names and a tolerance that the study schema, the runner and the figures share, importable
+without pydantic, xarray or the solvers: a figure drawer (:mod:`tce.plot.drawers`) and the
+command line's parser import this, not :mod:`tce.study.schema` or :mod:`tce.study.runner`
+(issue 24: a drawer forked as ``tce run`` starts is ready sooner the less it imports)."""
+
+from __future__ import annotations
+
+__all__ = ["LAMBDA_TOL", "PLOT_KINDS", "same_lambda"]
+
+#: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
+PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "transversal", "base", "mechanism", "summary", "bracket",
+              "view", "settlement", "settlement_shapes")
+#: two load multipliers closer than this (relative to max(1, |lambda|)) are the same step
+LAMBDA_TOL = 1e-9
+
+
+def same_lambda(a: float, b: float) -> bool:
+    """Whether two load multipliers are the same step (within :data:`LAMBDA_TOL`)."""
+    return abs(a - b) <= LAMBDA_TOL * max(1.0, abs(a), abs(b))
