@@ -341,6 +341,20 @@ def _run(args: argparse.Namespace) -> int:
             drawers.close()
 
 
+def _figure_kinds(study) -> list[str]:
+    """The figure kinds ``study`` may draw, as far as its file tells (what the drawers prepare,
+    :meth:`tce.plot.drawers.Drawers.prepare`): the load-position figure only with a ``load_x``
+    sweep or a critical-position search, the settlement figures only with a
+    ``[settlement_path]``."""
+    spec = study.spec
+    kinds = list(spec.plots.kinds or PLOT_KINDS)
+    if spec.sweep.load_x is None and not spec.loads.critical_position:
+        kinds = [k for k in kinds if k != "capacity"]
+    if spec.settlement_path is None:
+        kinds = [k for k in kinds if k not in ("settlement", "settlement_shapes")]
+    return kinds
+
+
 def _run_study(args: argparse.Namespace, drawers) -> int:
     """``tce run`` once its drawers (:class:`tce.plot.drawers.Drawers`, or None) are started."""
     from .study.runner import OUTCOMES, FigureFault, RunError, RunFault, run_study
@@ -351,7 +365,7 @@ def _run_study(args: argparse.Namespace, drawers) -> int:
     except StudyError as exc:
         raise UsageError(str(exc)) from None
     if drawers is not None:
-        drawers.prepare(study.spec.plots.kinds or PLOT_KINDS)
+        drawers.prepare(_figure_kinds(study))
     kept = f"finished scenarios are kept in {args.out / study.name / 'scenarios'}"
     bar = _Bar(study.name)
     try:

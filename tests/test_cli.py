@@ -172,3 +172,23 @@ def test_only_the_tce_program_freezes_its_heap_for_the_exit(tmp_path, monkeypatc
     done = subprocess.run([sys.executable, "-c", code, missing], capture_output=True, text=True)
     assert done.returncode == 2, done.stderr
     assert "frozen True" in done.stdout
+
+
+@pytest.mark.parametrize(("study", "prepared"), [
+    ("fig9_outofplane.toml", {"states", "base", "transversal", "thrust", "mechanism", "view"}),
+    ("barrel_vault.toml", set()),  # default kinds: neither the load-position nor the settlement figures
+    ("bridge_axle.toml", {"capacity"}),  # a critical-position search
+    ("arch_point_load.toml", {"capacity"}),  # a load_x sweep
+    ("arch_spreading.toml", {"settlement", "settlement_shapes"}),
+])
+def test_the_drawers_prepare_the_kinds_a_study_can_draw(study: str, prepared: set[str]) -> None:
+    """``tce run`` has its drawers import the modules of the kinds a study can draw: the
+    load-position and settlement figures' modules import the solvers (issue 24)."""
+    from tce.cli import _figure_kinds
+    from tce.study.names import PLOT_KINDS
+    from tce.study.schema import load_study
+
+    kinds = set(_figure_kinds(load_study(Path(__file__).parents[1] / "studies" / study)))
+    heavy = {"capacity", "settlement", "settlement_shapes"}
+    assert kinds <= set(PLOT_KINDS) and kinds & heavy == prepared & heavy
+    assert not prepared - heavy or kinds == prepared
