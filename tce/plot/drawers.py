@@ -9,8 +9,10 @@ process as ``tce run`` starts (:mod:`tce.cli`, which imports neither numpy nor t
 schema before it), that imports those modules and nothing of the solvers (scipy, Clarabel,
 pydantic: the kinds whose modules need them are imported on :meth:`Drawers.prepare`, sent once
 the study is read) and draws a small figure (fonts loaded, caches filled) while the run
-imports, reads the study and solves; once warm it forks the others from itself (a fork of a
-warm process is ready at once). On the paper's arch the first is warm 0.15-0.35 s before the
+imports, reads the study and solves; then, until the results come, it makes spare axes with
+their ticks (:mod:`tce.plot.spare`: :data:`SPARES`, about a third of the drawing's own work
+on Fig. 9, none of it needing the results), and forks the others from itself (a fork of a warm
+process is ready at once, spares included). On the paper's arch the first is warm 0.15-0.35 s before the
 results are. As soon as the results are merged, :meth:`Drawers.draw` hands the figures out
 one at a time to whichever drawer is free, the costliest kinds first (:data:`COST`), the
 dataset with a drawer's first figure only; the run writes ``results.nc`` while the first ones
@@ -76,6 +78,9 @@ log = logging.getLogger(__name__)
 PRESSURE_LIMIT = 25.0
 #: seconds to wait for a drawer to end before killing it
 _GRACE = 5.0
+#: spare axes (:mod:`tce.plot.spare`) the first drawer makes while it waits, before it forks the
+#: others (three figures of four axes: Fig. 9's files use 12 axes in five figures)
+SPARES = 12
 #: rough CPU (ms) of one file of each kind, measured in drawers on Fig. 7-8 and Fig. 9 (other
 #: kinds: :data:`_USUAL`): the drawers take the costliest first, so that the last files handed
 #: out are short and the drawers finish together (largest first, Graham's LPT rule)
@@ -120,26 +125,54 @@ def _warm() -> None:
     png_bytes(fig)
 
 
-def _serve(conn: mp.connection.Connection) -> None:
+def _prepare(kinds: Iterable[str]) -> None:
+    """Import the modules drawing ``kinds`` (:meth:`Drawers.prepare`)."""
+    from .output import builder
+
+    for kind in kinds:
+        with contextlib.suppress(Exception):  # drawing the kind will say what is wrong
+            builder(kind)
+
+
+def _spares(conn: mp.connection.Connection) -> tuple | None:
+    """Make spare axes (:mod:`tce.plot.spare`, one at a time, 10-15 ms each) until
+    :data:`SPARES` are made or the run sends a figure, handling ``prepare`` messages meanwhile.
+
+    Returns the first ``draw`` message, or None (all made, or the run closed its end)."""
+    from . import spare
+
+    while spare.ready() < SPARES:
+        try:
+            if not conn.poll():
+                spare.make()
+                continue
+            msg = conn.recv()
+        except (EOFError, OSError):  # the run closed its end: _serve finds out
+            return None
+        if msg[0] != "prepare":
+            return msg
+        _prepare(msg[1])
+    return None
+
+
+def _serve(conn: mp.connection.Connection, first: tuple | None = None) -> None:
     """Draw the tasks the run sends on ``conn``, replying with the file or the failure.
 
     A message is ``("prepare", kinds)`` (import what drawing those kinds needs, no reply) or
     ``("draw", ds, task, outdir)``, where ``ds`` is the results dataset with the first task and
     None after it (the one kept is drawn); the file is left under its temporary name
     (:func:`tce.plot.output.render` with ``place=False``): the run puts it in place once
-    ``results.nc`` is written."""
-    from .output import builder, render
+    ``results.nc`` is written. ``first`` is a message received already (:func:`_spares`)."""
+    from .output import render
 
     ds = None
     while True:
         try:
-            msg = conn.recv()
+            msg, first = first or conn.recv(), None
         except (EOFError, OSError):  # the run closed its end
             return
         if msg[0] == "prepare":
-            for kind in msg[1]:
-                with contextlib.suppress(Exception):  # drawing the kind will say what is wrong
-                    builder(kind)
+            _prepare(msg[1])
             continue
         _, sent, task, outdir = msg
         ds = sent if sent is not None else ds
@@ -168,6 +201,11 @@ def _first(conns: list, run_ends: list, parent: int) -> None:
         _warm()
     except Exception:  # noqa: BLE001 - the figures themselves will say what is wrong
         log.debug("warming up a drawer failed", exc_info=True)
+    try:
+        first = _spares(conns[0])  # the others are forked with them
+    except Exception:  # noqa: BLE001 - drawn without spares
+        log.debug("making spare axes failed", exc_info=True)
+        first = None
     me = os.getpid()
     gc.freeze()
     for k in range(1, len(conns)):
@@ -181,7 +219,7 @@ def _first(conns: list, run_ends: list, parent: int) -> None:
             finally:
                 os._exit(0)
         conns[k].close()
-    _serve(conns[0])
+    _serve(conns[0], first)
     conns[0].close()
     # not waiting for the others: they end as their pipes close (the run closes them all at
     # once, with no figure under way) or die with this process; the run waits for this one

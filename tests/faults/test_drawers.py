@@ -20,7 +20,7 @@ import pytest
 import xarray as xr
 
 from tce.cli import main
-from tce.plot import output, rendering
+from tce.plot import output, rendering, spare
 from tce.plot import drawers as drawers_module
 from tce.plot.drawers import Drawers, cpu_free
 from tce.study import runner
@@ -108,6 +108,20 @@ def test_each_file_drawn_from_what_a_worker_receives_is_the_same(tmp_path) -> No
         whole = output.render(ds, t, tmp_path / "whole")
         part = output.render(output._subset(ds, t), t, tmp_path / "part")
         assert whole.read_bytes() == part.read_bytes(), t.name
+
+
+def test_spare_axes_draw_the_same_bytes(finished, tmp_path) -> None:
+    """Figures drawn on the spare figures and axes a drawer makes while it waits
+    (:mod:`tce.plot.spare`) are the same files, byte for byte."""
+    here = output.write_figures(finished, tmp_path / "here")
+    for _ in range(3 * spare.AXES):
+        spare.make()
+    made = spare.ready()
+    there = output.write_figures(finished, tmp_path / "there")
+    assert spare.ready() < made - 4  # the thrust curves took a spare figure and its four axes at least
+    assert [p.name for p in there] == [p.name for p in here]
+    for a, b in zip(here, there):
+        assert a.read_bytes() == b.read_bytes(), a.name
 
 
 #: the tce program's imports before it draws, in a fresh process: matplotlib made lean, then the figures
