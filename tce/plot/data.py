@@ -154,12 +154,19 @@ def value(ds: xr.Dataset, name: str, scenario: str, dims: Sequence[str] | None =
     return out.transpose([rest.index(d) for d in dims])
 
 
+def _positions(ds: xr.Dataset, dim: str, labels: Sequence[str]) -> NDArray[np.int64]:
+    """Positions of ``labels`` along ``dim`` (a KeyError names those ``ds`` does not hold, as
+    xarray's ``sel`` would)."""
+    rows = ds.get_index(dim).get_indexer(list(labels))
+    if np.any(rows < 0):
+        raise KeyError(f"{dim} {[x for x, r in zip(labels, rows) if r < 0]} not in the dataset")
+    return rows
+
+
 def block_rows(ds: xr.Dataset, name: str, scenario: str, asm: Assembly) -> NDArray[np.float64]:
     """``ds[name]`` (dimensions ``scenario, block, ...``) of one scenario, a row per block of
     ``asm`` in its order (a geometry sweep stores the blocks of every structure)."""
-    rows = ds.get_index("block").get_indexer(list(asm.names))
-    if np.any(rows < 0):
-        raise KeyError(f"{name}: blocks {[n for n, r in zip(asm.names, rows) if r < 0]} are not in the dataset")
+    rows = _positions(ds, "block", asm.names)
     rest = [d for d in ds.variables[name].dims if d != "scenario"]
     return np.asarray(value(ds, name, scenario, ["block"] + [d for d in rest if d != "block"]), float)[rows]
 
@@ -188,11 +195,7 @@ def optimal_steps(ds: xr.Dataset, scenario: str) -> NDArray[np.int64]:
 
 def swept_parameters(ds: xr.Dataset, names: Sequence[str] | None = None) -> list[str]:
     """Swept coordinates along ``scenario`` that take more than one value among ``names``."""
-    rows: slice | NDArray[np.int64] = slice(None)
-    if names is not None:
-        rows = ds.get_index("scenario").get_indexer(list(names))
-        if np.any(rows < 0):
-            raise KeyError(f"scenarios {[s for s, r in zip(names, rows) if r < 0]} are not in the dataset")
+    rows = slice(None) if names is None else _positions(ds, "scenario", names)
     out = []
     for p in SWEPT:
         if p in ds.coords and ds.variables[p].dims == ("scenario",):
