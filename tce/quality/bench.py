@@ -1090,7 +1090,7 @@ s01 = [0.001, 0, 0, 0, 0, 0]
 #: the variants of the dask section: label -> ``tce run`` arguments (``--no-plots`` added)
 DASK_VARIANTS = {
     "in-process (--jobs 1)": ["--jobs", "1"],
-    "loky, 2 workers": ["--jobs", "2"],
+    "processes, 2 workers": ["--jobs", "2"],
     "dask LocalCluster, 1 worker": ["--backend", "dask", "--jobs", "1"],
     "dask LocalCluster, 2 workers": ["--backend", "dask", "--jobs", "2"],
 }
@@ -1106,17 +1106,9 @@ def _dask(quick: bool) -> list[dict[str, Any]]:
     import importlib.util
     import tempfile
 
-    from ..study.jobs import NO_DASK
-
     if importlib.util.find_spec("distributed") is None:
         return [_row("dask", "dask not installed", "", note="pip install 'tce[dask]'")]
-    # the runs must not inherit the bench program's block on importing dask
-    blocked = os.environ.pop(NO_DASK, None)
-    try:
-        return _dask_rows(quick)
-    finally:
-        if blocked is not None:
-            os.environ[NO_DASK] = blocked
+    return _dask_rows(quick)
 
 
 def _dask_rows(quick: bool) -> list[dict[str, Any]]:
