@@ -17,11 +17,12 @@ Faults (``docs/studies.md``, "Faults and resuming"):
   parent is told it is done; what is finished is on disk whatever happens next.
 - A worker that dies (killed by a signal, e.g. by the out-of-memory killer) breaks the pool
   (:class:`concurrent.futures.process.BrokenProcessPool`), which fails every scenario then
-  running, without saying which one killed it. The run keeps at most ``jobs`` scenarios in
-  the pool, so those are all the suspects: the scenarios not yet started go on in a new pool,
+  running, without saying which one killed it. The run keeps at most ``jobs + 1`` scenarios
+  in the pool (one queued, so that a worker that ends a scenario finds its next at once), so
+  those are all the suspects: the scenarios not yet given to the pool go on in a new pool,
   and each suspect is solved again alone (nothing else in the pool). A suspect that breaks the
   pool alone is the one that kills its worker: it is reported and not retried; a worker death
-  that every suspect survives is logged as a warning and costs nothing. A results folder that
+  that every suspect survives is a warning: nothing is lost. A results folder that
   cannot be written stops the dispatch (the running scenarios finish). A lost or failed
   scenario ends the run with :class:`RunFault` (exit code 3 in the CLI) after every other
   scenario is kept; ``results.nc`` is not replaced, and a rerun solves only what is missing.
@@ -417,7 +418,7 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
             while not stopping and not any(sc.name in retried for sc in running.values()):
                 if again and not running:
                     sc = again.popleft()
-                elif waiting and not again and len(running) < jobs:
+                elif waiting and not again and len(running) <= jobs:  # one queued: a worker that ends finds its next
                     sc = waiting.popleft()
                 else:
                     break

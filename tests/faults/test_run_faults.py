@@ -84,8 +84,8 @@ def test_a_worker_killed_once_costs_nothing(study, reference, tmp_path) -> None:
 @pytest.mark.parametrize("jobs", ["1", "2"])
 def test_ctrl_c_keeps_a_finished_scenario_not_yet_returned(study, reference, tmp_path, jobs: str) -> None:
     out = tmp_path / "out"
-    # the third scenario dispatched: with at most --jobs scenarios in the pool, another one is
-    # written before it starts; the interrupt is sent once its own file is written
+    # the third scenario dispatched: a worker takes it once it has written its first (in-process,
+    # after two); the interrupt is sent once its own file is written
     finished = "none/friction=2"
     run = tce_run(write(tmp_path), out, "--jobs", jobs, fault=f"interrupt:{finished}")
     assert run.returncode == 130, run.stderr
