@@ -3,9 +3,9 @@
 Each run is a fresh ``tce run STUDY --fresh`` process; the variants of a study are
 interleaved (every other round reversed) and the medians of the rounds reported: wall time,
 CPU time of the run and the processes it waited for (``resource.getrusage(RUSAGE_CHILDREN)``),
-and each variant's wall time over the first variant's. Studies: the paper's (``studies/``) and a
-300-scenario sweep of the paper's arch (10 frictions x 5 settlement magnitudes x 6 cases, no
-figures). Variants: without figures, with figures, with figures and the calculation report
+and each variant's wall time over the first variant's. Studies: the paper's (``studies/``), a
+300-scenario sweep of the paper's arch (10 frictions x 5 settlement magnitudes x 6 cases) and a
+12-scenario sweep of a dome (about a CPU-second of solving a scenario), the sweeps without figures. Variants: without figures, with figures, with figures and the calculation report
 (the default), ``--jobs 1``, ``--jobs 2`` and, with ``--dask``, ``--backend dask``.
 
 Usage: ``python benchmarks/whole_runs.py [--rounds 3] [--study fig9_outofplane ...] [--dask]``.
@@ -50,6 +50,27 @@ right = [0, 0.001, 0, 0, 0, 0]
 [scenarios.rotation]
 right = [0, 0, 0, 0.001, 0, 0]
 """
+#: a sweep whose scenarios carry about a CPU-second of solving each: a dome of 12 sectors x 6 courses
+#: (84 blocks, 3D SOCP) under 6 frictions x 2 settlement cases
+DOME_SWEEP = """
+[study]
+name = "dome_sweep"
+[structure]
+type = "dome"
+sectors = 12
+courses = 6
+[material]
+friction = 0.8
+[loads]
+lambda_step = 0.05
+tolerance = 1e-4
+[sweep]
+friction = [0.6, 0.7, 0.8, 0.9, 1.0, 1.2]
+[scenarios.none]
+[scenarios.one_outward]
+s01 = [0.001, 0, 0, 0, 0, 0]
+"""
+SWEEPS = {"sweep300": SWEEP_300, "dome_sweep": DOME_SWEEP}
 STUDY_VARIANTS = {"no figures": ["--no-plots"], "figures": ["--no-report"], "figures and report": []}
 SWEEP_VARIANTS = {"--jobs 1": ["--no-plots", "--jobs", "1"], "--jobs 2": ["--no-plots", "--jobs", "2"],
                   "default": ["--no-plots"]}
@@ -81,15 +102,15 @@ def interleaved(study: Path, out: Path, variants: dict[str, list[str]], rounds: 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=3, help="interleaved rounds (default 3)")
-    parser.add_argument("--study", action="append", choices=(*PAPER, "sweep300"), help="only these studies")
-    parser.add_argument("--dask", action="store_true", help="add --backend dask to the sweep's variants")
+    parser.add_argument("--study", action="append", choices=(*PAPER, *SWEEPS), help="only these studies")
+    parser.add_argument("--dask", action="store_true", help="add --backend dask to the sweeps' variants")
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.1f}; medians of {args.rounds} interleaved rounds")
     with tempfile.TemporaryDirectory() as tmp:
-        for name in args.study or (*PAPER, "sweep300"):
-            if name == "sweep300":
-                study = Path(tmp) / "sweep300.toml"
-                study.write_text(SWEEP_300)
+        for name in args.study or (*PAPER, *SWEEPS):
+            if name in SWEEPS:
+                study = Path(tmp) / f"{name}.toml"
+                study.write_text(SWEEPS[name])
                 variants = dict(SWEEP_VARIANTS)
                 if args.dask:
                     variants["dask, 2 workers"] = ["--no-plots", "--backend", "dask", "--jobs", "2"]
