@@ -238,7 +238,7 @@ def critical_scenarios(ds: xr.Dataset) -> list[str]:
     """The critical scenario of every group of a load-position sweep, in dataset order (the
     scenarios the per-scenario figures show by default, :func:`plot_spec`; a group without a
     finite lambda_max shows its first position)."""
-    from ..study.positions import critical_positions  # the solvers: not imported by a figure drawer
+    from ..study.positions import critical_positions  # the solvers: imported for a load-position sweep only
 
     chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}
     return [str(s) for s in ds["scenario"].values if str(s) in chosen]
@@ -275,7 +275,7 @@ def plot_spec(
             table[key] = list(given)
     from pydantic import ValidationError
 
-    from ..study.schema import PlotsSection  # pydantic: not imported by a figure drawer
+    from ..study.schema import PlotsSection  # pydantic: imported where a spec is made
 
     try:
         section = PlotsSection.model_validate(table)
