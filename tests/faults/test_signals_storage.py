@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from tce.plot import rendering
+from tce.plot import output
 from tce.study import results, runner
 from tce.cli import main
 from tce.study.schema import parse_study
@@ -134,14 +134,29 @@ def test_a_disk_that_fills_while_figures_are_drawn(tmp_path: Path, monkeypatch, 
             raise OSError(errno.ENOSPC, "No space left on device")
         return open(path, *args, **kwargs)
 
-    monkeypatch.setattr(rendering, "open", full, raising=False)
+    monkeypatch.setattr(output, "open", full, raising=False)
     text = TINY.replace("[sweep]\nfriction = [0.8, 2.0]", "[material]\nfriction = 0.8")
     assert main(["run", str(write(tmp_path, text)), "--out", str(out), "--jobs", "1"]) == 3
     err = capsys.readouterr().err
     clean(err)
     (line,) = errors(err)
-    assert "no space left on the device" in line and str(drawn[1]) in line
+    figure = Path(drawn[1]).with_name(Path(drawn[1]).name[1:].removesuffix(".tmp"))  # its temporary's file
+    assert "no space left on the device" in line and str(figure) in line
     assert (out / "tiny" / "results.nc").exists() and "tce plot" in err and not leftovers(out)
+    assert not figure.exists()
+
+
+def test_results_that_cannot_be_written_get_no_figures(tmp_path: Path, monkeypatch, capsys) -> None:
+    """Figures are drawn once ``results.nc`` is written: a write that fails leaves none."""
+    def full(ds, path) -> None:
+        raise runner.StorageError(f"{path}: no space left on the device")
+
+    monkeypatch.setattr(runner, "write_atomic", full)
+    out = tmp_path / "out"
+    assert main(["run", str(write(tmp_path)), "--out", str(out), "--jobs", "1"]) == 3
+    err = capsys.readouterr().err
+    assert "results.nc: no space left on the device" in err and "results.nc was not written" in err
+    assert not list((out / "tiny").glob("*.png")) and not list((out / "tiny").glob("*.html")) and not leftovers(out)
 
 
 @pytest.fixture
