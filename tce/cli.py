@@ -609,7 +609,9 @@ def main(argv: Sequence[str] | None = None) -> int:
                     check_path(value, option.upper() if option in ("study", "results") else f"--{option}")
                 except ValueError as exc:
                     raise UsageError(str(exc)) from None
-        return commands[args.command](args)
+        code = commands[args.command](args)
+        sys.stdout.flush()  # a closed pipe fails here, in the handler below, not in Python's flush at exit
+        return code
     except KeyboardInterrupt as exc:
         print(f"tce: interrupted ({exc or 'SIGINT'})", file=sys.stderr)
         return exit_code(exc)

@@ -125,21 +125,6 @@ def test_run_show_plot(tmp_path: Path, capsys, monkeypatch) -> None:
     assert list(figures.glob("*.png"))
 
 
-def test_show_into_a_closed_pipe_stops_quietly(tmp_path: Path) -> None:
-    """``tce show RESULTS.nc | head``: no traceback when the reader goes away (exit 141, as SIGPIPE)."""
-    import subprocess
-    import sys
-
-    out = tmp_path / "results"
-    assert main(["-q", "run", str(write(tmp_path, STUDY)), "--out", str(out), "--no-plots", "--no-report"]) == 0
-    p = subprocess.Popen([sys.executable, "-m", "tce.cli", "show", str(out / "cli" / "results.nc")],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    p.stdout.close()
-    code, err = p.wait(), p.stderr.read().decode()
-    p.stderr.close()
-    assert "Traceback" not in err and code == 141, err
-
-
 def test_main_gives_the_callers_signal_handlers_back(tmp_path) -> None:
     """A script or a test calling main() keeps its own Ctrl-C: handlers replaced for the command
     are put back, whether the command succeeds, fails or is refused."""
