@@ -78,8 +78,8 @@ def test_a_vehicle_with_no_wheel_on_the_deck_is_an_error_naming_the_deck(vehicle
     from tce.core.analysis import Analysis
 
     pattern = LoadPattern(vehicle=[vehicle])
-    with pytest.raises(ValueError, match=r"vehicle\[0\]: no wheel of 'vehicle' .* the deck, which spans x = \[-1\.2, 1\.2\] m, "
-                       r"y = \[-0\.125, 0\.125\] m"):
+    deck = r"the deck, which spans x = \[-1\.2, 1\.2\] m, y = \[-0\.125, 0\.125\] m"
+    with pytest.raises(ValueError, match=rf"vehicle\[0\]: no wheel of 'vehicle' .* {deck}"):
         resolve(pattern, ARCH)
     with pytest.raises(ValueError, match="no wheel"):
         Analysis(ARCH).limit(loads=pattern)

@@ -256,8 +256,9 @@ def wheel_loads(
             f"which spans x = [{x0:.4g}, {x1:.4g}] m, y = [{y0:.4g}, {y1:.4g}] m (its load would be zero)",
             "place the vehicle over the deck: check x, y and the axle and wheel offsets (m, not mm)",
         )
-    notes = [f"{key} ({vehicle.label}) at x = {vehicle.x:.4g} m: {len(dropped)} of {len(vehicle.axles) * len(vehicle.wheels)} "
-             f"wheels dropped in whole or part: {'; '.join(dropped)}"] if dropped else []
+    n = len(vehicle.axles) * len(vehicle.wheels)
+    notes = [f"{key} ({vehicle.label}) at x = {vehicle.x:.4g} m: {len(dropped)} of {n} wheels dropped in whole or "
+             f"part: {'; '.join(dropped)}"] if dropped else []
     return loads, notes
 
 
@@ -292,10 +293,7 @@ def deck_range(assembly: Assembly) -> tuple[float, float]:
     LoadError
         No free block has an exposed top surface.
     """
-    edges = deck_edges(assembly)
-    if not len(edges):
-        raise LoadError("vehicle", "the structure has no exposed top surface on a free block", "load a structure with a deck")
-    return float(edges[0]), float(edges[-1])
+    return deck_extent(assembly)[0]
 
 
 def deck_extent(assembly: Assembly) -> tuple[tuple[float, float], tuple[float, float]]:
@@ -308,7 +306,8 @@ def deck_extent(assembly: Assembly) -> tuple[tuple[float, float], tuple[float, f
     """
     polys = [poly for block, _, poly in top_surface(assembly) if not assembly.blocks[block].support]
     if not polys:
-        raise LoadError("vehicle", "the structure has no exposed top surface on a free block", "load a structure with a deck")
+        raise LoadError("vehicle", "the structure has no exposed top surface on a free block",
+                        "load a structure with a deck")
     x0, y0, x1, y1 = shapely.union_all(polys).bounds
     return (float(x0), float(x1)), (float(y0), float(y1))
 

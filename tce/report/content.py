@@ -154,7 +154,8 @@ def _loads(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
         "points": [_table(p) for p in points],
         "distributed": [_table(d) for d in distributed],
         "vehicles": [_table(v) for v in vehicles],
-        "live": lambda_multiplies(ds) or ["not recorded in these results (written by an earlier tce): see [loads] below"],
+        "live": lambda_multiplies(ds)
+        or ["not recorded in these results (written by an earlier tce): see [loads] below"],
         "scenarios": scenarios,
         "sweep": _table(toml.get("sweep", {})),
         "n_scenarios": int(ds.sizes["scenario"]),

@@ -132,7 +132,8 @@ def scene(structure_name: str, material: str, load: str, settlement: str, alpha:
         )
     else:
         raise ValueError(load)
-    assert kind == "lateral" or pattern.lateral is not scaled  # the live load alone, or the lateral pattern with the fixed
+    # lambda multiplies the live load alone, or the lateral pattern beside a fixed load
+    assert kind == "lateral" or pattern.lateral is not scaled
     motion = SETTLEMENTS[settlement]
     sett = {} if motion is None else {asm.support_names[-1]: list(motion)}
     return Scene(asm, MATERIALS[material], pattern, sett)
