@@ -370,6 +370,7 @@ def _show(args: argparse.Namespace) -> int:
     table = ds[cols].to_dataframe()[cols].rename(columns={"lambda_direct": "direct", "lambda_gap": "gap"})
     print(f"study {ds.attrs.get('study_name', '?')} (tce {ds.attrs.get('tce_version', '?')}, {ds.attrs.get('solver', '?')})")
     print(table.to_string(float_format=lambda v: f"{v:.6g}"))
+    _show_loads(ds)
     _show_outcomes(ds)
     if "load_x" in ds.coords:
         _show_critical(ds)
@@ -380,6 +381,15 @@ def _show(args: argparse.Namespace) -> int:
     if "adequacy_factor" in ds:
         _show_assessment(ds)
     return 0
+
+
+def _show_loads(ds) -> None:
+    """What lambda multiplies (:func:`tce.report.content.lambda_multiplies`): one line for the
+    study when every scenario has the same loads, else one line per scenario."""
+    from .report.content import lambda_multiplies
+
+    for line in lambda_multiplies(ds):
+        print(f"loads: {line}")
 
 
 def _show_outcomes(ds) -> None:
