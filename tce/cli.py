@@ -28,8 +28,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import functools
-import gc
 import logging
 import math
 import os
@@ -182,14 +180,15 @@ def _parser() -> argparse.ArgumentParser:
 
     bench = sub.add_parser(
         "bench",
-        help="measure speed against error",
-        description="Time the solver paths and shortcuts in one run on this machine (medians, ratios to "
-        "the Clarabel-direct 3D solve, errors against tight references) and write bench.csv, bench.md "
-        "and speed_error.png.",
+        help="time against error of the solves, on this machine",
+        description="Time one TCE solve of each model and contact law, the direct lambda_max, the load path "
+        "against the direct limit and lambda_max against the number of blocks, each against its error; "
+        "print the tables and write bench.csv.",
     )
     bench.add_argument("--out", type=Path, default=Path("results/bench"), metavar="DIR", help="output folder (default: results/bench)")
-    bench.add_argument("--quick", action="store_true", help="a reduced run (under a minute)")
-    bench.add_argument("--section", action="append", default=None, metavar="NAME", help="run only this section (repeatable)")
+    bench.add_argument("--quick", action="store_true", help="fewer repeats and the smallest sizes (under a minute)")
+    bench.add_argument("--section", action="append", default=None, choices=BENCH_SECTIONS,
+                       help="run only this section (repeatable)")
     return p
 
 
@@ -297,66 +296,18 @@ EXIT_FAULT, EXIT_STRICT = 3, 4
 EXIT_PIPE = 141
 
 
-def _drawing_here(program: bool) -> None:
-    """About to draw in this process: matplotlib imported lean (as the drawers import it,
-    :func:`tce.plot.rendering.lean_matplotlib`) and, in the ``tce`` program, the objects made so
-    far frozen (``gc.freeze``, as the drawers are): the collections that drawing triggers then skip
-    the heap of xarray, pandas, scipy and Clarabel (0.08-0.09 CPU-s of collections drawing Fig. 9
-    in the run's process, 0.013-0.016 frozen). A program that calls :func:`main` keeps its collector."""
-    from .plot.rendering import lean_matplotlib
-
-    lean_matplotlib()
-    if program:
-        gc.freeze()
-
-
-def _draw(ds, folder: Path, jobs: int, write, drawers=None, program: bool = False) -> list[Path]:
+def _draw(ds, folder: Path, jobs: int) -> list[Path]:
     """The figures and view of a finished run (the study's ``[plots]``), drawn into its folder
-    (by ``drawers``, :class:`tce.plot.drawers.Drawers`, when given, while ``write()`` writes
-    ``results.nc``; else after it, by :func:`_drawing_here`)."""
+    once ``results.nc`` is written (:func:`tce.plot.write_figures`)."""
     from . import plot
 
-    if drawers is None:
-        write()
-        _drawing_here(program)
-        return plot.write_figures(ds, folder, jobs=jobs)
-    return plot.write_figures(ds, folder, jobs=jobs, draw=drawers.draw, written=write)
+    return plot.write_figures(ds, folder, jobs=jobs)
 
 
 def _run(args: argparse.Namespace) -> int:
+    """``tce run``."""
     if args.scheduler and args.backend != "dask":
         raise UsageError("--scheduler needs --backend dask")
-    drawers = None
-    if not args.no_plots and args.jobs != 1:  # figures drawn by processes made ready while the run solves (issue 24)
-        from .plot.drawers import Drawers, cpu_free
-
-        # first of all, before numpy: the first drawer imports xarray, matplotlib and the
-        # figure modules while this process imports the runner, reads the study and solves
-        # (on Fig. 9, ready 0.15-0.35 s before the results are)
-        drawers = Drawers.start(args.jobs or os.cpu_count() or 1) if cpu_free() else None
-    try:
-        return _run_study(args, drawers)
-    finally:
-        if drawers is not None:  # a bad study, Ctrl-C: the drawers end with the command
-            drawers.close()
-
-
-def _figure_kinds(study) -> list[str]:
-    """The figure kinds ``study`` may draw, as far as its file tells (what the drawers prepare,
-    :meth:`tce.plot.drawers.Drawers.prepare`): the load-position figure only with a ``load_x``
-    sweep or a critical-position search, the settlement figures only with a
-    ``[settlement_path]``."""
-    spec = study.spec
-    kinds = list(spec.plots.kinds or PLOT_KINDS)
-    if spec.sweep.load_x is None and not spec.loads.critical_position:
-        kinds = [k for k in kinds if k != "capacity"]
-    if spec.settlement_path is None:
-        kinds = [k for k in kinds if k not in ("settlement", "settlement_shapes")]
-    return kinds
-
-
-def _run_study(args: argparse.Namespace, drawers) -> int:
-    """``tce run`` once its drawers (:class:`tce.plot.drawers.Drawers`, or None) are started."""
     from .study.runner import OUTCOMES, FigureFault, RunError, RunFault, run_study
     from .study.schema import StudyError, load_study
 
@@ -364,14 +315,12 @@ def _run_study(args: argparse.Namespace, drawers) -> int:
         study = load_study(args.study)
     except StudyError as exc:
         raise UsageError(str(exc)) from None
-    if drawers is not None:
-        drawers.prepare(_figure_kinds(study))
     kept = f"finished scenarios are kept in {args.out / study.name / 'scenarios'}"
     bar = _Bar(study.name)
     try:
         report = run_study(
             study, args.out, jobs=args.jobs, backend=args.backend, scheduler=args.scheduler,
-            progress=bar, plots=None if args.no_plots else functools.partial(_draw, drawers=drawers, program=args.program),
+            progress=bar, plots=None if args.no_plots else _draw,
             fresh=args.fresh,
         )
     except RunError as exc:
@@ -401,9 +350,6 @@ def _run_study(args: argparse.Namespace, drawers) -> int:
         bar.close()
         print(f"tce: interrupted ({exc or 'SIGINT'}); {kept}: run the same command again to resume", file=sys.stderr)
         return exit_code(exc)
-    finally:
-        if drawers is not None:  # done with: they end before the report is written (_run closes them too)
-            drawers.close()
     bar.close()
     counts = {o: list(report.outcomes.values()).count(o) for o in OUTCOMES}
     counts.update({o: n for o, n in Counter(report.outcomes.values()).items() if o not in counts})
@@ -411,7 +357,7 @@ def _run_study(args: argparse.Namespace, drawers) -> int:
     tally = ", ".join(f"{n} {o}" for o, n in counts.items() if n)
     print(f"{report.results}: {len(report.outcomes)} scenarios ({what}): {tally}; {len(report.figures)} figures")
     if not (args.no_plots or args.no_report):
-        _report_lines(_write_report(report.results, figures=report.figures, program=args.program))
+        _report_lines(_write_report(report.results, figures=report.figures))
     odd = {name: o for name, o in report.outcomes.items() if o != "limit"}
     for name, outcome in odd.items():
         print(f"  {outcome}: {name}")
@@ -424,6 +370,7 @@ def _show(args: argparse.Namespace) -> int:
     table = ds[cols].to_dataframe()[cols].rename(columns={"lambda_direct": "direct", "lambda_gap": "gap"})
     print(f"study {ds.attrs.get('study_name', '?')} (tce {ds.attrs.get('tce_version', '?')}, {ds.attrs.get('solver', '?')})")
     print(table.to_string(float_format=lambda v: f"{v:.6g}"))
+    _show_loads(ds)
     _show_outcomes(ds)
     if "load_x" in ds.coords:
         _show_critical(ds)
@@ -434,6 +381,15 @@ def _show(args: argparse.Namespace) -> int:
     if "adequacy_factor" in ds:
         _show_assessment(ds)
     return 0
+
+
+def _show_loads(ds) -> None:
+    """What lambda multiplies (:func:`tce.report.content.lambda_multiplies`): one line for the
+    study when every scenario has the same loads, else one line per scenario."""
+    from .report.content import lambda_multiplies
+
+    for line in lambda_multiplies(ds):
+        print(f"loads: {line}")
 
 
 def _show_outcomes(ds) -> None:
@@ -544,7 +500,6 @@ def _plot(args: argparse.Namespace) -> int:
         raise UsageError("--scenario: no scenario selected")
     tag = slug("_".join([*(args.scenario or []), *(f"lam{s}" for s in args.step or [])]))[:80] if on_demand else ""
     outdir = _out_folder(args.out or args.results.parent)
-    _drawing_here(args.program)  # once the command is known to draw (a bad file or key: exit 2 first)
     with _writing(outdir):
         figures = write_figures(ds, outdir, spec, jobs=args.jobs, tag=tag)
     for f in figures if on_demand else []:
@@ -591,12 +546,9 @@ def _export(args: argparse.Namespace) -> int:
     return 0
 
 
-def _write_report(results: Path, out: Path | None = None, figures: list[Path] | None = None, pdf: bool = True,
-                  program: bool = False):
+def _write_report(results: Path, out: Path | None = None, figures: list[Path] | None = None, pdf: bool = True):
     """The calculation report (:func:`tce.report.write_report`); a results file it cannot read is a usage error."""
     from .report import write_report
-
-    _drawing_here(program)
 
     try:
         return write_report(results, out, figures=figures, pdf=pdf)
@@ -610,7 +562,7 @@ def _report_lines(files) -> None:
 
 def _report(args: argparse.Namespace) -> int:
     _open_results(args.results).close()  # a missing or unreadable file: one message, exit 2
-    _report_lines(_write_report(args.results, args.out, pdf=not args.no_pdf, program=args.program))
+    _report_lines(_write_report(args.results, args.out, pdf=not args.no_pdf))
     return 0
 
 
@@ -620,12 +572,20 @@ def _check(args: argparse.Namespace) -> int:
     return check_command(args)
 
 
+#: sections of ``tce bench`` (:data:`tce.quality.bench.SECTIONS`; named here so that the parser imports no solver)
+BENCH_SECTIONS = ("solve", "limit", "load_path", "scaling")
+
+
 def _bench(args: argparse.Namespace) -> int:
-    from .quality.bench import bench_command
+    from .quality.bench import report, run_bench
 
     out = _out_folder(args.out)
+    df = run_bench(quick=args.quick, sections=args.section)
     with _writing(out):
-        return bench_command(args)
+        df.to_csv(out / "bench.csv", index=False)
+    print(report(df), end="")
+    print(f"wrote {out / 'bench.csv'} ({len(df)} rows)")
+    return 0
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -639,7 +599,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     before = handle_signals()  # first: Ctrl-C or SIGTERM from here on, imports included, ends in one line
     try:
         args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
-        args.program = argv is None  # the tce program, not a caller of main()
         _setup_logging(args.verbose, args.quiet)
         commands = {"run": _run, "show": _show, "plot": _plot, "view": _view, "export": _export, "report": _report,
                     "check": _check, "bench": _bench}
@@ -649,7 +608,9 @@ def main(argv: Sequence[str] | None = None) -> int:
                     check_path(value, option.upper() if option in ("study", "results") else f"--{option}")
                 except ValueError as exc:
                     raise UsageError(str(exc)) from None
-        return commands[args.command](args)
+        code = commands[args.command](args)
+        sys.stdout.flush()  # a closed pipe fails here, in the handler below, not in Python's flush at exit
+        return code
     except KeyboardInterrupt as exc:
         print(f"tce: interrupted ({exc or 'SIGINT'})", file=sys.stderr)
         return exit_code(exc)
@@ -664,11 +625,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_PIPE
     finally:
         restore_signals(before)
-        if argv is None:  # the tce program: it ends now
-            # Python's collections at exit scan every object of the heap (xarray, pandas, scipy,
-            # Clarabel: about 0.2 s of a one-second run); frozen, they are left to the end of the
-            # process. What was written is closed and flushed already (each file atomically).
-            gc.freeze()
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -125,21 +125,6 @@ def test_run_show_plot(tmp_path: Path, capsys, monkeypatch) -> None:
     assert list(figures.glob("*.png"))
 
 
-def test_show_into_a_closed_pipe_stops_quietly(tmp_path: Path) -> None:
-    """``tce show RESULTS.nc | head``: no traceback when the reader goes away (exit 141, as SIGPIPE)."""
-    import subprocess
-    import sys
-
-    out = tmp_path / "results"
-    assert main(["-q", "run", str(write(tmp_path, STUDY)), "--out", str(out), "--no-plots", "--no-report"]) == 0
-    p = subprocess.Popen([sys.executable, "-m", "tce.cli", "show", str(out / "cli" / "results.nc")],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    p.stdout.close()
-    code, err = p.wait(), p.stderr.read().decode()
-    p.stderr.close()
-    assert "Traceback" not in err and code == 141, err
-
-
 def test_main_gives_the_callers_signal_handlers_back(tmp_path) -> None:
     """A script or a test calling main() keeps its own Ctrl-C: handlers replaced for the command
     are put back, whether the command succeeds, fails or is refused."""
@@ -148,47 +133,3 @@ def test_main_gives_the_callers_signal_handlers_back(tmp_path) -> None:
     before = signal.getsignal(signal.SIGINT)
     assert main(["show", str(tmp_path / "missing.nc")]) == 2
     assert signal.getsignal(signal.SIGINT) is before
-
-
-def test_only_the_tce_program_freezes_its_heap_for_the_exit(tmp_path, monkeypatch, capsys) -> None:
-    """``tce`` (argv None) freezes the garbage collector's objects as it ends (about 0.2 s of
-    collections at exit saved); ``main(argv)`` called by a program leaves its collector alone."""
-    import subprocess
-    import sys
-
-    import tce.cli
-
-    frozen: list[bool] = []
-    monkeypatch.setattr(tce.cli.gc, "freeze", lambda: frozen.append(True))
-    missing = str(tmp_path / "missing.nc")
-    assert main(["show", missing]) == 2 and not frozen
-    monkeypatch.setattr(sys, "argv", ["tce", "show", missing])
-    monkeypatch.delenv("TCE_NO_DASK", raising=False)  # main() sets it for the program: undone after the test
-    assert main() == 2 and frozen == [True]
-    capsys.readouterr()
-    # the program itself: gc.freeze() ran by the time it exits (counted by an atexit hook)
-    code = ("import atexit, gc, sys; from tce.cli import main; sys.argv = ['tce', 'show', sys.argv[1]];"
-            "atexit.register(lambda: print('frozen', gc.get_freeze_count() > 0)); sys.exit(main())")
-    done = subprocess.run([sys.executable, "-c", code, missing], capture_output=True, text=True)
-    assert done.returncode == 2, done.stderr
-    assert "frozen True" in done.stdout
-
-
-@pytest.mark.parametrize(("study", "prepared"), [
-    ("fig9_outofplane.toml", {"states", "base", "transversal", "thrust", "mechanism", "view"}),
-    ("barrel_vault.toml", set()),  # default kinds: neither the load-position nor the settlement figures
-    ("bridge_axle.toml", {"capacity"}),  # a critical-position search
-    ("arch_point_load.toml", {"capacity"}),  # a load_x sweep
-    ("arch_spreading.toml", {"settlement", "settlement_shapes"}),
-])
-def test_the_drawers_prepare_the_kinds_a_study_can_draw(study: str, prepared: set[str]) -> None:
-    """``tce run`` has its drawers import the modules of the kinds a study can draw: the
-    load-position and settlement figures' modules import the solvers (issue 24)."""
-    from tce.cli import _figure_kinds
-    from tce.study.names import PLOT_KINDS
-    from tce.study.schema import load_study
-
-    kinds = set(_figure_kinds(load_study(Path(__file__).parents[1] / "studies" / study)))
-    heavy = {"capacity", "settlement", "settlement_shapes"}
-    assert kinds <= set(PLOT_KINDS) and kinds & heavy == prepared & heavy
-    assert not prepared - heavy or kinds == prepared

@@ -69,7 +69,7 @@ def results(tmp_path_factory: pytest.TempPathFactory) -> Path:
     path = d / "study.toml"
     path.write_text(STUDY)
     report = run_study(load_study(path), out=d / "results", jobs=1,
-                       plots=lambda ds, folder, jobs, write: write_figures(ds, folder, jobs=jobs, written=write))
+                       plots=lambda ds, folder, jobs: write_figures(ds, folder, jobs=jobs))
     return report.results
 
 

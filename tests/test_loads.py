@@ -229,3 +229,36 @@ def test_moving_load_and_round_trip():
     assert LoadPattern.from_dict(moved.to_dict()) == moved
     with pytest.raises(LoadError, match="no scaled point load with on_top"):
         LoadPattern(point=[PointLoad(force=[0, 0, -1], block="v01")]).moved(0.0)
+
+
+# ---------------------------------------------------------------------------- what lambda multiplies (issue 37)
+LIVE = dict(point=[PointLoad(force=[0, 0, -1], on_top=[0.0, 0.0])])
+FIXED = dict(point=[PointLoad(force=[0, 0, -1], on_top=[0.0, 0.0], scaled=False)])
+
+
+@pytest.mark.parametrize("loads, lateral, expected", [
+    ({}, None, True), ({}, True, True),
+    (FIXED, None, True), (FIXED, True, True),
+    (LIVE, None, False), (LIVE, True, True), (LIVE, False, False),
+    (dict(distributed=[DistributedLoad(x=[-0.5, 0.5], pressure=1.0)]), None, False),
+    (dict(vehicle=[dict(axles=[[0.0, 1.0]])]), None, False),
+])
+def test_the_lateral_pattern_joins_a_live_load_only_when_asked_for(loads, lateral, expected):
+    """The rule of docs/studies.md (fails on main: a live load with lateral left out also got
+    the lateral pattern)."""
+    pattern = LoadPattern(lateral=lateral, **loads)
+    assert pattern.lateral is expected
+    assert ("the lateral load lambda*W" in pattern.multiplies) is expected
+
+
+def test_lambda_multiplies_the_live_load_alone_by_default(arch):
+    """A live point load at the crown without ``lateral``: its collapse load is that of the
+    point load alone, not of the point load and a horizontal lambda*W together."""
+    an = Analysis(arch, Material())
+    alone = an.limit(loads=LoadPattern(lateral=False, **LIVE)).lambda_max
+    both = an.limit(loads=LoadPattern(lateral=True, **LIVE)).lambda_max
+    assert an.limit(loads=LoadPattern(**LIVE)).lambda_max == pytest.approx(alone, rel=1e-12)
+    assert both < 0.5 * alone
+    assert LoadPattern(**LIVE).multiplies == "lambda multiplies point[0] (1 kN); fixed: self-weight"
+    assert LoadPattern(**FIXED).multiplies == ("lambda multiplies the lateral load lambda*W (every block's weight, "
+                                               "horizontal) in direction alpha; fixed: self-weight, point[0]")

@@ -17,13 +17,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+from PIL import Image
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from tce.core.analysis import Analysis
 from tce.core.material import Material
-from tce.plot import data, draw, figures
+from tce.plot import data, draw, figures, output
 from tce.plot.output import figure_tasks, write_figures
 from tce.structures.arch import semicircular_arch
 from tce.structures.dome import hemispherical_dome
@@ -402,6 +403,8 @@ def test_write_figures_each_once(planar: xr.Dataset, tmp_path: Path) -> None:
     assert names == ["thrust.png", "states.png", "thrust_lines.png", "mechanism.png", "view.html"]
     assert all(f.stat().st_size > 1000 for f in files)
     assert not list(tmp_path.glob(".*.tmp"))
+    with Image.open(files[0]) as image:  # matplotlib's PNG at the figures' resolution
+        assert image.format == "PNG" and image.info["dpi"] == pytest.approx((output.DPI, output.DPI), abs=0.01)
 
 
 @pytest.mark.parametrize("jobs", [1, 2])
@@ -420,35 +423,51 @@ def test_drawing_reports_progress_file_by_file(planar: xr.Dataset, tmp_path: Pat
     assert (jobs == 2) == any("drawing 5 files on 2 workers" in r.getMessage() for r in caplog.records)
 
 
-def test_png_files_have_matplotlibs_pixels_unhinted_text_and_leave_matplotlib_as_it_was() -> None:
-    """tce's own PNG encoder (png_bytes, issue 24) writes the pixels matplotlib's PNG writer writes, both
-    decoded by Pillow, with PNG_RC (text without FreeType's hinting) applied to its own file only;
-    the figure keeps its resolution and canvas."""
-    import io
+def test_each_file_drawn_from_what_a_worker_receives_is_the_same(sweep: xr.Dataset, tmp_path: Path) -> None:
+    """A worker of ``tce plot --jobs`` receives only the part of the results a file reads
+    (``output._subset``): every file drawn from it is the same, byte for byte, as drawn from
+    the whole dataset (a mechanism's title once said "every scenario drawn" for a group that
+    was all of its part only)."""
+    names = [str(s) for s in sweep["scenario"].values]
+    spec = data.plot_spec(sweep, scenarios_=[names[0], names[1], names[-1]],
+                          kinds=["states", "thrust", "mechanism", "view", "summary"])
+    tasks = figure_tasks(sweep, spec)
+    assert {t.kind for t in tasks} == {"states", "thrust", "mechanism", "view", "summary"}
+    for folder in ("whole", "part"):
+        (tmp_path / folder).mkdir()
+    for t in tasks:
+        whole = output.render(sweep, t, tmp_path / "whole")
+        part = output.render(output._subset(sweep, t), t, tmp_path / "part")
+        assert whole.read_bytes() == part.read_bytes(), t.name
 
-    import matplotlib
-    from PIL import Image
 
-    from tce.plot.rendering import PNG_RC, png_bytes
+def _failing_open(monkeypatch: pytest.MonkeyPatch, fault: BaseException) -> None:
+    """Figure files stop with ``fault`` once part of them is written (a disk that fills, Ctrl-C)."""
+    class Failing:
+        def __init__(self, path, mode):
+            self.fh = open(path, mode)
 
-    def png(how) -> tuple:
-        fig = Figure(figsize=(2.13, 1.07), dpi=72, facecolor="#fffdf0")
-        ax = fig.add_axes((0.2, 0.2, 0.7, 0.6))
-        ax.plot([0, 1, 2], [0, 1, 0.5], "o-", alpha=0.5)
-        fig.text(0.1, 0.9, "H along the span x (kN) λ", fontsize=8)
-        canvas = fig.canvas
-        buf = io.BytesIO()
-        how(fig, buf)
-        assert fig.dpi == 72 and fig.canvas is canvas
-        image = Image.open(io.BytesIO(buf.getvalue()))
-        return image.size, image.info.get("dpi"), np.asarray(image.convert("RGBA"))
+        def __enter__(self):
+            return self
 
-    before = dict(matplotlib.rcParams)
-    size, dpi, ours = png(lambda fig, buf: buf.write(png_bytes(fig, dpi=110)))
-    assert dict(matplotlib.rcParams) == before
-    assert size == (234, 117) and dpi == pytest.approx((110, 110), abs=0.01)  # 2.13 x 1.07 in at 110 dpi, truncated as Agg does
-    with matplotlib.rc_context(PNG_RC):
-        theirs = png(lambda fig, buf: fig.savefig(buf, format="png", dpi=110))
-    assert theirs[0] == size and np.array_equal(theirs[2], ours)
-    hinted = png(lambda fig, buf: fig.savefig(buf, format="png", dpi=110))[2]
-    assert not np.array_equal(hinted, ours)  # hinted: other pixels
+        def __exit__(self, *exc):
+            self.fh.close()
+
+        def write(self, data):
+            self.fh.write(bytes(data)[:10])
+            raise fault
+
+    monkeypatch.setattr(output, "open", Failing, raising=False)
+
+
+@pytest.mark.parametrize("fault", [OSError(28, "No space left on device"), KeyboardInterrupt()])
+def test_a_figure_cut_short_leaves_no_file(planar: xr.Dataset, tmp_path: Path, monkeypatch, fault) -> None:
+    """Each figure is written atomically (a temporary name, then renamed): a write that fails or
+    is interrupted leaves neither the file nor its temporary; a failure names the file."""
+    (task,) = [t for t in figure_tasks(planar, data.plot_spec(planar)) if t.kind == "thrust"]
+    _failing_open(monkeypatch, fault)
+    with pytest.raises(type(fault)) as raised:
+        output.render(planar, task, tmp_path)
+    if isinstance(fault, OSError):
+        assert raised.value.filename == str(tmp_path / "thrust.png") and raised.value.errno == 28
+    assert list(tmp_path.iterdir()) == []

@@ -10,6 +10,7 @@ chromium or chromedriver is missing.
 from __future__ import annotations
 
 import hashlib
+import html
 import re
 from html.parser import HTMLParser
 from pathlib import Path
@@ -139,6 +140,16 @@ def test_every_number_of_tce_show_is_in_the_report(run) -> None:
     assert not [n for n in numbers if n not in cells]  # each in a cell of its own, as show prints it
     for word in ("limit", "planar", "none", "outward"):
         assert any(word in c for c in cells)
+
+
+def test_the_report_and_show_say_what_lambda_multiplies(run) -> None:
+    """Issue 37 item 1: the loads section and the results say what lambda multiplies, as
+    ``tce show`` does (fails on main: neither said it)."""
+    text, _ = _page(run["folder"])
+    words = "lambda multiplies the lateral load lambda*W (every block's weight, horizontal) in direction alpha; " \
+            "fixed: self-weight"
+    assert f"loads: {words}" in run["show"]
+    assert html.unescape(text).count(words) == 2  # section 4 (loads) and section 6 (results)
 
 
 def test_the_report_says_what_an_engineer_hands_in(run) -> None:

@@ -60,6 +60,31 @@ def test_wheels_off_the_deck_are_dropped_with_a_note_never_merged():
     assert len(w.blocks) == 1 and w.forces[0, 2] == pytest.approx(-1.0) and len(w.notes) == 1
 
 
+def test_dropped_wheels_are_one_note_per_vehicle():
+    """Issue 37 item 2: every dropped wheel of a vehicle in one line, not one line per wheel."""
+    p = LoadPattern(vehicle=[dict(axles=[[0.0, 1.0], [0.4, 1.0], [0.8, 1.0]], wheels=[-1.0, 0.0, 1.0], name="truck")])
+    a = resolve(p, ARCH)  # the 0.25 m deep arch: only the wheels on the line (y = 0) stay
+    assert len(a.blocks) == 3
+    assert len(a.notes) == 1 and "6 of 9 wheels" in a.notes[0] and a.notes[0].count("off the deck") == 6
+
+
+@pytest.mark.parametrize("vehicle", [
+    dict(axles=[[0.0, 1.0]], wheels=[-3.0, 3.0]),  # wheels 6 m apart on a 0.25 m deep arch
+    dict(axles=[[0.0, 1.0]], wheels=[-900.0, 900.0]),  # offsets written in mm
+    dict(axles=[[0.0, 1.0]], x=9.0),  # beyond the deck's end
+])
+def test_a_vehicle_with_no_wheel_on_the_deck_is_an_error_naming_the_deck(vehicle):
+    """Issue 37 item 2 (fails on main: the loads resolved to nothing, and the limit was 'unbounded')."""
+    from tce.core.analysis import Analysis
+
+    pattern = LoadPattern(vehicle=[vehicle])
+    deck = r"the deck, which spans x = \[-1\.2, 1\.2\] m, y = \[-0\.125, 0\.125\] m"
+    with pytest.raises(ValueError, match=rf"vehicle\[0\]: no wheel of 'vehicle' .* {deck}"):
+        resolve(pattern, ARCH)
+    with pytest.raises(ValueError, match="no wheel"):
+        Analysis(ARCH).limit(loads=pattern)
+
+
 def test_patch_pressure_sums_to_the_wheel_load_and_its_part_off_the_deck_is_noted():
     bridge = segmental_arch(span=6.0, rise=1.5, thickness=0.4, depth=4.0, voussoirs=12)
     v = dict(axles=[[0.0, 100.0]], wheels=[-1.0, 1.0], patch=[0.4, 0.4])
@@ -70,7 +95,8 @@ def test_patch_pressure_sums_to_the_wheel_load_and_its_part_off_the_deck_is_note
     edge = LoadPattern(lateral=False, vehicle=[dict(v, x=hi + 0.1)])  # patch from hi - 0.1 to hi + 0.3: 25% on
     b = resolve(edge, bridge)
     assert b.forces[:, 2].sum() == pytest.approx(-25.0)
-    assert len(b.notes) == 2 and "75% of its contact patch" in b.notes[0]
+    # one note for the vehicle, naming both wheels
+    assert len(b.notes) == 1 and b.notes[0].count("75% of its contact patch") == 2 and "2 of 2 wheels" in b.notes[0]
 
 
 def test_symmetric_wheels_keep_the_planar_model():

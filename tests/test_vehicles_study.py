@@ -14,7 +14,7 @@ import xarray as xr
 from tce.analysis.critical import critical_position
 from tce.core.analysis import Analysis
 from tce.core.loads import LoadPattern
-from tce.structures.arch import segmental_arch
+from tce.structures.arch import segmental_arch, semicircular_arch
 from tce.cli import main
 from tce.study.schema import parse_study
 
@@ -139,7 +139,8 @@ def test_notes_of_wheels_off_the_deck_are_shown(tmp_path, capsys) -> None:
     capsys.readouterr()
     assert main(["show", str(tmp_path / "out" / "vehicle" / "results.nc")]) == 0
     out = capsys.readouterr().out
-    assert "none: note: vehicle[0] (vehicle) axle 2 wheel 1 at x = 1.3 m, y = 0 m: off the deck" in out
+    assert "none: note: vehicle[0] (vehicle) at x = 0.9 m: 1 of 2 wheels dropped in whole or part: " \
+           "axle 2 wheel 1 (x = 1.3 m, y = 0 m) off the deck" in out
 
 
 @pytest.mark.parametrize(
@@ -159,10 +160,21 @@ def test_notes_of_wheels_off_the_deck_are_shown(tmp_path, capsys) -> None:
         # passive coefficient: 0 (off) or >= 1 (tce.core.fill)
         (("[scenarios.none]", "[loads.fill]\ndepth = 0.3\nunit_weight = 18.0\nkp = 0.5\n[scenarios.none]"),
          "loads.fill.kp"),
+        # issue 37 item 2: no wheel on the deck at any position searched (wheels 6 m apart, or in mm)
+        (("axles = [[0.0, 1.0], [0.4, 1.0]]", "axles = [[0.0, 1.0]]\nwheels = [-3.0, 3.0]"), "loads.vehicle[0]"),
+        (("axles = [[0.0, 1.0], [0.4, 1.0]]", "axles = [[0.0, 1.0]]\nwheels = [-1000.0, 1000.0]"), "loads.vehicle[0]"),
+        # ... or at the declared position, without a search
+        (("critical_position = true", "x = 0.0"), None),
+        # issue 37 item 3: a dead factor above 1 would raise the adequacy factor
+        (("[scenarios.none]", "[assessment]\ndead_factor = 1.35\n[scenarios.none]"), "assessment.dead_factor"),
     ],
 )
 def test_bad_declarations_exit_2_naming_the_key(tmp_path, capsys, edit, key) -> None:
-    text = STUDY.replace(*edit)
+    if key is None:  # the vehicle 9 m from the arch's crown, no search
+        edit, key = ("critical_position = true", ""), "loads.vehicle[0]"
+        text = STUDY.replace(*edit).replace("[0.4, 1.0]]", "[0.4, 1.0]]\nx = 9.0")
+    else:
+        text = STUDY.replace(*edit)
     assert text != STUDY
     path = write(tmp_path, text)
     code = main(["run", str(path), "--out", str(tmp_path / "out"), "--jobs", "1", "--no-plots"])
@@ -171,14 +183,50 @@ def test_bad_declarations_exit_2_naming_the_key(tmp_path, capsys, edit, key) -> 
     assert not (tmp_path / "out").exists()
 
 
-def test_a_vehicle_off_the_deck_everywhere_has_no_limit() -> None:
+def test_a_vehicle_alone_is_what_lambda_multiplies(tmp_path, capsys) -> None:
+    """Issue 37 item 1 (fails on main: without ``lateral = false`` lambda also multiplied a
+    horizontal load of every block's weight, and nothing said so). The lateral pattern joins
+    the vehicle only when asked for, and ``tce show`` says what lambda multiplies."""
+    text = STUDY.replace("lateral = false\n", "")
+    assert text != STUDY
+    sc = parse_study(text).scenarios()[0]
+    assert sc.loads_pattern.lateral is False
+    both = parse_study(text.replace("[loads]\n", "[loads]\nlateral = true\n")).scenarios()[0].loads_pattern
+    assert both.lateral is True
+    an = Analysis(parse_study(text).assembly(sc.structure))
+    alone = critical_position(an, LoadPattern(lateral=False, vehicle=[dict(axles=[[0.0, 1.0], [0.4, 1.0]])]))
+    path = write(tmp_path, text)
+    assert main(["run", str(path), "--out", str(tmp_path / "out"), "--jobs", "1", "--no-plots"]) == 0
+    ds = xr.load_dataset(tmp_path / "out" / "vehicle" / "results.nc")
+    assert float(ds["critical_lambda"].values[0]) == pytest.approx(alone.lambda_max, rel=1e-9)
+    assert str(ds["lambda_multiplies"].values[0]) == "lambda multiplies vehicle 'vehicle' (2 kN); fixed: self-weight"
+    capsys.readouterr()
+    assert main(["show", str(tmp_path / "out" / "vehicle" / "results.nc")]) == 0
+    out = capsys.readouterr().out
+    assert "loads: lambda multiplies vehicle 'vehicle' (2 kN); fixed: self-weight" in out and "lateral" not in out
+    assert "and the lateral load lambda*W (every block's weight, horizontal) in direction alpha" in both.multiplies
+
+
+def test_a_vehicle_off_the_deck_is_an_error_not_unbounded() -> None:
+    """Issue 37 item 2 (fails on main: LimitResult('unbounded', lambda_max=inf) and a note)."""
     an = Analysis(segmental_arch())
-    far = LoadPattern(lateral=False, vehicle=[dict(axles=[[0.0, 1.0]], x=9.0)])
-    assert resolve_notes(an, far) and math.isinf(an.limit(loads=far).lambda_max)
+    far = LoadPattern(vehicle=[dict(axles=[[0.0, 1.0]], x=9.0)])
+    with pytest.raises(ValueError, match=r"vehicle\[0\]: no wheel .* lands on the deck, which spans x = "):
+        an.limit(loads=far)
+    with pytest.raises(ValueError, match="at any position searched"):
+        critical_position(an, LoadPattern(vehicle=[dict(axles=[[0.0, 1.0]], wheels=[-5.0, 5.0])]))
 
 
-def resolve_notes(an: Analysis, pattern: LoadPattern) -> tuple[str, ...]:
-    return an.applied_loads(loads=pattern).notes
+def test_the_search_drops_a_moving_vehicle_where_it_is_off_the_deck() -> None:
+    """Two vehicles 3 m apart on a 2.4 m arch: never both on the deck. Where one is off, the
+    other alone is the live load; the search's least value is that of one vehicle alone."""
+    an = Analysis(semicircular_arch())
+    two = LoadPattern(vehicle=[dict(axles=[[0.0, 1.0]], name="a"), dict(axles=[[0.0, 1.0]], x=3.0, name="b")])
+    one = critical_position(an, LoadPattern(vehicle=[dict(axles=[[0.0, 1.0]])]))
+    both = critical_position(an, two)
+    assert both.ok and both.lambda_max == pytest.approx(one.lambda_max, rel=1e-6)
+    assert len(both.pattern.vehicle) == 1  # the vehicle off the deck there is not part of the pattern
+    assert an.limit(loads=both.pattern).lambda_max == pytest.approx(both.lambda_max, rel=1e-9)
 
 
 # ---------------------------------------------------------------------------- assessment
@@ -189,24 +237,35 @@ def test_adequacy_factor_scales_as_the_cone_says() -> None:
     p = LoadPattern(lateral=False, distributed=[dict(x=[-3.5, 3.5], pressure=10.0, scaled=False)],
                     vehicle=[dict(axles=[[0.0, 2.0]], wheels=[-0.9, 0.9], x=-1.5)])
     lam = an.limit(loads=p).lambda_max
-    for gd, gl in ((1.0, 1.0), (1.0, 1.5), (1.2, 1.5), (0.9, 2.0)):
+    for gd, gl in ((1.0, 1.0), (1.0, 1.5), (0.9, 2.0)):
         assert adequacy_factor(an, p, gd, gl).lambda_max == pytest.approx(lam * gd / gl, rel=1e-7)
     with pytest.raises(ValueError, match="live_factor"):
         adequacy_factor(an, p, 1.0, 0.0)
 
 
+def test_a_dead_factor_above_one_is_refused_citing_the_code() -> None:
+    """Issue 37 item 3 (fails on main: 1.35 on the favourable dead load raised the adequacy
+    factor by 35 %)."""
+    from tce.analysis.assessment import adequacy_factor
+
+    an = Analysis(segmental_arch())
+    p = LoadPattern(vehicle=[dict(axles=[[0.0, 1.0]])])
+    with pytest.raises(ValueError, match=r"favourable .* gamma_G,inf = 1\.00 \(EN 1990:2002, Table A2\.4\(B\)\)"):
+        adequacy_factor(an, p, 1.35, 1.5)
+
+
 def test_assessment_study_reads_as_an_assessment(tmp_path, capsys) -> None:
-    text = STUDY + "\n[assessment]\ndead_factor = 1.1\nlive_factor = 1.5\n"
+    text = STUDY + "\n[assessment]\ndead_factor = 0.9\nlive_factor = 1.5\n"
     path = write(tmp_path, text.replace('name = "vehicle"', 'name = "assessed"'))
     assert main(["run", str(path), "--out", str(tmp_path / "out"), "--jobs", "1", "--no-plots"]) == 0
     ds = xr.load_dataset(tmp_path / "out" / "assessed" / "results.nc")
     lam = float(ds["critical_lambda"].values[0])
-    assert float(ds["adequacy_factor"].values[0]) == pytest.approx(lam * 1.1 / 1.5, rel=1e-7)
+    assert float(ds["adequacy_factor"].values[0]) == pytest.approx(lam * 0.9 / 1.5, rel=1e-7)
     capsys.readouterr()
     assert main(["show", str(tmp_path / "out" / "assessed" / "results.nc")]) == 0
     out = capsys.readouterr().out
-    assert "assessment (adequacy factor" in out and "partial factors dead 1.1, live 1.5" in out
-    assert f"adequacy factor {lam * 1.1 / 1.5:.4g}: NOT adequate" in out and "vehicle (2 kN)" in out
+    assert "assessment (adequacy factor" in out and "partial factors dead 0.9, live 1.5" in out
+    assert f"adequacy factor {lam * 0.9 / 1.5:.4g}: NOT adequate" in out and "vehicle (2 kN)" in out
 
 
 def test_bad_partial_factor_exits_2(tmp_path, capsys) -> None:

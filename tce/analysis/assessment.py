@@ -9,10 +9,15 @@ analysis, :class:`tce.core.limit.LimitSolver`): the number of times the factored
 structure is adequate for the load; below 1: it is not.
 
 Defaults are 1.0 on both (no factor): the factors are the assessing engineer's (a code's)
-choice. For a material without cohesion or strengths (Heyman, friction) the admissible
-loads form a cone, so the factored answer is ``lambda_max gamma_dead / gamma_live`` exactly:
-a larger factor on the (stabilising) dead load of an arch raises the adequacy factor; codes
-that treat dead load as favourable choose ``gamma_dead <= 1`` for it.
+choice, within one rule (:data:`DEAD_FACTOR_RULE`). For a material without cohesion or
+strengths (Heyman, friction) the admissible loads form a cone, so the factored answer is
+``lambda_max gamma_dead / gamma_live`` exactly: the dead load of an arch holds it up
+(favourable), and a factor above 1 on it would raise the adequacy factor. A favourable
+permanent action takes the lower partial factor of the code, ``gamma_G,inf`` (EN 1990:2002,
+6.4.3.2 and Annex A2, Table A2.4(B): ``gamma_G,sup = 1.35`` where the permanent action is
+unfavourable, ``gamma_G,inf = 1.00`` where it is favourable), so ``dead_factor`` above 1 is
+refused (:func:`check_dead_factor`): a study with it exits 2, a call raises ``ValueError``.
+A factor below 1 (a code that reduces a favourable dead load) is applied as given.
 """
 
 from __future__ import annotations
@@ -22,7 +27,20 @@ from ..core.limit import LimitResult, LimitSolver
 from ..core.loads import LoadPattern, load_vectors
 from ..core.passive import passive_restraint
 
-__all__ = ["adequacy_factor"]
+__all__ = ["DEAD_FACTOR_RULE", "adequacy_factor", "check_dead_factor"]
+
+#: the rule on the dead load's partial factor, with its source (in messages and docs)
+DEAD_FACTOR_RULE = (
+    "the dead load of an arch is favourable (it holds the arch up), so it takes the favourable partial factor "
+    "gamma_G,inf = 1.00 (EN 1990:2002, Table A2.4(B)); a dead_factor above 1 would raise the adequacy factor"
+)
+
+
+def check_dead_factor(dead_factor: float) -> None:
+    """Raise ``ValueError`` for a ``dead_factor`` above 1 (:data:`DEAD_FACTOR_RULE`)."""
+    if dead_factor > 1.0:
+        raise ValueError(f"dead_factor = {dead_factor:g}: {DEAD_FACTOR_RULE}; fix: dead_factor = 1.0 "
+                         "(or the code's favourable factor, at most 1)")
 
 
 def adequacy_factor(analysis: Analysis, loads: LoadPattern, dead_factor: float = 1.0, live_factor: float = 1.0) -> LimitResult:
@@ -32,11 +50,13 @@ def adequacy_factor(analysis: Analysis, loads: LoadPattern, dead_factor: float =
     Raises
     ------
     ValueError
-        A factor that is not a positive finite number.
+        A factor that is not a positive finite number, or a ``dead_factor`` above 1
+        (:func:`check_dead_factor`).
     """
     for name, v in (("dead_factor", dead_factor), ("live_factor", live_factor)):
         if not (isinstance(v, int | float) and 0.0 < v < float("inf")):
             raise ValueError(f"{name} must be a positive finite number, got {v!r}")
+    check_dead_factor(dead_factor)
     model = analysis.model(analysis.model_kind(loads=loads))
     b_fixed, b_live = load_vectors(model, loads)
     # the fill's passive restraint (a resistance of the soil) is not factored

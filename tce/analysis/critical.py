@@ -22,6 +22,12 @@ loads by the argument above, and to ``xtol`` for contact patches (whose load is 
 in ``x``: pieces of a patch change area as it moves) when the least value lies inside a
 piece.
 
+Vehicles off the deck: at a position where a moving vehicle has no wheel on the deck (over
+a support block in between spans, or beyond the deck's width) the search drops that vehicle
+there (:func:`on_deck`; nothing of it acts on the structure), and a position where no live
+load is left is carried at any multiplier. A vehicle with no wheel on the deck at every
+position scanned is an input error (:func:`check_on_deck`), raised before any solve.
+
 Mirror ties: positions (farther apart than the tolerance) whose ``lambda_max`` equals the
 least within :data:`TIE_RTOL` are reported in :attr:`CriticalResult.ties`; the critical
 position reported is the leftmost of them (least x), a rule that does not depend on the
@@ -36,7 +42,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -44,10 +50,20 @@ from numpy.typing import ArrayLike, NDArray
 from ..core.analysis import Analysis
 from ..core.loads import LoadError, LoadPattern
 from ..core.result import Result
-from ..core.vehicles import deck_edges, deck_range
+from ..core.vehicles import OffDeck, deck_edges, deck_extent, deck_range, wheel_loads
 from ..structures.assembly import Assembly
 
-__all__ = ["DELTA", "TIE_RTOL", "CriticalResult", "critical_position", "moving_offsets", "search_bounds"]
+__all__ = [
+    "DELTA",
+    "TIE_RTOL",
+    "CriticalResult",
+    "check_on_deck",
+    "critical_position",
+    "moving_offsets",
+    "on_deck",
+    "scan_positions",
+    "search_bounds",
+]
 
 #: a breakpoint is evaluated this fraction of the range before and after it
 DELTA = 1e-7
@@ -135,6 +151,76 @@ def search_bounds(pattern: LoadPattern, assembly: Assembly) -> tuple[float, floa
     return lo, hi
 
 
+def on_deck(pattern: LoadPattern, assembly: Assembly) -> LoadPattern | None:
+    """``pattern`` without its moving (scaled) vehicles that have no wheel on the deck at their
+    position; None when no live load is left (lambda would multiply nothing).
+
+    Raises
+    ------
+    OffDeck
+        A fixed vehicle with no wheel on the deck (it does not move: an input error).
+    """
+    keep = []
+    for k, v in enumerate(pattern.vehicle):
+        try:
+            wheel_loads(v, assembly, f"vehicle[{k}]", pattern.fill)
+        except OffDeck:
+            if not v.scaled:
+                raise
+            continue
+        keep.append(v)
+    if len(keep) == len(pattern.vehicle):
+        return pattern
+    if not (pattern.lateral or any(v.scaled for v in keep)
+            or any(p.scaled for p in (*pattern.point, *pattern.distributed))):
+        return None
+    return replace(pattern, vehicle=tuple(keep))
+
+
+def scan_positions(
+    pattern: LoadPattern, assembly: Assembly, lo: float, hi: float, extra: ArrayLike = ()
+) -> NDArray[np.float64]:
+    """The positions the search scans in ``[lo, hi]`` (m, sorted): ``DELTA`` of the range
+    before and after every breakpoint (a moving load crossing a deck edge), the range's
+    ends moved in by as much, the ``extra`` positions (clipped to them), and the midpoints
+    between all of these."""
+    delta = DELTA * (hi - lo)
+    extra = np.clip(np.asarray(extra, dtype=float).ravel(), lo + delta, hi - delta)
+    edges = deck_edges(assembly)
+    breaks = np.array([e - off + s * half for off, half in moving_offsets(pattern) for e in edges for s in (-1.0, 1.0)])
+    breaks = np.unique(np.round(breaks[(breaks > lo) & (breaks < hi)], 12))
+    scan = np.unique(np.concatenate([breaks - delta, breaks + delta, [lo + delta, hi - delta], extra]))
+    return np.unique(np.concatenate([scan, (scan[1:] + scan[:-1]) / 2.0]))
+
+
+def check_on_deck(pattern: LoadPattern, assembly: Assembly, bounds: tuple[float, float] | None = None) -> None:
+    """Raise :class:`~tce.core.vehicles.OffDeck` when a moving vehicle of ``pattern`` has no
+    wheel on the deck at any position the search scans (:func:`scan_positions` over
+    ``bounds``, default :func:`search_bounds`); geometry only, no solve.
+    """
+    lo, hi = search_bounds(pattern, assembly) if bounds is None else bounds
+    todo = {k for k, v in enumerate(pattern.vehicle) if v.scaled}
+    first: dict[int, OffDeck] = {}
+    for x in scan_positions(pattern, assembly, lo, hi):
+        if not todo:
+            return
+        moved = pattern.moved(float(x))
+        for k in list(todo):
+            try:
+                wheel_loads(moved.vehicle[k], assembly, f"vehicle[{k}]", pattern.fill)
+                todo.discard(k)
+            except OffDeck as exc:
+                first.setdefault(k, exc)
+    if todo:
+        k = min(todo)
+        (x0, x1), (y0, y1) = deck_extent(assembly)
+        raise OffDeck(
+            f"vehicle[{k}]", f"no wheel of {pattern.vehicle[k].label!r} lands on the deck at any position searched "
+            f"(reference x = {lo:.4g} to {hi:.4g} m, line y = {pattern.vehicle[k].y:.4g} m); the deck spans "
+            f"x = [{x0:.4g}, {x1:.4g}] m, y = [{y0:.4g}, {y1:.4g}] m (its load would be zero)", first[k].fix,
+        )
+
+
 def critical_position(
     analysis: Analysis,
     loads: LoadPattern,
@@ -167,6 +253,9 @@ def critical_position(
     ------
     LoadError
         Nothing moves, a start position outside the bounds, or bounds that are empty.
+    OffDeck
+        A moving vehicle with no wheel on the deck at any position (:func:`check_on_deck`),
+        or a fixed vehicle with none at its position.
     """
     t0 = time.perf_counter()
     if loads.reference_x != loads.reference_x:
@@ -187,13 +276,25 @@ def critical_position(
         raise LoadError("start", f"position {outside[0]:g} m is outside the range [{lo:.6g}, {hi:.6g}] m "
                         "where a moving load is on the deck", "give positions inside it")
 
+    check_on_deck(loads, analysis.assembly, (lo, hi))
+
     values: dict[float, float] = {}
+    patterns: dict[float, LoadPattern] = {}  # positions where a moving vehicle is off the deck
     failed: list[str] = []
 
     def lam(x: float) -> float:
         x = float(min(max(x, lo_in), hi_in))
         if x not in values:
-            res = analysis.limit(loads=loads.moved(x))
+            moved = loads.moved(x)
+            try:
+                res = analysis.limit(loads=moved)
+            except OffDeck:
+                reduced = on_deck(moved, analysis.assembly)
+                if reduced is None:  # no live load on the structure there
+                    values[x] = math.inf
+                    return values[x]
+                patterns[x] = reduced
+                res = analysis.limit(loads=reduced)
             if res.status == "infeasible":
                 raise _Infeasible(res.message)
             values[x] = {"optimal": res.lambda_max, "unbounded": math.inf}.get(res.status, math.nan)
@@ -201,11 +302,7 @@ def critical_position(
                 failed.append(f"x = {x:.6g} m: {res.status} ({res.message})")
         return values[x]
 
-    edges = deck_edges(analysis.assembly)
-    breaks = np.array([e - off + s * half for off, half in moving_offsets(loads) for e in edges for s in (-1.0, 1.0)])
-    breaks = np.unique(np.round(breaks[(breaks > lo) & (breaks < hi)], 12))
-    scan = np.unique(np.concatenate([breaks - delta, breaks + delta, [lo_in, hi_in], np.clip(given, lo_in, hi_in)]))
-    scan = np.unique(np.concatenate([scan, (scan[1:] + scan[:-1]) / 2.0]))
+    scan = scan_positions(loads, analysis.assembly, lo, hi, given)
     try:
         for x in scan:
             lam(x)
@@ -229,7 +326,7 @@ def critical_position(
     if len(tied) > 1:
         msg += f"; tied positions (lambda_max within {TIE_RTOL:g}): {', '.join(f'{t:.6g}' for t in tied)} m"
     return CriticalResult(status="optimal", critical_x=crit, lambda_max=values[crit], ties=tuple(float(t) for t in tied[1:]),
-                          pattern=loads.moved(crit), message=msg, **common)
+                          pattern=patterns.get(crit, loads.moved(crit)), message=msg, **common)
 
 
 class _Infeasible(Exception):

@@ -27,7 +27,11 @@ for 3D blocks [2]_:
    converge where the same vault as built did);
 3. the scheme stops at a fixed point, a state ``F`` that is a non-associative collapse
    state to ``tol`` (times the total weight ``W`` for forces): ``lambda`` settled (the
-   last two iterates within ``tol``, relative); ``F`` an optimal state of the last
+   last three iterates within ``tol`` of each other, relative, absolute below 1: two changes
+   in a row, because one small change is not a converged ``lambda`` where the next is larger,
+   as after an extrapolation, 5., whose jump mixes the modes of the approach; a test of one
+   change stopped such a run 12 ``tol`` short of its fixed point, in one order of the blocks
+   and not in another); ``F`` an optimal state of the last
    sub-problem (equilibrium at ``lambda_k``, its capacities met), admissible for the
    Coulomb law itself (violation ``<= tol W``); and, at every contact that slides in the
    last mechanism (tangential speed above :data:`DILATANCY_TOL` of the largest vertex
@@ -38,8 +42,8 @@ for 3D blocks [2]_:
    checked at loaded sliding contacts (``dilatancy``).
 4. where a sub-problem's optimal states are not unique, the state the solver returns (the
    centre of the optimal face, for Clarabel's interior point) shifts as the capacities
-   shift, and the plain scheme may circle without settling. Once the last three values of
-   ``lambda`` lie within ``tol`` of each other, each iteration also solves
+   shift, and the plain scheme may circle without settling. Once ``lambda`` has settled
+   (3.), each iteration also solves
    :func:`tce.core.problem.least_violation_problem`: among the optimal states of the
    sub-problem, the one of least Coulomb violation and least ``|fn - fn_used|`` at the
    sliding contacts (of those, the one nearest to the normal forces in use:
@@ -294,8 +298,9 @@ class NonAssocSolver:
     max_iter : int
         Largest number of non-associative solves.
     tol : float
-        Relative change of ``lambda``, change of the normal forces and violation of the
-        Coulomb law (both over ``W``) accepted at a fixed point.
+        Relative change of ``lambda`` (absolute below 1) in each of the last two iterations,
+        change of the normal forces and violation of the Coulomb law (both over ``W``)
+        accepted at a fixed point.
     relaxation : float
         Under-relaxation ``w`` in (0, 1] of the normal forces that fix the capacities:
         ``fn <- fn + w (fn_k - fn)``. The plain scheme (``w = 1``) cycles on problems whose
@@ -395,8 +400,9 @@ class NonAssocSolver:
             viol, cons = self._fixed_point_errors(state, fn, sliding)
             log.debug("non-associative iteration %d: lambda %.12g, law violation %.3g W, sliding contacts off "
                       "their capacity by %.3g W", k, history[-1], viol, cons)
-            found = self._settled(history, 2) and viol <= self.tol and cons <= self.tol
-            polishing = polishing or self._settled(history, 3)
+            settled = self._settled(history)
+            found = settled and viol <= self.tol and cons <= self.tol
+            polishing = polishing or settled
             polished = None
             if not found and polishing:
                 polished = self._polish(sub, b_fixed + last.lambda_max * b_live, coulomb, fn, sliding)
@@ -404,7 +410,7 @@ class NonAssocSolver:
                 p_viol, p_cons = self._fixed_point_errors(polished, fn, sliding)
                 log.debug("iteration %d polished: law violation %.3g W, sliding contacts off by %.3g W",
                           k, p_viol, p_cons)
-                if self._settled(history, 2) and p_viol <= self.tol and p_cons <= self.tol:
+                if settled and p_viol <= self.tol and p_cons <= self.tol:
                     found, state, viol, cons = True, polished, p_viol, p_cons
             if found:
                 dil = self._dilatancy(last, state)
@@ -447,12 +453,13 @@ class NonAssocSolver:
                     message=f"no fixed point after {self.max_iter} iterations: last lambda {history[-1]:.6g}, "
                     f"law violation {viol:.3g} W, sliding contacts off their capacity by {cons:.3g} W")
 
-    def _settled(self, history: list[float], n: int) -> bool:
-        """Whether the last ``n`` values of ``lambda`` (the associative one included) lie
-        within ``tol`` (relative, at least absolute ``tol``) of each other."""
-        if len(history) < n:
+    def _settled(self, history: list[float]) -> bool:
+        """Whether the last three values of ``lambda`` (the associative one included) lie
+        within ``tol`` (relative, at least absolute ``tol``) of each other: two changes in a
+        row, since one small change need not be followed by smaller ones (module docstring, 3.)."""
+        if len(history) < 3:
             return False
-        last = history[-n:]
+        last = history[-3:]
         return max(last) - min(last) <= self.tol * max(abs(history[-1]), 1.0)
 
     def _sliding(self, res: LimitResult) -> NDArray[np.bool_]:

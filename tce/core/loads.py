@@ -8,7 +8,10 @@ load multiplier ``lam``. A :class:`LoadPattern` declares them:
 - the self-weight of every block (always part of ``b_fixed``);
 - the paper's lateral pattern, ``lam`` times every block's weight horizontally in direction
   ``alpha`` (degrees from +x towards +y) at its centroid, part of ``b_live`` when ``lateral``
-  (the default: a pattern with nothing else is exactly the ``alpha`` of tce 0.1);
+  (by default only when the pattern has no live load of its own: lambda multiplies what the
+  engineer declared live, and the lateral pattern joins a vehicle, point or distributed live
+  load only when asked for with ``lateral = True``; :attr:`LoadPattern.multiplies` says it in
+  words);
 - point loads (:class:`PointLoad`): a force ``f`` (kN, global frame) at a point ``p`` (m) of
   a free block ``i``, given by block and point or found on the top surface above a plan
   point (``on_top``);
@@ -208,15 +211,19 @@ class LoadPattern:
     ----------
     alpha : float
         Direction of the lateral pattern (degrees, from +x towards +y).
-    lateral : bool
-        True (default): lambda multiplies every block's weight horizontally in direction
-        ``alpha`` (the paper's pattern) besides the scaled loads; False: lambda multiplies
-        only the scaled loads (then at least one is needed).
+    lateral : bool or None
+        True: lambda multiplies every block's weight horizontally in direction ``alpha``
+        (the paper's pattern) besides the scaled loads; False: lambda multiplies only the
+        scaled loads (then at least one is needed). None (default): True when the pattern
+        has no scaled (live) point load, distributed load or vehicle, else False: a live
+        load declared alone is what lambda multiplies, and the lateral pattern is added to
+        it only when asked for. Stored resolved (a bool) after construction.
     point : sequence of PointLoad (or dicts of its keys)
     distributed : sequence of DistributedLoad (or dicts of its keys)
     vehicle : sequence of :class:`tce.core.vehicles.Vehicle` (or dicts of its keys)
         Axle groups moving as one (:mod:`tce.core.vehicles`); wheels off the deck are
-        dropped with a note (:attr:`AppliedLoads.notes`).
+        dropped with one note per vehicle (:attr:`AppliedLoads.notes`); a vehicle with no
+        wheel on the deck is an error (:func:`resolve`).
     fill : :class:`tce.core.fill.Fill` (or a dict of its keys), optional
         Fill over the top surface: its weight and at-rest pressure (fixed loads), and the
         dispersion of the vehicles' wheel loads through it (:mod:`tce.core.fill`).
@@ -227,7 +234,7 @@ class LoadPattern:
     """
 
     alpha: float = 0.0
-    lateral: bool = True
+    lateral: bool | None = None
     point: tuple[PointLoad, ...] = ()
     distributed: tuple[DistributedLoad, ...] = ()
     vehicle: tuple[Vehicle, ...] = ()
@@ -243,11 +250,13 @@ class LoadPattern:
 
         (alpha,) = _vector([self.alpha], 1, "alpha", "degrees")
         object.__setattr__(self, "alpha", alpha)
-        if not isinstance(self.lateral, bool):
+        if self.lateral is not None and not isinstance(self.lateral, bool):
             raise LoadError("lateral", f"not true or false ({self.lateral!r})", "write true or false")
         object.__setattr__(self, "point", _items(PointLoad, self.point, "point"))
         object.__setattr__(self, "distributed", _items(DistributedLoad, self.distributed, "distributed"))
         object.__setattr__(self, "vehicle", _items(Vehicle, self.vehicle, "vehicle"))
+        if self.lateral is None:
+            object.__setattr__(self, "lateral", not self.live_loads)
         if not self.lateral and not any(p.scaled for p in (*self.point, *self.distributed, *self.vehicle)):
             raise LoadError(
                 "lateral", "lateral = false and no scaled load: lambda would multiply nothing",
@@ -258,6 +267,32 @@ class LoadPattern:
     def default(self) -> bool:
         """True for the paper's pattern alone (self-weight and the lateral pattern)."""
         return self.lateral and not self.point and not self.distributed and not self.vehicle and self.fill is None
+
+    @property
+    def live_loads(self) -> list[str]:
+        """The declared live (scaled) loads in words, in declaration order: ``vehicle
+        'LM1' (600 kN)``, ``point[0] (10 kN)``, ``distributed[1] (5 kN/m^2)``."""
+        out = [f"vehicle {v.label!r} ({v.total:g} kN)" for v in self.vehicle if v.scaled]
+        out += [f"point[{k}] ({float(np.linalg.norm(p.force)):g} kN)" for k, p in enumerate(self.point) if p.scaled]
+        out += [f"distributed[{k}] ({d.pressure:g} kN/m^2)" for k, d in enumerate(self.distributed) if d.scaled]
+        return out
+
+    @property
+    def multiplies(self) -> str:
+        """What lambda multiplies and what is applied fixed, in words (``tce show``, the
+        report, the results' ``lambda_multiplies``)."""
+        live = self.live_loads
+        if self.lateral:
+            live.append("the lateral load lambda*W (every block's weight, horizontal) in direction alpha")
+        fixed = ["self-weight"]
+        if self.fill is not None and self.fill.weight:
+            fixed.append("fill weight")
+        if self.fill is not None and self.fill.k0:
+            fixed.append("fill at-rest pressure")
+        fixed += [f"point[{k}]" for k, p in enumerate(self.point) if not p.scaled]
+        fixed += [f"distributed[{k}]" for k, d in enumerate(self.distributed) if not d.scaled]
+        fixed += [f"vehicle {v.label!r}" for v in self.vehicle if not v.scaled]
+        return f"lambda multiplies {' and '.join(live)}; fixed: {', '.join(fixed)}"
 
     @property
     def direction(self) -> float:
@@ -375,8 +410,8 @@ class AppliedLoads:
         The declaration each force comes from (``point[0]``, ``distributed[1]``,
         ``vehicle[0].axle[1].wheel[0]``).
     notes : tuple of str
-        One line per load dropped because it lies off the deck (a vehicle's wheel, or part
-        of its contact patch, :func:`tce.core.vehicles.wheel_loads`).
+        One line per vehicle with wheels (or parts of contact patches) dropped because they
+        lie off the deck (:func:`tce.core.vehicles.wheel_loads`).
     """
 
     pattern: LoadPattern
@@ -535,7 +570,8 @@ def resolve(pattern: LoadPattern, assembly: Assembly) -> AppliedLoads:
     LoadError
         An unknown block, a support block, ``at`` farther than the block's size from its
         centroid, ``on_top`` outside the plan or over a support, a distributed rectangle
-        that covers no top surface or covers a support's.
+        that covers no top surface or covers a support's, a vehicle none of whose wheels
+        lands on the deck (:class:`tce.core.vehicles.OffDeck`).
     """
     blocks, points, forces, scaled, sources = [], [], [], [], []
     for k, load in enumerate(pattern.point):
@@ -579,7 +615,7 @@ def resolve(pattern: LoadPattern, assembly: Assembly) -> AppliedLoads:
                     scaled.append(vehicle.scaled)
                     sources.append(wheel.source)
         for note in notes:
-            log.info("%s", note)
+            log.debug("%s", note)
     return AppliedLoads(
         pattern, assembly, np.array(blocks, dtype=np.int64), np.array(points, dtype=float).reshape(-1, 3),
         np.array(forces, dtype=float).reshape(-1, 3), np.array(scaled, dtype=bool), tuple(sources), tuple(notes),

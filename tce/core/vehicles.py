@@ -9,9 +9,12 @@ coordinate, the plan abscissa ``x`` of its reference point: moving it moves ever
 the same amount (:meth:`tce.core.loads.LoadPattern.moved`), so axles never merge.
 
 A wheel whose point (or whole patch) lies off the deck (outside the plan of the structure,
-or over a support block, whose load goes straight into the ground) is dropped with a note
-(:attr:`tce.core.loads.AppliedLoads.notes`); the part of a patch that lies off the deck is
-dropped the same way. Nothing is merged: every wheel on the deck stays a load of its own.
+or over a support block, whose load goes straight into the ground) is dropped; the part of
+a patch that lies off the deck is dropped the same way. The dropped wheels of a vehicle are
+summarised in one note (:attr:`tce.core.loads.AppliedLoads.notes`). A vehicle none of whose
+wheels lands on the deck is an input error (:class:`OffDeck`, naming the vehicle and the
+deck's extent): its load would be zero, and lambda would multiply nothing of it. Nothing is
+merged: every wheel on the deck stays a load of its own.
 
 Standard vehicles (:data:`STANDARD`, by name) are built by the functions of this module;
 each docstring states its figures and their source. Only figures taken from the cited
@@ -36,6 +39,7 @@ if TYPE_CHECKING:
     from .fill import Fill
 
 __all__ = [
+    "OffDeck",
     "STANDARD",
     "Vehicle",
     "VehicleLoad",
@@ -44,6 +48,7 @@ __all__ = [
     "cs454_double_bogie",
     "cs454_single_axle",
     "deck_edges",
+    "deck_extent",
     "deck_range",
     "eurocode_lm1_tandem",
     "eurocode_lm2_axle",
@@ -160,6 +165,10 @@ def _distinct(values: list[float], key: str, why: str) -> None:
         raise LoadError(key, f"a value listed twice ({values})", f"give distinct values ({why})")
 
 
+class OffDeck(LoadError):
+    """A vehicle none of whose wheels lands on the deck (:func:`wheel_loads`)."""
+
+
 @dataclass(frozen=True)
 class VehicleLoad:
     """One wheel of a vehicle resolved on an assembly: ``(block, point, force)`` parts.
@@ -175,17 +184,24 @@ class VehicleLoad:
 def wheel_loads(
     vehicle: Vehicle, assembly: Assembly, key: str, fill: Fill | None = None
 ) -> tuple[list[VehicleLoad], list[str]]:
-    """The wheels of ``vehicle`` that lie on the deck of ``assembly``, and a note for each
-    wheel (or part of a patch) dropped because it lies off the deck.
+    """The wheels of ``vehicle`` that lie on the deck of ``assembly``, and one note (none when
+    nothing is dropped) listing the wheels, or parts of contact patches, dropped because
+    they lie off the deck.
 
     ``key`` names the vehicle in sources and notes (``vehicle[0]``). The deck is the top
     surface of the free blocks (:func:`tce.core.surface.top_surface`); a wheel over a support
     block or outside the plan is off the deck. With a ``fill`` whose dispersion is on, each
     wheel's patch (a point: 0 x 0) grows by the spread through the fill under the wheel's
     centre (:meth:`tce.core.fill.Fill.spread`) on each side before it is laid on the deck.
+
+    Raises
+    ------
+    OffDeck
+        No wheel of the vehicle lands on the deck (key ``key``; the message names the
+        vehicle, its position and the deck's extent, :func:`deck_extent`).
     """
     loads: list[VehicleLoad] = []
-    notes: list[str] = []
+    dropped: list[str] = []
     road = None
     if fill is not None and fill.dispersion != 0.0:
         from .fill import road_level
@@ -193,7 +209,7 @@ def wheel_loads(
         road = road_level(assembly, fill)
     for a, w, x, y, load in vehicle.wheel_points():
         source = f"{key}.axle[{a}].wheel[{w}]"
-        where = f"{key} ({vehicle.label}) axle {a + 1} wheel {w + 1} at x = {x:.4g} m, y = {y:.4g} m"
+        where = f"axle {a + 1} wheel {w + 1} (x = {x:.4g} m, y = {y:.4g} m)"
         patch = vehicle.patch
         if road is not None and fill is not None and isinstance(fill.dispersion, str):
             from .fill import boussinesq_parts
@@ -201,12 +217,11 @@ def wheel_loads(
             try:
                 _, p = _on_top(assembly, (x, y))
             except LoadError:
-                notes.append(f"{where}: off the deck (no block under it), dropped")
+                dropped.append(f"{where} off the deck")
                 continue
             parts, off = boussinesq_parts(assembly, x, y, patch, road - float(p[2]))
             if off > 1e-9:
-                notes.append(f"{where}: {100.0 * off:.3g}% of its load, spread by Boussinesq's distribution, "
-                             "beyond the deck or over a support, dropped")
+                dropped.append(f"{where} {100.0 * off:.3g}% of its load spread beyond the deck or over a support")
             if parts:
                 loads.append(VehicleLoad(source, tuple((i, p, -load * frac) for i, p, frac in parts)))
             continue
@@ -222,18 +237,28 @@ def wheel_loads(
             try:
                 i, p = _on_top(assembly, (x, y))
             except LoadError:
-                notes.append(f"{where}: off the deck (no block under it), dropped")
+                dropped.append(f"{where} off the deck")
                 continue
             if assembly.blocks[i].support:
-                notes.append(f"{where}: over support block {assembly.names[i]!r} (carried by it), dropped")
+                dropped.append(f"{where} over support block {assembly.names[i]!r}")
                 continue
             loads.append(VehicleLoad(source, ((i, tuple(float(v) for v in p), -load),)))
             continue
         parts, off = _patch_parts(assembly, x, y, patch)
         if off > 1e-9:
-            notes.append(f"{where}: {100.0 * off:.3g}% of its contact patch off the deck or over a support, dropped")
+            dropped.append(f"{where} {100.0 * off:.3g}% of its contact patch off the deck or over a support")
         if parts:
             loads.append(VehicleLoad(source, tuple((i, p, -load * frac) for i, p, frac in parts)))
+    if not loads:
+        (x0, x1), (y0, y1) = deck_extent(assembly)
+        raise OffDeck(
+            key, f"no wheel of {vehicle.label!r} at x = {vehicle.x:.4g} m, y = {vehicle.y:.4g} m lands on the deck, "
+            f"which spans x = [{x0:.4g}, {x1:.4g}] m, y = [{y0:.4g}, {y1:.4g}] m (its load would be zero)",
+            "place the vehicle over the deck: check x, y and the axle and wheel offsets (m, not mm)",
+        )
+    n = len(vehicle.axles) * len(vehicle.wheels)
+    notes = [f"{key} ({vehicle.label}) at x = {vehicle.x:.4g} m: {len(dropped)} of {n} wheels dropped in whole or "
+             f"part: {'; '.join(dropped)}"] if dropped else []
     return loads, notes
 
 
@@ -268,10 +293,23 @@ def deck_range(assembly: Assembly) -> tuple[float, float]:
     LoadError
         No free block has an exposed top surface.
     """
-    edges = deck_edges(assembly)
-    if not len(edges):
-        raise LoadError("vehicle", "the structure has no exposed top surface on a free block", "load a structure with a deck")
-    return float(edges[0]), float(edges[-1])
+    return deck_extent(assembly)[0]
+
+
+def deck_extent(assembly: Assembly) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Plan ranges ``((x0, x1), (y0, y1))`` (m) of the top surface of the free blocks (the deck).
+
+    Raises
+    ------
+    LoadError
+        No free block has an exposed top surface.
+    """
+    polys = [poly for block, _, poly in top_surface(assembly) if not assembly.blocks[block].support]
+    if not polys:
+        raise LoadError("vehicle", "the structure has no exposed top surface on a free block",
+                        "load a structure with a deck")
+    x0, y0, x1, y1 = shapely.union_all(polys).bounds
+    return (float(x0), float(x1)), (float(y0), float(y1))
 
 
 def deck_edges(assembly: Assembly) -> NDArray[np.float64]:

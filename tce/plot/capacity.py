@@ -21,6 +21,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ..study.positions import critical_positions
+from .data import value
 from .figures import COLOURS, LINESTYLES, MARKERS
 
 __all__ = ["influence_line"]
@@ -55,14 +56,14 @@ def _sweep_curves(ds: xr.Dataset) -> list[_Curve]:
 def _search_curves(ds: xr.Dataset) -> list[_Curve]:
     """The scans of a critical-position search, one per scenario."""
     out = []
-    for k, name in enumerate(ds["scenario"].values):
-        x, lam = ds["scan_x"].values[k], ds["scan_lambda"].values[k]
+    for name in map(str, ds["scenario"].values):
+        x, lam = value(ds, "scan_x", name), value(ds, "scan_lambda", name)
         keep = np.isfinite(x)
         x, lam = x[keep], lam[keep]
-        ties = str(ds["critical_ties"].values[k])
+        ties = str(value(ds, "critical_ties", name))
         out.append(_Curve(
-            str(name), x, np.where(np.isinf(lam), np.nan, lam), np.isinf(lam),
-            float(ds["critical_x"].values[k]), float(ds["critical_lambda"].values[k]),
+            name, x, np.where(np.isinf(lam), np.nan, lam), np.isinf(lam),
+            float(value(ds, "critical_x", name)), float(value(ds, "critical_lambda", name)),
             tuple(float(t) for t in ties.split(",")) if ties else (),
         ))
     return out

@@ -140,35 +140,18 @@ def scenarios(ds: xr.Dataset) -> list[str]:
 
 
 def value(ds: xr.Dataset, name: str, scenario: str, dims: Sequence[str] | None = None) -> NDArray:
-    """``ds[name]`` of one scenario as an ndarray, its other dimensions in the order ``dims``
-    (default: their stored order).
-
-    Indexes by position (the figures read hundreds of these: label-based selection would
-    cost more than the drawing; xarray's ``sel`` and ``transpose`` take 0.2-1 ms each)."""
-    var = ds.variables[name]
-    k = ds.get_index("scenario").get_loc(scenario)
-    out = np.asarray(var.values[(slice(None),) * var.dims.index("scenario") + (k,)])
-    if dims is None:
-        return out
-    rest = [d for d in var.dims if d != "scenario"]
-    return out.transpose([rest.index(d) for d in dims])
-
-
-def _positions(ds: xr.Dataset, dim: str, labels: Sequence[str]) -> NDArray[np.int64]:
-    """Positions of ``labels`` along ``dim`` (a KeyError names those ``ds`` does not hold, as
-    xarray's ``sel`` would)."""
-    rows = ds.get_index(dim).get_indexer(list(labels))
-    if np.any(rows < 0):
-        raise KeyError(f"{dim} {[x for x, r in zip(labels, rows) if r < 0]} not in the dataset")
-    return rows
+    """``ds[name]`` of the scenario labelled ``scenario`` as an ndarray, its other dimensions
+    in the order ``dims`` (default: their stored order)."""
+    one = ds[name].sel(scenario=scenario)
+    return (one if dims is None else one.transpose(*dims)).values
 
 
 def block_rows(ds: xr.Dataset, name: str, scenario: str, asm: Assembly) -> NDArray[np.float64]:
     """``ds[name]`` (dimensions ``scenario, block, ...``) of one scenario, a row per block of
-    ``asm`` in its order (a geometry sweep stores the blocks of every structure)."""
-    rows = _positions(ds, "block", asm.names)
-    rest = [d for d in ds.variables[name].dims if d != "scenario"]
-    return np.asarray(value(ds, name, scenario, ["block"] + [d for d in rest if d != "block"]), float)[rows]
+    ``asm`` in its order (a geometry sweep stores the blocks of every structure; a block
+    ``ds`` does not hold is a KeyError)."""
+    rows = ds[name].sel(scenario=scenario, block=list(asm.names))
+    return np.asarray(rows.transpose("block", ...).values, float)
 
 
 def text(ds: xr.Dataset, name: str, scenario: str, default: str = "") -> str:
@@ -195,11 +178,10 @@ def optimal_steps(ds: xr.Dataset, scenario: str) -> NDArray[np.int64]:
 
 def swept_parameters(ds: xr.Dataset, names: Sequence[str] | None = None) -> list[str]:
     """Swept coordinates along ``scenario`` that take more than one value among ``names``."""
-    rows = slice(None) if names is None else _positions(ds, "scenario", names)
     out = []
     for p in SWEPT:
-        if p in ds.coords and ds.variables[p].dims == ("scenario",):
-            v = np.asarray(ds.variables[p].values[rows], dtype=float)
+        if p in ds.coords and ds[p].dims == ("scenario",):
+            v = np.asarray((ds[p] if names is None else ds[p].sel(scenario=list(names))).values, dtype=float)
             if len({round(x, 12) if math.isfinite(x) else "nan" for x in v}) > 1:
                 out.append(p)
     return out
@@ -238,7 +220,7 @@ def critical_scenarios(ds: xr.Dataset) -> list[str]:
     """The critical scenario of every group of a load-position sweep, in dataset order (the
     scenarios the per-scenario figures show by default, :func:`plot_spec`; a group without a
     finite lambda_max shows its first position)."""
-    from ..study.positions import critical_positions  # the solvers: not imported by a figure drawer
+    from ..study.positions import critical_positions  # the solvers: imported for a load-position sweep only
 
     chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}
     return [str(s) for s in ds["scenario"].values if str(s) in chosen]
@@ -275,7 +257,7 @@ def plot_spec(
             table[key] = list(given)
     from pydantic import ValidationError
 
-    from ..study.schema import PlotsSection  # pydantic: not imported by a figure drawer
+    from ..study.schema import PlotsSection  # pydantic: imported where a spec is made
 
     try:
         section = PlotsSection.model_validate(table)

@@ -59,7 +59,7 @@ from matplotlib.ticker import MaxNLocator
 from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
-from . import draw, spare
+from . import draw
 from .load_arrows import LOAD_COLOUR, declared_loads
 from .data import (
     MAX_COLUMNS,
@@ -125,12 +125,12 @@ class _Grid:
                  below: float = 0.0) -> None:
         self.width = left + ncols * w + (ncols - 1) * wspace + right
         self.height = top + nrows * h + (nrows - 1) * hspace + bottom + below
-        self.fig = spare.figure((self.width, self.height))
+        self.fig = Figure(figsize=(self.width, self.height))
         self.below = below
         self.axes = [
-            [spare.axes(self.fig, ((left + c * (w + wspace)) / self.width,
-                                   (self.height - top - (r + 1) * h - r * hspace) / self.height,
-                                   w / self.width, h / self.height))
+            [self.fig.add_axes(((left + c * (w + wspace)) / self.width,
+                                (self.height - top - (r + 1) * h - r * hspace) / self.height,
+                                w / self.width, h / self.height))
              for c in range(ncols)]
             for r in range(nrows)
         ]
@@ -429,9 +429,9 @@ class _Sheet:
         self.header_h = header / self.k
         data_h += self.header_h
         fw, fh = max(data_w * self.k + 0.2, self.MIN_WIDTH), data_h * self.k + top + below
-        self.fig = spare.figure((fw, fh))
+        self.fig = Figure(figsize=(fw, fh))
         left = 0.5 * (fw - data_w * self.k)
-        self.ax = spare.axes(self.fig, (left / fw, below / fh, data_w * self.k / fw, data_h * self.k / fh))
+        self.ax = self.fig.add_axes((left / fw, below / fh, data_w * self.k / fw, data_h * self.k / fh))
         self.ax.set_axis_off()
         self.ax.set_xlim(0.0, data_w)
         self.ax.set_ylim(-data_h + self.header_h, self.header_h)
@@ -1007,11 +1007,11 @@ def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[o
     below = _legend_height([h.get_label() for h in handles], width)
     plot_h = 2.4
     height = 0.7 + len(drawn) * row_h + 0.55 + plot_h + 0.5 + below
-    fig = spare.figure((width, height))
+    fig = Figure(figsize=(width, height))
     top = height - 0.7
     for i, (st, outlines, points, shift) in enumerate(drawn):
         y0 = top - (i + 1) * row_h
-        ax = spare.axes(fig, (0.7 / width, y0 / height, n * pitch * inch / width, (row_h - 0.3) / height))
+        ax = fig.add_axes((0.7 / width, y0 / height, n * pitch * inch / width, (row_h - 0.3) / height))
         ax.set_axis_off()
         placed = [poly + [j * pitch, 0.0] for j, poly in enumerate(outlines)]  # side by side, to scale
         ax.add_collection(PolyCollection(placed, closed=True, facecolors=draw.BLOCK_COLOUR,
@@ -1026,7 +1026,7 @@ def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[o
         ax.set_aspect("equal")
         ax.text(-0.5 * pitch, 0.62 * depth, f"{st.scenario}: {st.label}", fontsize=FONT,
                 color=colours[i], va="bottom", ha="left")
-    ax = spare.axes(fig, (0.7 / width, (0.5 + below) / height, n * pitch * inch / width, plot_h / height))
+    ax = fig.add_axes((0.7 / width, (0.5 + below) / height, n * pitch * inch / width, plot_h / height))
     joints = np.arange(1, n + 1)
     for i, (st, _, _, shift) in enumerate(drawn):
         ax.plot(joints, shift, color=colours[i], marker=MARKERS[i % len(MARKERS)], markersize=4, linewidth=1.2,

@@ -33,6 +33,7 @@ The number of figures does not grow with the number of scenarios beyond those th
 from __future__ import annotations
 
 import logging
+import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -53,14 +54,15 @@ from .data import (
     swept_parameters,
 )
 from ..study.progress import Progress, track
-from .rendering import save_png
 
-__all__ = ["PARALLEL_AT", "builder", "figure_tasks", "render", "temporary", "write_figures"]
+__all__ = ["DPI", "PARALLEL_AT", "builder", "figure_tasks", "render", "temporary", "write_figures"]
 
 log = logging.getLogger(__name__)
 
 #: render in parallel (when ``jobs > 1``) from this many files on
 PARALLEL_AT = 8
+#: resolution of the PNG files (dots per inch): a screen's
+DPI = 100
 
 
 @dataclass(frozen=True)
@@ -155,9 +157,8 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
 
 
 def builder(kind: str) -> Callable:
-    """The function drawing figures of ``kind``, its module imported on first use: a figure
-    drawer (:mod:`tce.plot.drawers`) imports the modules of the kinds it may draw and nothing
-    else (the load-position and settlement figures' modules import the solvers)."""
+    """The function drawing figures of ``kind``, its module imported on first use (the
+    load-position and settlement figures' modules import the solvers)."""
     if kind == "capacity":
         from .capacity import influence_line
 
@@ -186,21 +187,28 @@ def temporary(path: Path) -> Path:
     return path.with_name(f".{path.name}.tmp")
 
 
-def render(ds: xr.Dataset, task: Task, outdir: Path, place: bool = True) -> Path:
+def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
     """Draw one task and write its file atomically: the :func:`temporary` file, then renamed
-    to its name; with ``place=False``, left under the temporary name, which is returned (the
-    caller renames it)."""
+    to its name (a failed or interrupted write leaves neither).
+
+    Raises
+    ------
+    OSError
+        The file cannot be written (a full disk): its ``filename`` is the file's path.
+    """
     path = Path(outdir) / task.name
     tmp = temporary(path)
     out = builder(task.kind)(ds, *task.args)
     try:
-        if isinstance(out, bytes):  # a page (view.html)
-            tmp.write_bytes(out)
-        else:
-            save_png(out, tmp)
-        if not place:
-            return tmp
-        tmp.replace(path)
+        with open(tmp, "wb") as fh:
+            if isinstance(out, bytes):  # a page (view.html)
+                fh.write(out)
+            else:
+                out.savefig(fh, format="png", dpi=DPI)
+        os.replace(tmp, path)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        raise OSError(exc.errno, exc.strerror, str(path)) from exc
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
@@ -218,8 +226,6 @@ def _subset(ds: xr.Dataset, task: Task) -> xr.Dataset:
 
 def write_figures(
     ds: xr.Dataset, outdir: Path | str, spec: PlotSpec | None = None, jobs: int = 1, tag: str = "",
-    draw: Callable[[xr.Dataset, list[Task], Path, Callable[[], None] | None], list[Path]] | None = None,
-    written: Callable[[], None] | None = None,
 ) -> list[Path]:
     """Write every figure of ``spec`` (default: the study's ``[plots]``) into ``outdir``.
 
@@ -231,31 +237,20 @@ def write_figures(
         Created if missing.
     spec : PlotSpec, optional
     jobs : int
-        Worker processes for the drawing (used from :data:`PARALLEL_AT` files on).
+        Worker processes for the drawing (joblib, used from :data:`PARALLEL_AT` files on).
     tag : str
         Appended to every file stem (figures drawn on demand).
-    draw : callable, optional
-        ``draw(ds, tasks, outdir, written) -> files`` draws the tasks instead of this process and
-        ``jobs`` (:meth:`tce.plot.drawers.Drawers.draw`: processes ``tce run`` made ready while
-        it solved).
-    written : callable, optional
-        Called before any figure is put in place (``tce run`` writes ``results.nc`` with it;
-        what it raises is raised and no figure is left): first thing here, once the figures
-        are handed out with ``draw``.
 
     Returns
     -------
     list of pathlib.Path
         The files written, in the order of :func:`figure_tasks`.
     """
-    from .states import missing_states, solve_states  # the solvers: not imported by a figure drawer
+    from .states import missing_states, solve_states  # the solvers: imported when states are missing
 
     spec = spec or plot_spec(ds)
     todo = missing_states(ds, spec.scenarios, [t for t in spec.steps if t != "max"])
     if todo:
-        if written is not None:  # solving them takes a while: the results first
-            written()
-            written = None
         try:
             ds = solve_states(ds, todo)
         except ValueError as exc:
@@ -263,10 +258,6 @@ def write_figures(
     tasks = figure_tasks(ds, spec, tag)
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    if draw is not None:
-        return draw(ds, tasks, outdir, written)
-    if written is not None:
-        written()
     if jobs > 1 and len(tasks) >= PARALLEL_AT:
         import joblib
 

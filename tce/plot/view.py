@@ -44,7 +44,7 @@ DIGITS = 5  # coordinates rounded to 10 micrometres in the page
 @lru_cache(maxsize=1)
 def plotly_js() -> bytes:
     """The minified plotly.js shipped inside the installed ``plotly`` Python package (UTF-8
-    bytes, read once per process: a figure drawer reads it as it warms up).
+    bytes, read once per process).
 
     Raises
     ------

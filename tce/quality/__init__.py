@@ -1,1 +1,1 @@
-"""Developer tools: the benchmark (``bench``), the hard-case suite (``hard``) and its report (``check``)."""
+"""Beside the command line: ``tce bench``'s time against error (``bench``), the hard cases (``hard``) and ``tce check`` (``check``), the validation atlas (``validation``, ``walls``) and the stage-by-stage memory probe (``scale``)."""

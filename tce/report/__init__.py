@@ -11,6 +11,7 @@ with the reason.
 from __future__ import annotations
 
 import base64
+import io
 import logging
 import os
 import shutil
@@ -63,9 +64,10 @@ def _data_uri(png: bytes) -> str:
 
 
 def _figure_png(fig) -> bytes:
-    from ..plot.rendering import png_bytes
-
-    return png_bytes(fig, dpi=110)
+    """``fig`` as the bytes of a PNG image at 110 dots per inch (matplotlib's ``savefig``)."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
+    return buf.getvalue()
 
 
 def _kind(path: Path) -> str:

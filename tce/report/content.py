@@ -28,7 +28,7 @@ from ..plot.data import assembly, geometry_groups, scenarios
 from ..study.positions import critical_positions
 from ..study.schema import GEOMETRY_SWEEPS
 
-__all__ = ["SHOW_COLUMNS", "Content", "fmt", "report_content"]
+__all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "report_content"]
 
 #: the columns of ``tce show`` (:func:`tce.cli._show`), in its order, with the report's headings
 SHOW_COLUMNS = {
@@ -125,6 +125,16 @@ def _material(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
     }
 
 
+def lambda_multiplies(ds: xr.Dataset) -> list[str]:
+    """What lambda multiplies (``lambda_multiplies``, :attr:`tce.core.loads.LoadPattern.multiplies`):
+    one line when every scenario has the same loads, else ``scenario: ...`` per scenario;
+    empty for results that do not record it."""
+    if "lambda_multiplies" not in ds:
+        return []
+    words = [str(w) for w in ds["lambda_multiplies"].values]
+    return [words[0]] if len(set(words)) == 1 else [f"{n}: {w}" for n, w in zip(ds["scenario"].values, words)]
+
+
 def _loads(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
     loads = dict(toml.get("loads", {}))
     points = loads.pop("point", [])
@@ -139,17 +149,13 @@ def _loads(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
             "moves": ", ".join(f"{k} = {json.dumps(v)}" for k, v in moves) or "none (supports fixed)",
             "other": ", ".join(f"{k} = {json.dumps(v)}" for k, v in rest),
         })
-    lateral = loads.get("lateral", True)
-    if points or distributed or vehicles:
-        live = "the live loads below (λ multiplies the loads marked scaled and the vehicles)"
-    else:
-        live = "a lateral body force λ × self-weight in the direction alpha (the paper's pattern)"
     return {
         "settings": _table(loads),
         "points": [_table(p) for p in points],
         "distributed": [_table(d) for d in distributed],
         "vehicles": [_table(v) for v in vehicles],
-        "live": live + ("" if lateral or not (points or distributed or vehicles) else "; no lateral load"),
+        "live": lambda_multiplies(ds)
+        or ["not recorded in these results (written by an earlier tce): see [loads] below"],
         "scenarios": scenarios,
         "sweep": _table(toml.get("sweep", {})),
         "n_scenarios": int(ds.sizes["scenario"]),

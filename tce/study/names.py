@@ -1,7 +1,6 @@
 """Names and a tolerance that the study schema, the runner and the figures share, importable
-without pydantic, xarray or the solvers: a figure drawer (:mod:`tce.plot.drawers`) and the
-command line's parser import this, not :mod:`tce.study.schema` or :mod:`tce.study.runner`
-(issue 24: a drawer forked as ``tce run`` starts is ready sooner the less it imports)."""
+without pydantic, xarray or the solvers: the command line's parser imports this, not
+:mod:`tce.study.schema` or :mod:`tce.study.runner`."""
 
 from __future__ import annotations
 

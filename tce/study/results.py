@@ -75,6 +75,7 @@ SCENARIO_VARS = (
     "certificate_gap", "n_solves", "solve_time", "wall_time", "outcome", "model", "mechanism",
     "interface_mode", "hinge_point", "interface_a", "interface_b", "block_centroid", "block_support",
     "no_limit_reason", "unbounded_reason", "unique", "vertex_force", "vertex_point", "vertex_interface",
+    "lambda_multiplies",
 )
 #: name of the lock file of a study folder
 LOCK_NAME = ".tce-run.lock"
@@ -164,7 +165,9 @@ META: dict[str, tuple[str, str]] = {
     "depth": ("m", "depth"),
     "radius": ("m", "mid-surface radius"),
     "load_x": ("m", "plan abscissa of the reference of the moving loads (vehicles, scaled on_top point loads)"),
-    "load_notes": ("-", "loads dropped because they lie off the deck, one line each (empty: none)"),
+    "load_notes": ("-", "wheels dropped because they lie off the deck, one line per vehicle (empty: none)"),
+    "lambda_multiplies": ("-", "what lambda multiplies and what is applied fixed, in words "
+                          "(tce.core.loads.LoadPattern.multiplies)"),
     # critical position search ([loads] critical_position; tce.analysis.critical)
     "critical_x": ("m", "reference position of the moving loads of least direct lambda_max (the load path runs there)"),
     "critical_lambda": ("1", "least direct lambda_max over the positions (at critical_x)"),
@@ -399,6 +402,7 @@ def scenario_dataset(
     data.update(_static_vars(analysis, path[0].interface_map))
     data["no_limit_reason"] = (("scenario",), _text([no_limit_reason(analysis, lp)]))
     data["unbounded_reason"] = (("scenario",), _text([unbounded_reason(analysis, lp)]))
+    data["lambda_multiplies"] = (("scenario",), _text([lp.loads.multiplies]))
     if nonassoc is not None:
         data.update(_nonassoc_vars(nonassoc))
     loads, load_coord = _load_vars(lp, analysis)

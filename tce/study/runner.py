@@ -99,9 +99,8 @@ log = logging.getLogger(__name__)
 Backend = Literal["processes", "dask"]
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
-#: draws a results dataset: (dataset, study folder, processes, write) -> files written, calling
-#: ``write()`` (which writes ``results.nc``) before it puts any figure in place
-Draw = Callable[[xr.Dataset, Path, int, Callable[[], None]], Sequence[Path]]
+#: draws a results dataset: (dataset, study folder, processes) -> files written
+Draw = Callable[[xr.Dataset, Path, int], Sequence[Path]]
 #: outcomes of a load path, in the order the run summary lists them
 OUTCOMES = ("limit", "capped", "no_limit", "unbounded", "infeasible", "numerical")
 
@@ -553,11 +552,9 @@ def run_study(
         ``progress(done, total, steps)`` before the first scenario (``done = 0``) and after
         each scenario solved.
     plots : callable, optional
-        ``plots(ds, folder, jobs, write) -> list of Path``: draws the results dataset into the
-        study's folder (still under its lock) with up to ``jobs`` processes, calling ``write()``
-        (which writes ``results.nc``, or raises :class:`RunFault`) before it puts any figure in
-        place, so that figures drawn elsewhere meanwhile never stand beside an unwritten
-        ``results.nc``; the files it returns are :attr:`RunReport.figures`. The command line passes
+        ``plots(ds, folder, jobs) -> list of Path``: draws the results dataset into the
+        study's folder (still under its lock) with up to ``jobs`` processes, once ``results.nc``
+        is written; the files it returns are :attr:`RunReport.figures`. The command line passes
         :func:`tce.plot.write_figures` (the runner does not import :mod:`tce.plot`); default:
         no figures.
     fresh : bool
@@ -627,20 +624,15 @@ def run_study(
         if report.faults:
             raise RunFault(report)
         ds = merge_scenarios(study, parts)
-
-        def write() -> None:
+        try:
+            write_atomic(ds, report.results)
+        except StorageError as exc:
+            report.faults.append(str(exc))
+            raise RunFault(report) from None
+        log.info("wrote %s", report.results)
+        if plots:
             try:
-                write_atomic(ds, report.results)
-            except StorageError as exc:
-                report.faults.append(str(exc))
-                raise RunFault(report) from None
-            log.info("wrote %s", report.results)
-
-        if not plots:
-            write()
-        else:
-            try:  # the figures may be drawn while results.nc is written, and are put in place after it
-                report.figures = list(plots(ds, directory, jobs, write))
+                report.figures = list(plots(ds, directory, jobs))
             except OSError as exc:  # a full or unwritable disk: results.nc is written
                 report.faults.append(str(storage_error(Path(exc.filename or directory), exc)))
                 raise FigureFault(report) from None

@@ -407,13 +407,14 @@ class FillSection(_Strict):
 
 class LoadsSection(_Strict):
     """``[loads]``: the load pattern (lateral directions in degrees, whether lambda multiplies
-    the lateral pattern, point and distributed loads, vehicles), load-path step and bisection
+    the lateral pattern: absent, only when no point, distributed or vehicle load is live,
+    :class:`tce.core.loads.LoadPattern`; point and distributed loads, vehicles), load-path step and bisection
     tolerance; ``critical_position`` searches the position of the moving loads of least
     lambda_max (:func:`tce.analysis.critical.critical_position`), from the positions
     ``positions`` (m) besides its own."""
 
     alpha: float | list[float] = 0.0
-    lateral: bool = True
+    lateral: bool | None = None
     point: list[PointLoadSection] = Field(default_factory=list)
     distributed: list[DistributedLoadSection] = Field(default_factory=list)
     vehicle: list[VehicleSection] = Field(default_factory=list)
@@ -583,10 +584,20 @@ class PlotsSection(_Strict):
 class AssessmentSection(_Strict):
     """``[assessment]``: partial factors on the dead (every fixed load, self-weight
     included) and live loads; the results carry the adequacy factor
-    (:func:`tce.analysis.assessment.adequacy_factor`) and ``tce show`` reads as an assessment."""
+    (:func:`tce.analysis.assessment.adequacy_factor`) and ``tce show`` reads as an assessment.
+    The dead load of an arch is favourable: ``dead_factor`` is the favourable factor, at most
+    1 (:data:`tce.analysis.assessment.DEAD_FACTOR_RULE`)."""
 
     dead_factor: Positive = 1.0
     live_factor: Positive = 1.0
+
+    @field_validator("dead_factor")
+    @classmethod
+    def _favourable(cls, v: float) -> float:
+        from ..analysis.assessment import check_dead_factor
+
+        check_dead_factor(v)
+        return v
 
 
 class SettlementPathSection(_Strict):
@@ -1093,9 +1104,17 @@ def _check_loads(study: Study, sc: Scenario, assembly: Assembly) -> None:
     """Apply a scenario's loads to its structure; a load that cannot be applied is named."""
     pattern = sc.loads_pattern
     try:
-        resolve(pattern, assembly)
         if sc.loads.get("critical_position"):
+            from ..analysis.critical import check_on_deck, on_deck
+
+            # the declared position need not have every moving vehicle on the deck: the search moves them
+            at_declared = on_deck(pattern, assembly)
+            if at_declared is not None:
+                resolve(at_declared, assembly)
             _check_positions(study, sc, assembly)
+            check_on_deck(pattern, assembly)
+        else:
+            resolve(pattern, assembly)
     except LoadError as exc:
         # name load_x only for a load it moved
         moved = [f"point[{k}]." for k, p in enumerate(pattern.point) if p.scaled and p.on_top is not None]

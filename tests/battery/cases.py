@@ -63,7 +63,8 @@ MATERIALS: dict[str, Material] = {
     "non_associative": Material(friction=0.5, flow="non-associative"),
 }
 
-#: load kinds: the lateral pattern, or a live (scaled) or fixed point / on_top / distributed load
+#: load kinds: the lateral pattern, or a live (scaled) or fixed point / on_top / distributed load;
+#: ``lateral`` is left to its default (issue 37): the lateral pattern joins only the fixed loads
 LOADS = ("lateral", "point", "on_top", "distributed", "point_fixed", "on_top_fixed", "distributed_fixed")
 
 #: settlements of the last support: none, in the structure's plane (along x for every
@@ -115,9 +116,9 @@ def scene(structure_name: str, material: str, load: str, settlement: str, alpha:
     if kind == "lateral":
         pattern = LoadPattern(alpha=alpha)
     elif kind == "point":
-        pattern = LoadPattern(alpha=alpha, lateral=not scaled, point=[PointLoad(force=f, block=asm.names[k], scaled=scaled)])
+        pattern = LoadPattern(alpha=alpha, point=[PointLoad(force=f, block=asm.names[k], scaled=scaled)])
     elif kind == "on_top":
-        pattern = LoadPattern(alpha=alpha, lateral=not scaled, point=[PointLoad(force=f, on_top=(c[0], c[1]), scaled=scaled)])
+        pattern = LoadPattern(alpha=alpha, point=[PointLoad(force=f, on_top=(c[0], c[1]), scaled=scaled)])
     elif kind == "distributed":
         free = list(asm.free_indices)
         hx = 0.125 * float(np.ptp(asm.centroids[free, 0]))
@@ -126,12 +127,13 @@ def scene(structure_name: str, material: str, load: str, settlement: str, alpha:
         hy = min(hx, 0.45 * (ys.max() - ys.min()))
         pattern = LoadPattern(
             alpha=alpha,
-            lateral=not scaled,
             distributed=[DistributedLoad(x=(c[0] - hx, c[0] + hx), y=(c[1] - hy, c[1] + hy),
                                          pressure=-f[2] / (4 * hx * hy), scaled=scaled)],
         )
     else:
         raise ValueError(load)
+    # lambda multiplies the live load alone, or the lateral pattern beside a fixed load
+    assert kind == "lateral" or pattern.lateral is not scaled
     motion = SETTLEMENTS[settlement]
     sett = {} if motion is None else {asm.support_names[-1]: list(motion)}
     return Scene(asm, MATERIALS[material], pattern, sett)

@@ -13,7 +13,8 @@ Tolerances, each from how the number is computed:
   where the state is unique (compliant contacts): 1e-6 of the weight, pressure points
   1e-5 of the size under a resultant above 1e-3 of the weight (a QP solved by an
   interior-point method; measured: 1e-9);
-- the non-associative estimate stops when lambda moves less than its ``tol = 1e-6``: 1e-5.
+- the non-associative estimate stops when lambda's last two changes are each within its
+  ``tol = 1e-6`` (absolute below 1): 1e-5.
 """
 
 from __future__ import annotations

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from tce.plot import rendering
+from tce.plot import output
 from tce.study import results, runner
 from tce.cli import main
 from tce.study.schema import parse_study
@@ -112,16 +112,21 @@ def test_ctrl_c_while_a_command_imports_its_modules(finished: Path) -> None:
     assert run.stderr == "tce: interrupted (SIGINT)\n"
 
 
-def test_a_closed_output_pipe_ends_quietly(finished: Path) -> None:
-    """``tce show RESULTS | head``: the reader went away before tce wrote."""
+@pytest.mark.parametrize("unbuffered", ["", "1"], ids=["buffered", "unbuffered"])
+def test_a_closed_output_pipe_ends_quietly(finished: Path, unbuffered: str) -> None:
+    """``tce show RESULTS | head``: the reader went away before tce wrote (its end of the pipe is
+    closed before tce starts, so every write fails). Exit 141 as SIGPIPE, nothing on stderr,
+    whether the output is block-buffered (a shell's default: the write fails at the flush) or
+    unbuffered (``PYTHONUNBUFFERED``: it fails at the first line)."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"} | ({"PYTHONUNBUFFERED": "1"} if unbuffered else {})
     read, write_end = os.pipe()
     os.close(read)
     try:
         run = subprocess.run([sys.executable, "-m", "tce.cli", "show", str(finished)], stdout=write_end,
-                             stderr=subprocess.PIPE, text=True, timeout=120)
+                             stderr=subprocess.PIPE, text=True, env=env)
     finally:
         os.close(write_end)
-    assert run.returncode == 141 and run.stderr == ""
+    assert (run.returncode, run.stderr) == (141, "")
 
 
 def test_a_disk_that_fills_while_figures_are_drawn(tmp_path: Path, monkeypatch, capsys) -> None:
@@ -134,14 +139,29 @@ def test_a_disk_that_fills_while_figures_are_drawn(tmp_path: Path, monkeypatch, 
             raise OSError(errno.ENOSPC, "No space left on device")
         return open(path, *args, **kwargs)
 
-    monkeypatch.setattr(rendering, "open", full, raising=False)
+    monkeypatch.setattr(output, "open", full, raising=False)
     text = TINY.replace("[sweep]\nfriction = [0.8, 2.0]", "[material]\nfriction = 0.8")
     assert main(["run", str(write(tmp_path, text)), "--out", str(out), "--jobs", "1"]) == 3
     err = capsys.readouterr().err
     clean(err)
     (line,) = errors(err)
-    assert "no space left on the device" in line and str(drawn[1]) in line
+    figure = Path(drawn[1]).with_name(Path(drawn[1]).name[1:].removesuffix(".tmp"))  # its temporary's file
+    assert "no space left on the device" in line and str(figure) in line
     assert (out / "tiny" / "results.nc").exists() and "tce plot" in err and not leftovers(out)
+    assert not figure.exists()
+
+
+def test_results_that_cannot_be_written_get_no_figures(tmp_path: Path, monkeypatch, capsys) -> None:
+    """Figures are drawn once ``results.nc`` is written: a write that fails leaves none."""
+    def full(ds, path) -> None:
+        raise runner.StorageError(f"{path}: no space left on the device")
+
+    monkeypatch.setattr(runner, "write_atomic", full)
+    out = tmp_path / "out"
+    assert main(["run", str(write(tmp_path)), "--out", str(out), "--jobs", "1"]) == 3
+    err = capsys.readouterr().err
+    assert "results.nc: no space left on the device" in err and "results.nc was not written" in err
+    assert not list((out / "tiny").glob("*.png")) and not list((out / "tiny").glob("*.html")) and not leftovers(out)
 
 
 @pytest.fixture
