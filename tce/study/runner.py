@@ -8,8 +8,8 @@ with ``jobs > 1`` (``backend="processes"``, the default; workers are forked from
 that imported tce once, see :func:`_context`), or on a Dask distributed cluster through
 joblib's ``dask`` backend. Each worker keeps the :class:`tce.analysis.Analysis` of the
 structures and materials it has met, so operators are built once per worker and reused; the
-structure itself is built once per run (when the study is validated) and sent with each
-scenario. The answer of a scenario does not depend on where or in which order it runs.
+structures themselves are built once per run (when the study is validated) and sent to each
+worker once, when it starts. The answer of a scenario does not depend on where or in which order it runs.
 
 Faults (``docs/studies.md``, "Faults and resuming"):
 
@@ -281,11 +281,22 @@ def _solve_and_write(sc: Scenario, assembly: Assembly, directory: Path) -> xr.Da
     return ds
 
 
-def _start_worker(stop: Connection, level: int) -> None:
-    """Initializer of a pool worker: the ``tce`` log level of the parent, and a thread that
-    ends the process when ``stop`` reads end-of-file (module docstring)."""
+#: a pool worker's structures of the run: assembly digest -> assembly (set when it starts)
+_ASSEMBLIES: dict[str, Assembly] = {}
+
+
+def _start_worker(stop: Connection, level: int, assemblies: dict[str, Assembly]) -> None:
+    """Initializer of a pool worker: the ``tce`` log level of the parent, the run's structures
+    (sent once per worker, not with each scenario), and a thread that ends the process when
+    ``stop`` reads end-of-file (module docstring)."""
     logging.getLogger("tce").setLevel(level)
+    _ASSEMBLIES.update(assemblies)
     threading.Thread(target=_end_on_close, args=(stop,), daemon=True).start()
+
+
+def _solve_in_worker(sc: Scenario, directory: Path) -> xr.Dataset:
+    """A pool worker's task: :func:`_solve_and_write` on the scenario's structure."""
+    return _solve_and_write(sc, _ASSEMBLIES[sc.assembly_digest], directory)
 
 
 def _end_on_close(stop: Connection) -> None:
@@ -406,12 +417,14 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
     retried: set[str] = set()
     running: dict[Future, Scenario] = {}
     level = logging.getLogger("tce").getEffectiveLevel()
+    assemblies = {sc.assembly_digest: study.assembly(sc.structure) for sc in todo}
     pool: ProcessPoolExecutor | None = None
     stopping = False
     try:
         while running or (waiting or again) and not stopping:
             if pool is None:
-                pool = ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_start_worker, initargs=(stop, level))
+                pool = ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_start_worker,
+                                           initargs=(stop, level, assemblies))
             broken = False
             # a scenario solved again runs alone; the others fill the pool
             while not stopping and not any(sc.name in retried for sc in running.values()):
@@ -423,7 +436,7 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
                     break
                 try:
                     with quiet_children():  # workers (and the fork server) start with Ctrl-C ignored
-                        running[pool.submit(_solve_and_write, sc, study.assembly(sc.structure), directory)] = sc
+                        running[pool.submit(_solve_in_worker, sc, directory)] = sc
                 except BrokenExecutor:  # a worker died between scenarios
                     (again if sc.name in retried else waiting).appendleft(sc)
                     broken = True
