@@ -42,7 +42,7 @@ from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import EZ, Model
 from .passive import Restraint, passive_restraint
-from .problem import Formulation, LimitProblems, lateral_ray_problem, phase1_problem, restrained_limit_problem
+from .problem import Formulation, lateral_ray_problem, limit_problem, phase1_problem, restrained_limit_problem
 from .. import display
 from .result import DOFS, Result
 
@@ -246,7 +246,6 @@ class LimitSolver:
         self.tol = tol
         self.formulation = formulation or Formulation(model, material, rows)
         self.options = SolverOptions(tol=tol, max_iter=500)
-        self._problems = LimitProblems(self.formulation)
         #: Clarabel settings without and with iterative refinement (the retry)
         self._settings = tuple(self.options.settings(refine=r, kkt=self.formulation.kkt) for r in (False, True))
         self._rel_times = matvec(model.A_eq.T)
@@ -296,7 +295,7 @@ class LimitSolver:
         model, f = self.model, self.formulation
         m = f.A_eq.shape[0]
         if restraint is None:
-            problem = self._problems(b_fixed, b_live)
+            problem = limit_problem(f, b_fixed, b_live)
         else:
             problem = restrained_limit_problem(f, b_fixed, b_live, restraint.G, restraint.capacity)
         rhs_scaled = problem.b[:m]

@@ -598,7 +598,7 @@ class TCESolver:
             unique = False  # undecided (no canonical state): every admissible state is a minimiser
         if retry:
             log.debug("solve at lam=%g of %s: %s decided by %s (%s)", lam, loads, status, retry, message)
-        return TCEResult.of_fields(dict(
+        return TCEResult(
             status=status,
             message=message,
             solver=SOLVER_NAME,
@@ -620,4 +620,4 @@ class TCESolver:
             retry=retry,
             interface_map=model.interface_map,
             restraint_forces=restraint_forces,
-        ))
+        )
