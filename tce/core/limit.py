@@ -37,7 +37,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .clarabel_solver import Solution, SolverOptions, solve_once
-from .conic import ConeRows, law_violation, matvec
+from .conic import ConeRows, law_violation
 from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import EZ, Model
@@ -248,7 +248,6 @@ class LimitSolver:
         self.options = SolverOptions(tol=tol, max_iter=500)
         #: Clarabel settings without and with iterative refinement (the retry)
         self._settings = tuple(self.options.settings(refine=r, kkt=self.formulation.kkt) for r in (False, True))
-        self._rel_times = matvec(model.A_eq.T)
         self._vectors_last: tuple[object, tuple[LoadPattern, NDArray[np.float64], NDArray[np.float64]]] | None = None
 
     def solve(self, alpha: float | None = None, loads: LoadPattern | None = None, mechanism: bool = True) -> LimitResult:
@@ -363,7 +362,7 @@ class LimitSolver:
         """The mechanism of the virtual velocities ``v`` (per equilibrium row) and the dual
         cone's violation by its relative contact velocities (``A_eq' v``, B w.r.t. A)."""
         mech = mechanism_from_velocities(self.model, _block_velocities(self.model, v))
-        return mech, self._dual_cone_violation(self._rel_times(v))
+        return mech, self._dual_cone_violation(self.model.A_eq.T @ v)
 
     def _checked(
         self, sol: Solution, rhs_scaled: NDArray[np.float64], b_live: NDArray[np.float64],

@@ -56,7 +56,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .conic import ConeRows, LawCheck, Scaling, cone_rows, law_violation, matvec
+from .conic import ConeRows, LawCheck, Scaling, cone_rows, law_violation
 from .material import Material
 from .model import Model
 
@@ -187,11 +187,6 @@ class Formulation:
         else:
             self.law_check = partial(law_violation, rows)
         self.kkt = kkt_method(model)
-        # F -> diag(1 / row_div) A_eq F, as the scaled operator times F / W: one copy of the
-        # model's largest operator fewer (0.33 GB on a 100,000-block dome, docs/scaling.md)
-        scaled_times = matvec(self.A_eq)
-        self._eq_rel_times: Callable[[NDArray[np.float64]], NDArray[np.float64]] = lambda F: scaled_times(F / W)
-        self.B_sup_times = matvec(model.B_sup)
         n = model.n_vars
         if material.rigid:
             self.D: NDArray[np.float64] | None = None
@@ -251,13 +246,15 @@ class Formulation:
     def residuals_scaled(self, F: NDArray[np.float64], b_eq: NDArray[np.float64]) -> tuple[float, float]:
         """:meth:`residuals` for the scaled right-hand side ``b_eq = -rhs / row_div`` (the first
         ``m_eq`` entries of :func:`tce_b`, which a solve has already computed)."""
-        eq = self._eq_rel_times(F) - b_eq
+        # diag(1 / row_div) A_eq F as the scaled operator times F / W (no second copy of the
+        # model's largest operator: 0.33 GB on a 100,000-block dome, docs/scaling.md)
+        eq = self.A_eq @ (F / self.scaling.force) - b_eq
         return float(np.abs(eq).max(initial=0.0)), self.law_check(F) / self.scaling.force
 
     def energy(self, F: NDArray[np.float64], U: NDArray[np.float64], wrench: NDArray[np.float64] | None = None) -> float:
         """Total complementary energy ``1/2 F'DF - U' B_sup F`` (kN m); ``wrench`` is
         ``B_sup F`` when the caller has it."""
-        e = -float((self.B_sup_times(F) if wrench is None else wrench) @ U)
+        e = -float((self.model.B_sup @ F if wrench is None else wrench) @ U)
         if self.D is not None:
             e += 0.5 * float(F @ (self.D * F))
         return e

@@ -571,7 +571,7 @@ class TCESolver:
             tce = eq = cone = float("nan")
         else:
             forces = F.reshape(model.n_contacts, model.dim)
-            wrench = self.formulation.B_sup_times(F)
+            wrench = model.B_sup @ F
             wrenches = wrench.reshape(-1, 6)
             eq, cone = res
             tce = self.formulation.energy(F, U, wrench)
