@@ -214,10 +214,16 @@ class Formulation:
         """Scaled offset of the contact-law rows, ``h / W``."""
         return self.law.offset() / self.scaling.force
 
+    @cached_property
+    def _B_sup_T(self) -> sp.csr_matrix:
+        """``B_sup'``, built once (scipy builds a new matrix object for every ``.T``, which costs
+        more than the product in :meth:`q`)."""
+        return self.model.B_sup.T.tocsr()
+
     def q(self, U: NDArray[np.float64]) -> NDArray[np.float64]:
         """Scaled linear objective of the TCE: ``-(B_sup' U) W``, divided by the Hessian's
         largest entry (compliant) or normalised to a largest entry of 1 (rigid)."""
-        q = -(self.model.B_sup.T @ U) * self.scaling.force
+        q = -(self._B_sup_T @ U) * self.scaling.force
         if self.D is None:
             m = np.abs(q).max(initial=0.0)
             return q / m if m > 0 else q

@@ -282,6 +282,7 @@ class TCESolver:
         self.formulation = formulation or Formulation(model, material)
         self.scaling = self.formulation.scaling
         self._warm: ClarabelSolver | None = None
+        self._warm_q: NDArray[np.float64] | None = None
         self._warm_restraint: Restraint | None = None
         self._feas: ClarabelSolver | None = None
         self._feas_restraint: Restraint | None = None
@@ -351,22 +352,27 @@ class TCESolver:
             return F, p, (eq, max(law, bound))
         return check
 
-    def _main(self, U: NDArray[np.float64], b: NDArray[np.float64], restraint: Restraint | None) -> Solution:
-        """The warm solver for the scaled right-hand side ``b`` (:meth:`_bounded` of
-        :func:`tce.core.problem.tce_b`): set up on the first call and for a new restraint, then
-        only its vectors ``q`` and ``b`` are updated (iterative refinement as ``options.refine``).
-        A scene whose objective is rescaled (:func:`tce.core.problem.q_scale`: an extreme
-        stiffness) gets a solver of its own."""
-        f = self.formulation
-        q = f.q(U)
-        if self._warm is not None and restraint is self._warm_restraint and q_scale(q) == 1.0:
-            self._warm.update(q=q if restraint is None else np.concatenate([q, np.zeros(restraint.size)]), b=b)
+    def _main(self, q: NDArray[np.float64], U: NDArray[np.float64], b: NDArray[np.float64],
+              restraint: Restraint | None) -> Solution:
+        """The warm solver for the scaled objective ``q`` (:meth:`Formulation.q` of ``U``) and
+        right-hand side ``b`` (:meth:`_bounded` of :func:`tce.core.problem.tce_b`): set up on the
+        first call and for a new restraint, then only its vectors are updated (``b`` alone while
+        ``q`` is unchanged; iterative refinement as ``options.refine``). A scene whose objective
+        is rescaled (:func:`tce.core.problem.q_scale`: an extreme stiffness) gets a solver of its
+        own."""
+        rescaled = q_scale(q) != 1.0
+        if self._warm is not None and restraint is self._warm_restraint and not rescaled:
+            if np.array_equal(q, self._warm_q):
+                self._warm.update(b=b)
+            else:
+                self._warm.update(q=q if restraint is None else np.concatenate([q, np.zeros(restraint.size)]), b=b)
+                self._warm_q = q
             return self._warm.solve()
-        settings = self.options.settings(refine=self.options.refine, kkt=f.kkt, b_norm=_b_norm(b))
-        if q_scale(q) != 1.0:
+        settings = self.options.settings(refine=self.options.refine, kkt=self.formulation.kkt, b_norm=_b_norm(b))
+        if rescaled:
             return solve_once(self._problem(b, U, restraint), settings)
         self._warm = ClarabelSolver(self._problem(b, U, restraint), settings)
-        self._warm_restraint = restraint
+        self._warm_q, self._warm_restraint = q, restraint
         return self._warm.solve()
 
     def _phase1(self, rhs: NDArray[np.float64], restraint: Restraint | None = None) -> tuple[float, float, str]:
@@ -471,7 +477,8 @@ class TCESolver:
         f = self.formulation
         b = self._bounded(tce_b(f, rhs), restraint)
         check = self._check(b, restraint)
-        sol = self._main(U, b, restraint)
+        q = f.q(U)
+        sol = self._main(q, U, b, restraint)
         stime, setup = sol.solve_time, sol.setup_time
         notes = [f"clarabel: {sol.status}"]
         status, retry, F, p, res = "numerical", "", None, None, None
@@ -523,7 +530,7 @@ class TCESolver:
             F = p = res = None
         elif f.D is None and self.options.canonical:
             x = (F if p is None else np.concatenate([F, p])) / self.scaling.force
-            can = self._canonical_solver().state(b, f.q(U), x, check, restraint)
+            can = self._canonical_solver().state(b, q, x, check, restraint)
             stime += can.solve_time
             setup += can.setup_time
             if can.forces is not None and can.residuals is not None:
