@@ -2,7 +2,8 @@
 follow-up): the restraint is bounded columns of the same warm problem, phase-1, retries,
 residual check and canonical state, so
 
-- the restrained canonical problem is the canonical one with the restraint's bounded columns;
+- the canonical problem's data are those the module docstring writes (sparse stacking), also
+  with the restraint and with a law that has zero rows;
 - one solver that changes between patterns with and without a restraint gives what fresh
   solvers give (its warm solvers follow the restraint);
 - a restrained state passes the residual check that counts ``G p`` in equilibrium and the
@@ -18,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 
 from tce.core.analysis import Analysis
 from tce.core.canonical import RESTRAINT_WEIGHT, canonical_problem, restrained_canonical_problem
@@ -38,6 +40,33 @@ SPREAD = {"right": [0.002, 0.0, 0.0, 0.0, 0.0, 0.0]}
 def pattern(kp: float, x: float = -1.8) -> LoadPattern:
     return LoadPattern(lateral=False, vehicle=[WHEEL],
                        fill=Fill(depth=0.3, unit_weight=18.0, k0=0.5, kp=kp, dispersion=0.0)).moved(x)
+
+
+def _stacked(f: Formulation, q: np.ndarray) -> sp.csc_matrix:
+    """The canonical problem's matrix as its docstring writes it: the TCE rows, the energy row
+    ``q'x`` after the law's zero rows."""
+    M, nz = f.law.M.tocsr(), f.law.n_zero
+    return sp.vstack([f.A_eq, -M[:nz], sp.csr_matrix(q.reshape(1, -1)), -M[nz:]]).tocsc()
+
+
+def _arrays_equal(a: sp.csc_matrix, b: sp.csc_matrix) -> bool:
+    return a.shape == b.shape and all(np.array_equal(getattr(a, k), getattr(b, k)) for k in ("data", "indices", "indptr"))
+
+
+@pytest.mark.parametrize("kind", ["planar", "spatial"])
+@pytest.mark.parametrize("friction", [0.0, 0.6, None])  # 0: the law has zero rows (ft = 0)
+def test_canonical_problem_is_the_stacked_one(arch, kind, friction):
+    f = Formulation(build_model(arch, kind), Material(friction=friction))
+    U = np.zeros(12)
+    U[6] = 0.001
+    q = f.q(U)
+    b = tce_b(f, f.model.b_dead)
+    p = canonical_problem(f, b, q, 0.5)
+    # the very arrays the stacking gives (a different order of the same entries would change
+    # Clarabel's iterates): the canonical states stay those of the stacked problem
+    assert _arrays_equal(p.A, _stacked(f, q))
+    i = f.A_eq.shape[0] + f.law.n_zero
+    np.testing.assert_array_equal(p.b, np.concatenate([b[:i], [0.5], b[i:]]))
 
 
 def test_restrained_canonical_problem_appends_the_bounded_columns():

@@ -368,12 +368,13 @@ def limit_problem(f: Formulation, b_fixed: NDArray[np.float64], b_live: NDArray[
     Unknowns ``(x, lam)`` (n + 1); rows: ``m_eq`` equalities, then the contact law. The
     multipliers ``z`` of the equality rows, divided by ``row_div``, are the virtual block
     velocities of the collapse mechanism (:mod:`tce.core.limit`).
-
     """
     law = f.law
     m, n = f.A_eq.shape
-    live = np.concatenate([b_live / f.row_div, np.zeros(law.n_rows)])
-    A = sp.hstack([f.constraints, sp.csc_matrix(live[:, None])], format="csc")
+    live = b_live / f.row_div
+    rows = np.flatnonzero(live)  # the live load's column: nonzero in the equilibrium rows only
+    column = sp.csc_matrix((live[rows], rows, [0, len(rows)]), shape=(m + law.n_rows, 1))
+    A = sp.hstack([f.constraints, column], format="csc")
     q = np.zeros(n + 1)
     q[-1] = -1.0
     cones = _cones(("zero", m + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
