@@ -354,7 +354,7 @@ class TCESolver:
 
     def _main(self, q: NDArray[np.float64], U: NDArray[np.float64], b: NDArray[np.float64],
               restraint: Restraint | None) -> Solution:
-        """The warm solver for the scaled objective ``q`` (:meth:`Formulation.q` of ``U``) and
+        """The warm solver for the scaled objective ``q`` (:meth:`tce.core.problem.Formulation.q` of ``U``) and
         right-hand side ``b`` (:meth:`_bounded` of :func:`tce.core.problem.tce_b`): set up on the
         first call and for a new restraint, then only its vectors are updated (``b`` alone while
         ``q`` is unchanged; iterative refinement as ``options.refine``). A scene whose objective
