@@ -153,7 +153,7 @@ def test_an_undecided_restrained_solve_is_decided_with_the_restraint(monkeypatch
     from tce.core.clarabel_solver import Solution
     from tce.core.solve import TCESolver
 
-    monkeypatch.setattr(TCESolver, "_main", lambda self, U, b, restraint: Solution(
+    monkeypatch.setattr(TCESolver, "_main", lambda self, q, U, b, restraint: Solution(
         "NumericalError", SimpleNamespace(iterations=0), 0.0, 0.0))
     r = Analysis(RING).solve(lam, loads=pattern(2.0))
     assert r.status == status
