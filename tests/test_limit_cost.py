@@ -1,6 +1,6 @@
 """The direct limit (issue 24), tce against itself: limit problems do not share arrays;
 the mechanism classified later equals the one classified at once; one formulation is shared
-by an analysis's TCE and limit solvers. Speed is measured in ``tce bench --section limit_cost``,
+by an analysis's TCE and limit solvers. Speed is measured in ``benchmarks/solver_overhead.py``,
 never here."""
 
 import numpy as np

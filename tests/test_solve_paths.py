@@ -12,7 +12,7 @@ residual check and canonical state, so
 
 tce against itself: the validation of the restraint is tests/validation/test_passive_restraint.py
 (an independent LP) and of the canonical state tests/test_canonical.py. Speed is measured in
-``tce bench --section limit_cost``, never here.
+``benchmarks/solver_overhead.py``, never here.
 """
 
 from __future__ import annotations

@@ -48,7 +48,7 @@ fails only when the analytic centre of a larger face happens to be its least-ene
 
 Cost: one more small conic problem per rigid optimal solve (the constraints of the TCE
 problem and one row bounding the energy), solved with a warm solver per support motion;
-``tce bench`` (section ``canonical``) reports the ratio.
+``benchmarks/canonical_states.py`` measures the ratio.
 """
 
 from __future__ import annotations
