@@ -94,6 +94,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
+from ..files import atomic_write
 from .assembly import Assembly, AssemblyError, Block, Interface
 from .contacts import check_overlaps, detect_interfaces
 from .geometry import GeometryError, Polyhedron, frame_from_normal, newell_normal
@@ -884,7 +885,8 @@ def save_assembly_json(assembly: Assembly, path: str | Path, interfaces: bool = 
     ----------
     assembly : Assembly
     path : str or Path
-        Output file (``.json``); parent directories are created.
+        Output file (``.json``), written whole (:func:`tce.files.atomic_write`); parent
+        directories are created.
     interfaces : bool
         Store the interfaces too (then :func:`load_assembly` uses them instead of
         detecting them again).
@@ -926,6 +928,6 @@ def save_assembly_json(assembly: Assembly, path: str | Path, interfaces: bool = 
             }
             for i in assembly.interfaces
         ]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(doc, indent=1))
+    with atomic_write(path) as tmp:
+        tmp.write_text(json.dumps(doc, indent=1), encoding="utf-8")
     return path
