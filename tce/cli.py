@@ -509,6 +509,7 @@ def _plot(args: argparse.Namespace) -> int:
 
 
 def _view(args: argparse.Namespace) -> int:
+    from .files import atomic_write
     from .plot.view import view_html
 
     ds = _open_results(args.results)
@@ -522,8 +523,8 @@ def _view(args: argparse.Namespace) -> int:
         raise UsageError(f"--out: {out} is a folder, not an .html file")
     _out_folder(out.parent)
     page = view_html(ds, spec.scenarios)
-    with _writing(out):
-        out.write_bytes(page)
+    with _writing(out), atomic_write(out) as tmp:
+        tmp.write_bytes(page)
     print(out)
     if args.open:
         import webbrowser

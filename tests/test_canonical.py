@@ -152,7 +152,7 @@ def test_a_thin_face_the_solver_cannot_solve_is_widened_not_left_undecided() -> 
 
 def test_every_step_of_the_3d_arch_path_has_its_canonical_state() -> None:
     """The paper's arch (``semicircular_arch()``, as built by the bench) under a 1 mm transversal motion of its right support (3D SOCP), load
-    path with step 0.02 (``tce bench --section canonical``): on branch f3 2 of its 14 steps
+    path with step 0.02 (``benchmarks/canonical_states.py``): on branch f3 2 of its 14 steps
     (lambda 0.02 and 0.24) kept the solver's state with uniqueness undecided: Clarabel's
     `AlmostSolved` canonical answers (cone residual 1.8e-9 and 1.7e-9) were taken as solved,
     so the wider slack was never tried, and then failed the residual check. Each slack's

@@ -1,6 +1,7 @@
 """The floors of the house: data flow one way (``tce/__init__.py``, README "Layout").
 
-signals (process plumbing) and display (text helpers), importing no tce module -> structures -> core -> analysis
+signals (process plumbing), display (text helpers), files (atomic writing) and messages (input
+errors), importing no tce module -> structures -> core -> analysis
 -> study -> plot -> report -> cli, with ``quality`` beside the
 command line. A module may import its own floor and the floors below, never one above; no
 subpackage imports the command line; no import circles between modules (function-level
@@ -19,7 +20,7 @@ import tce
 
 ROOT = Path(tce.__file__).parent
 #: floor of each subpackage (a module may import modules of its floor and below)
-FLOORS = {"signals": -1, "display": -1, "structures": 0, "core": 1, "analysis": 2, "study": 3, "plot": 4, "report": 5, "cli": 6,
+FLOORS = {"signals": -1, "display": -1, "files": -1, "messages": -1, "structures": 0, "core": 1, "analysis": 2, "study": 3, "plot": 4, "report": 5, "cli": 6,
           "quality": 6}
 
 

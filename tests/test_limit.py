@@ -89,3 +89,39 @@ def test_large_meshes_are_factorised_by_faer_with_the_same_limit(monkeypatch):
     faer = LimitSolver(dome, Material(0.8)).solve(0.0)
     assert qdldl.status == faer.status == "optimal"
     assert faer.lambda_max == pytest.approx(qdldl.lambda_max, rel=1e-9)
+
+
+@pytest.mark.parametrize("kind", ["planar", "spatial"])
+def test_problems_and_results_are_values_no_later_solve_changes(arch, kind, monkeypatch):
+    """Every limit problem handed to Clarabel and every result returned stay as they were when
+    the same solver solves again: the same direction scaled (the live load's nonzero rows
+    unchanged), then another pattern."""
+    import copy
+    from dataclasses import fields
+
+    from tce.core import limit
+    from tce.core.limit import LimitSolver
+    from tce.core.loads import scene_vectors
+    from tce.core.model import build_model
+
+    handed = []
+    real = limit.solve_once
+    monkeypatch.setattr(limit, "solve_once", lambda problem, settings: handed.append(problem) or real(problem, settings))
+    model = build_model(arch, kind)
+    solver = LimitSolver(model, Material(0.8))
+    _, b_fixed, b_live = scene_vectors(model, 0.0)
+    first = solver.solve_loads(b_fixed, b_live)
+    problem = handed[0]
+    held = copy.deepcopy({"A": problem.A.toarray(), "b": problem.b, "q": problem.q, "P": problem.P.toarray(),
+                          **{f.name: getattr(first, f.name) for f in fields(first)
+                             if isinstance(getattr(first, f.name), np.ndarray)}})
+    second = solver.solve_loads(b_fixed, 2.0 * b_live)
+    assert second.lambda_max == pytest.approx(first.lambda_max / 2.0, rel=1e-8)
+    solver.solve(180.0 if kind == "planar" else 90.0)
+    assert len(handed) >= 3 and handed[1] is not problem
+    for name in ("A", "P"):
+        np.testing.assert_array_equal(getattr(problem, name).toarray(), held.pop(name), err_msg=name)
+    for name in ("b", "q"):
+        np.testing.assert_array_equal(getattr(problem, name), held.pop(name), err_msg=name)
+    for name, value in held.items():
+        np.testing.assert_array_equal(getattr(first, name), value, err_msg=name)

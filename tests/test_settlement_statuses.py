@@ -50,6 +50,26 @@ def test_incompatible_motion():
     assert r.status == "incompatible" and "interpenetration" in r.message
 
 
+@pytest.mark.parametrize("fails", ["every program", "the fall"])
+def test_a_failure_of_highs_is_numerical_never_collapse(fails, monkeypatch):
+    """HiGHS ending with numerical difficulties (linprog status 4) makes the path
+    ``numerical``: at s = 0, and while the fall after the bracket is followed (the program
+    with velocities bounded by 1), where a failure used to read as a collapse."""
+    import scipy.optimize
+
+    linprog = scipy.optimize.linprog
+
+    def failing(*args, **kwargs):
+        if fails == "every program" or kwargs.get("bounds") == (-1.0, 1.0):
+            return scipy.optimize.OptimizeResult(status=4, message="numerical difficulties", x=None, fun=np.nan)
+        return linprog(*args, **kwargs)
+
+    monkeypatch.setattr(scipy.optimize, "linprog", failing)
+    r = settlement_path(small_arch(), SPREAD, increment=0.01)
+    assert r.status == "numerical" and not r.ok and np.isnan(r.capacity), r.message
+    assert "numerical difficulties" in r.message
+
+
 @pytest.mark.parametrize(
     "kwargs, match",
     [

@@ -12,7 +12,7 @@ residual check and canonical state, so
 
 tce against itself: the validation of the restraint is tests/validation/test_passive_restraint.py
 (an independent LP) and of the canonical state tests/test_canonical.py. Speed is measured in
-``tce bench --section limit_cost``, never here.
+``benchmarks/solver_overhead.py``, never here.
 """
 
 from __future__ import annotations
@@ -153,7 +153,7 @@ def test_an_undecided_restrained_solve_is_decided_with_the_restraint(monkeypatch
     from tce.core.clarabel_solver import Solution
     from tce.core.solve import TCESolver
 
-    monkeypatch.setattr(TCESolver, "_main", lambda self, U, b, restraint: Solution(
+    monkeypatch.setattr(TCESolver, "_main", lambda self, q, U, b, restraint: Solution(
         "NumericalError", SimpleNamespace(iterations=0), 0.0, 0.0))
     r = Analysis(RING).solve(lam, loads=pattern(2.0))
     assert r.status == status

@@ -30,8 +30,8 @@ program is bounded exactly when an admissible force state exists on the current 
 interpenetration (``incompatible``), unbounded when nothing stands (collapse).
 
 An increment ``ds`` moves every block rigidly by ``v ds`` (a rotation about its centroid,
-composed with the block's rotation by Rodrigues' formula in space, and a translation; the
-supports exactly to ``(s + ds) U``), then projects the configuration back onto
+composed with the block's rotation in space by :class:`scipy.spatial.transform.Rotation`, and
+a translation; the supports exactly to ``(s + ds) U``), then projects the configuration back onto
 the contacts that stayed closed (one Gauss-Newton step on their relative displacements, so
 that the hinges of a long path do not drift apart), reclassifies every end (a joint that
 hinged has one closed end; a joint whose rotation reverses closes again; a new hinge forms
@@ -47,7 +47,8 @@ quasi-static path cannot follow), ``contact_lost`` (no admissible state above ``
 and an interface lost all of its contact points in the last increment: the structure came
 apart), ``no_collapse`` (still standing at ``s_max``), ``infeasible`` (nothing stands at
 ``s = 0``), ``incompatible`` (the motion needs interpenetration at ``s = 0``),
-``numerical`` (the solver failed, an equilibrium residual above tolerance, two blocks
+``numerical`` (HiGHS failed, also while following the fall beyond a bracket: whether the
+structure comes to rest is then undecided; an equilibrium residual above tolerance, two blocks
 interpenetrate, or more than :data:`MAX_STEPS` increments were needed). The ``message``
 says which.
 
@@ -77,6 +78,7 @@ import math
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -89,7 +91,10 @@ from ..core.solve import check_settlements
 from ..structures.assembly import Assembly, Block
 from ..structures.geometry import Polyhedron, lateral_direction
 
-__all__ = ["MAX_STEPS", "SettlementPathResult", "check_path_scene", "rotation_matrices", "settlement_path"]
+if TYPE_CHECKING:
+    from scipy.optimize import OptimizeResult
+
+__all__ = ["MAX_STEPS", "SettlementPathResult", "check_path_scene", "settlement_path"]
 
 #: Most increments (accepted or bisected) one path may take.
 MAX_STEPS = 20_000
@@ -99,29 +104,33 @@ MAX_SNAPS = 100
 
 _FEAS = 1e-9  # relative tolerance of the equilibrium residual and of "velocity is zero"
 
+#: status word (``docs/conventions.md``) of each :func:`scipy.optimize.linprog` status; any
+#: other (1 iteration limit, 4 numerical difficulties) is ``numerical``
+_LP_STATUS = {0: "optimal", 2: "infeasible", 3: "unbounded"}
 
-def rotation_matrices(w: ArrayLike) -> NDArray[np.float64]:
-    """Rotation matrices ``(..., 3, 3)`` of rotation vectors ``w`` ``(..., 3)`` (rad), by
-    Rodrigues' formula ``R = I + sin(a) K + (1 - cos(a)) K^2`` with ``a = |w|`` and ``K`` the
-    cross-product matrix of the unit axis ``w / a`` (the identity where ``a = 0``)."""
-    w = np.asarray(w, dtype=float)
-    a = np.linalg.norm(w, axis=-1)
-    k = w / np.where(a > 0, a, 1.0)[..., None]
-    K = np.zeros(w.shape[:-1] + (3, 3))
-    K[..., 0, 1], K[..., 0, 2], K[..., 1, 2] = -k[..., 2], k[..., 1], -k[..., 0]
-    K = K - np.swapaxes(K, -1, -2)
-    s, c = np.sin(a)[..., None, None], np.cos(a)[..., None, None]
-    return np.eye(3) + s * K + (1.0 - c) * (K @ K)
+
+def _linprog(c: NDArray[np.float64], **kwargs: object) -> tuple[str, OptimizeResult]:
+    """``min c . x`` by HiGHS (:func:`scipy.optimize.linprog`, ``kwargs`` its constraints and
+    bounds), and the status word of the answer: a failure of HiGHS is ``numerical``."""
+    from scipy.optimize import linprog  # on first use: every run paid its import (issue 24)
+
+    res = linprog(c, method="highs", **kwargs)
+    return _LP_STATUS.get(res.status, "numerical"), res
+
+
+def _rotation_matrices(w: ArrayLike) -> NDArray[np.float64]:
+    """Rotation matrices ``(n, 3, 3)`` of rotation vectors ``w`` ``(n, 3)`` (rad, right-handed
+    about the vector's direction)."""
+    from scipy.spatial.transform import Rotation  # on first use (issue 24)
+
+    return Rotation.from_rotvec(np.asarray(w, dtype=float).reshape(-1, 3)).as_matrix()
 
 
 def _rotation_vectors(R: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Inverse of :func:`rotation_matrices` (angles below pi)."""
-    c = np.clip((np.trace(R, axis1=-2, axis2=-1) - 1.0) / 2.0, -1.0, 1.0)
-    a = np.arccos(c)
-    v = np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], axis=-1)
-    s = np.sin(a)
-    scale = np.where(s > 1e-12, a / np.where(s > 1e-12, 2 * s, 1.0), 0.5)  # a / (2 sin a) -> 1/2 as a -> 0
-    return v * scale[..., None]
+    """Rotation vectors ``(n, 3)`` (rad, angles up to pi) of rotation matrices ``(n, 3, 3)``."""
+    from scipy.spatial.transform import Rotation  # on first use (issue 24)
+
+    return Rotation.from_matrix(np.asarray(R, dtype=float).reshape(-1, 3, 3)).as_rotvec()
 
 
 @dataclass(frozen=True)
@@ -184,7 +193,7 @@ class _Spatial:
         """``(w x r) . d = w . (r x d)``: the coefficients ``r x d`` ``(n, 3)``."""
         return np.cross(r, d)
 
-    rotation = staticmethod(rotation_matrices)
+    rotation = staticmethod(_rotation_matrices)
     angles = staticmethod(_rotation_vectors)
 
     @staticmethod
@@ -389,18 +398,16 @@ def _weights(sc: _Scene) -> NDArray[np.float64]:
 def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
     """The TCE and its kinematic dual on the closed contacts of configuration ``cf`` (module
     docstring); the equilibrium of the duals is checked."""
-    from scipy.optimize import linprog  # on first use: every run paid its import (issue 24)
-
     Gn, Gt, hn, ht, kc, p, dirs = _operators(sc, cf, closed)
     b = _weights(sc)
     V = np.abs(sc.velocity).max(initial=0.0) or 1.0  # velocities in units of the supports' largest
-    res = linprog(-b, A_ub=-Gn, b_ub=hn / V, A_eq=Gt, b_eq=-ht / V, bounds=(None, None), method="highs")
-    if res.status == 2:
-        return _Step("infeasible", message="the support motion needs interpenetration: " + res.message)
-    if res.status == 3:
-        return _Step("unbounded", message="a mechanism lowers the weights with the supports held: " + res.message)
-    if res.status != 0:
-        return _Step("numerical", message="HiGHS: " + res.message)
+    status, res = _linprog(-b, A_ub=-Gn, b_ub=hn / V, A_eq=Gt, b_eq=-ht / V, bounds=(None, None))
+    if status == "infeasible":
+        return _Step(status, message="the support motion needs interpenetration: " + res.message)
+    if status == "unbounded":
+        return _Step(status, message="a mechanism lowers the weights with the supports held: " + res.message)
+    if status != "optimal":
+        return _Step(status, message="HiGHS: " + res.message)
     fn_ = -np.asarray(res.ineqlin.marginals)
     ft_ = np.asarray(res.eqlin.marginals)
     resid = Gn.T @ fn_ + Gt.T @ ft_ + b
@@ -432,8 +439,6 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
     """lambda_max of the lateral pattern (the weights along the horizontal ``direction``, in
     the scene's coordinates) on the closed contacts of ``cf``:
     ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding)."""
-    from scipy.optimize import linprog  # on first use: every run paid its import (issue 24)
-
     Gn, Gt, *_ = _operators(sc, cf, closed)
     b = _weights(sc)
     blat = np.zeros_like(b)
@@ -444,10 +449,8 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
     c = np.zeros(nn + nt + 1)
     c[-1] = -1.0
     bounds = [(0, None)] * nn + [(None, None)] * nt + [(None, None)]
-    res = linprog(c, A_eq=A, b_eq=-b, bounds=bounds, method="highs")
-    if res.status == 0:
-        return "optimal", float(res.x[-1])
-    return {2: "infeasible", 3: "unbounded"}.get(res.status, "numerical"), float("nan")
+    status, res = _linprog(c, A_eq=A, b_eq=-b, bounds=bounds)
+    return status, float(res.x[-1]) if status == "optimal" else float("nan")
 
 
 def _move(sc: _Scene, cf: _Config, v: NDArray[np.float64], ds: float, advance: bool = True) -> _Config:
@@ -479,7 +482,7 @@ def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
 
 def _snap(
     sc: _Scene, cf: _Config, closed: NDArray[np.bool_], gtol: float, limit: float
-) -> tuple[_Config, NDArray[np.bool_], _Step] | None:
+) -> tuple[_Config, NDArray[np.bool_], _Step] | _Step | None:
     """Follow the structure's fall with the supports held from a configuration where nothing
     stands, until an open contact closes and the structure stands again.
 
@@ -489,15 +492,13 @@ def _snap(
     is then shut exactly by the projection) or by at most 1 % of the size. The fall is
     taken as quasi-static with perfectly inelastic impacts: the energy released is
     dissipated when the joint closes. Returns the standing configuration, its closed
-    contacts and its program, or None when no contact closes before some block has turned
-    by ``reach`` rad or moved by ``reach`` times the size (a collapse), or the program
-    fails. ``reach`` is ``limit`` or, if larger, twice the widest opening of a joint open
+    contacts and its program; None when no contact closes before some block has turned by
+    ``reach`` rad or moved by ``reach`` times the size, or when the fall does not lower the
+    weights (a collapse); the failed :class:`_Step` (``numerical``) when HiGHS fails. ``reach`` is ``limit`` or, if larger, twice the widest opening of a joint open
     at the start of the fall (the relative rotation of its blocks): a snap closes an open
     joint by turning its blocks back by that joint's opening, so a path whose hinges have
     opened wide must be followed as far to find the closure.
     """
-    from scipy.optimize import linprog  # on first use: every run paid its import (issue 24)
-
     b = _weights(sc)
     bounds = (-1.0, 1.0)  # scaled velocities (:func:`_operators`)
     start = cf
@@ -507,8 +508,10 @@ def _snap(
     everything = np.ones(closed.shape, dtype=bool)
     for _ in range(2000):
         Gn, Gt, *_ = _operators(sc, cf, closed)
-        res = linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds, method="highs")
-        if res.status != 0 or -res.fun <= _FEAS:
+        status, res = _linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds)
+        if status != "optimal":
+            return _Step("numerical", message="HiGHS, following the fall: " + res.message)
+        if -res.fun <= _FEAS:
             return None
         d = np.zeros((len(sc.weights), sc.ndof))
         d[sc.free] = _unscale(sc, res.x)
@@ -533,6 +536,8 @@ def _snap(
             step = _solve(sc, new, now)
             if step.status == "optimal":
                 return new, now, step
+            if step.status == "numerical":
+                return step
             if step.status != "unbounded":
                 return None
         cf, closed = new, now
@@ -673,7 +678,7 @@ class SettlementPathResult(Result):
         """``assembly`` with its blocks at the placement of step ``index`` (the interfaces as
         in the reference: for drawing)."""
         disp = self.displacements()[index]
-        R = rotation_matrices(disp[:, 3:])
+        R = _rotation_matrices(disp[:, 3:])
         blocks = []
         for k, blk in enumerate(assembly.blocks):
             c = blk.shape.centroid
@@ -856,6 +861,9 @@ def settlement_path(
             break
         # bracketed: nothing stands at `upper`; does the structure come to rest after a snap?
         fallen = _snap(sc, *upper_state, gtol, snap_limit) if len(snaps) < MAX_SNAPS else None
+        if isinstance(fallen, _Step):
+            status, message = "numerical", f"after s = {upper:.6g}: {fallen.message}"
+            break
         if fallen is None:
             status = "contact_lost" if lost_at_upper else "collapse"
             message = f"no admissible state at s = {upper:.6g}: {upper_msg}"

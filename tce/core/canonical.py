@@ -48,7 +48,7 @@ fails only when the analytic centre of a larger face happens to be its least-ene
 
 Cost: one more small conic problem per rigid optimal solve (the constraints of the TCE
 problem and one row bounding the energy), solved with a warm solver per support motion;
-``tce bench`` (section ``canonical``) reports the ratio.
+``benchmarks/canonical_states.py`` measures the ratio.
 """
 
 from __future__ import annotations
@@ -91,8 +91,9 @@ def canonical_b(f: Formulation, b: NDArray[np.float64], bound: float) -> NDArray
 
 def _insert_row(A: sp.csc_matrix, i: int, row: NDArray[np.float64]) -> sp.csc_matrix:
     """``A`` (CSC, sorted indices) with the nonzeros of the dense ``row`` inserted as row ``i``:
-    the arrays ``sp.vstack([A[:i], row, A[i:]]).tocsc()`` has, without the stacking (which
-    took most of a planar load path's 0.8 ms of set-up of its canonical solver)."""
+    the arrays ``sp.vstack([A[:i], row, A[i:]]).tocsc()`` has, without slicing and stacking,
+    which cost three times as much. Every new support motion direction sets up a canonical
+    solver: a sweep of motion directions spends a fifth of its run there with the stacking."""
     cols = np.flatnonzero(row)
     ptr = A.indptr
     above = np.concatenate([[0], np.cumsum(A.indices < i)])  # entries of rows < i, counted
@@ -232,7 +233,7 @@ class CanonicalSolver:
         the equilibration of its first problem; a new one solved the step it could not
         (lambda 0.24 of the 3D arch)."""
         f = self.f
-        if self._warm is not None and self._q is q and self._restraint is restraint:
+        if self._warm is not None and np.array_equal(self._q, q) and self._restraint is restraint:
             self._warm.update(b=canonical_b(f, b, bound))
             yield self._warm
             if not fresh:

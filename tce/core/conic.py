@@ -34,7 +34,6 @@ bound, and summing the vertex bounds of a spatial state gives the planar ones.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -193,16 +192,6 @@ def cone_rows(
     return ConeRows(M, n_zero, n_nonneg, 0 if soc is None else soc[0].shape[0] // 3, h if np.any(h) else None)
 
 
-def matvec(A: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
-    """``x -> A @ x``, dense for an operator of at most 65,536 entries: scipy's sparse
-    dispatch costs more than the whole product there (about 15 us a call, on the hot
-    path of every load step). A larger CSR or CSC operator is used as it is: a CSR copy of a
-    CSC one would hold a second copy of the largest array of a large model."""
-    if A.shape[0] * A.shape[1] <= 1 << 16:
-        return np.asarray(A.toarray()).__matmul__
-    return (A if A.format in ("csr", "csc") else sp.csr_matrix(A)).__matmul__
-
-
 class LawCheck:
     """The violation of a contact law by a force state, with its per-contact bounds computed
     once (a load path checks every answer with the same law).
@@ -230,42 +219,12 @@ class LawCheck:
         self.floor = tensile_strength * area if tensile_strength else None  # fn >= -t A
         self.ceiling = None if compressive_strength is None else compressive_strength * area
         self.g = g if np.any(g) else None
-        self._linear = self._planar_rows(model.n_contacts) if model.dim == 2 else None
-
-    def _planar_rows(self, nc: int) -> tuple[Callable[[NDArray[np.float64]], NDArray[np.float64]], NDArray[np.float64]]:
-        """In the planar model every bound is linear: ``(G x -> G F, c)`` with the violation
-        ``max(0, max(G F - c))``, rows ``-fn`` (offset ``t A``), ``fn`` (``fc A``) and
-        ``+-ft - mu fn`` (``g``), one product instead of a pass per bound."""
-        i = np.arange(nc)
-        fn, ft = 2 * i, 2 * i + 1
-        zeros = np.zeros(nc)
-        rows: list[tuple[list[NDArray[np.int64]], list[float], NDArray[np.float64]]] = [
-            ([fn], [-1.0], zeros if self.floor is None else self.floor)  # -fn - t A
-        ]
-        if self.ceiling is not None:
-            rows.append(([fn], [1.0], self.ceiling))
-        if self.friction is not None:
-            g = zeros if self.g is None else self.g
-            for sign in (1.0, -1.0):
-                rows.append(([ft, fn], [sign, -self.friction], g))
-        data, r, c, offset = [], [], [], []
-        for k, (cols, vals, off) in enumerate(rows):
-            for col, val in zip(cols, vals):
-                r.append(k * nc + i)
-                c.append(col)
-                data.append(np.full(nc, val))
-            offset.append(off)
-        G = sp.csr_matrix((np.concatenate(data), (np.concatenate(r), np.concatenate(c))), shape=(len(rows) * nc, 2 * nc))
-        return matvec(G), np.concatenate(offset)
 
     def __call__(self, forces: NDArray[np.float64]) -> float:
         """Largest violation by ``forces`` ((nc, dim) or flat, kN), in kN."""
         f = np.asarray(forces).reshape(self.shape)
         if not len(f):
             return 0.0
-        if self._linear is not None:
-            times, offset = self._linear
-            return max(0.0, float((times(f.ravel()) - offset).max()))
         fn = f[:, 0]
         worst = max(0.0, -float((fn if self.floor is None else fn + self.floor).min()))
         if self.ceiling is not None:

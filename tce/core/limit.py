@@ -37,12 +37,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .clarabel_solver import Solution, SolverOptions, solve_once
-from .conic import ConeRows, law_violation, matvec
+from .conic import ConeRows, law_violation
 from .loads import LoadPattern, scene_vectors
 from .material import Material
 from .model import EZ, Model
 from .passive import Restraint, passive_restraint
-from .problem import Formulation, LimitProblems, lateral_ray_problem, phase1_problem, restrained_limit_problem
+from .problem import Formulation, lateral_ray_problem, limit_problem, phase1_problem, restrained_limit_problem
 from .. import display
 from .result import DOFS, Result
 
@@ -246,10 +246,8 @@ class LimitSolver:
         self.tol = tol
         self.formulation = formulation or Formulation(model, material, rows)
         self.options = SolverOptions(tol=tol, max_iter=500)
-        self._problems = LimitProblems(self.formulation)
         #: Clarabel settings without and with iterative refinement (the retry)
         self._settings = tuple(self.options.settings(refine=r, kkt=self.formulation.kkt) for r in (False, True))
-        self._rel_times = matvec(model.A_eq.T)
         self._vectors_last: tuple[object, tuple[LoadPattern, NDArray[np.float64], NDArray[np.float64]]] | None = None
 
     def solve(self, alpha: float | None = None, loads: LoadPattern | None = None, mechanism: bool = True) -> LimitResult:
@@ -296,7 +294,7 @@ class LimitSolver:
         model, f = self.model, self.formulation
         m = f.A_eq.shape[0]
         if restraint is None:
-            problem = self._problems(b_fixed, b_live)
+            problem = limit_problem(f, b_fixed, b_live)
         else:
             problem = restrained_limit_problem(f, b_fixed, b_live, restraint.G, restraint.capacity)
         rhs_scaled = problem.b[:m]
@@ -364,7 +362,7 @@ class LimitSolver:
         """The mechanism of the virtual velocities ``v`` (per equilibrium row) and the dual
         cone's violation by its relative contact velocities (``A_eq' v``, B w.r.t. A)."""
         mech = mechanism_from_velocities(self.model, _block_velocities(self.model, v))
-        return mech, self._dual_cone_violation(self._rel_times(v))
+        return mech, self._dual_cone_violation(self.model.A_eq.T @ v)
 
     def _checked(
         self, sol: Solution, rhs_scaled: NDArray[np.float64], b_live: NDArray[np.float64],

@@ -50,7 +50,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..structures.assembly import Assembly
 from ..structures.geometry import lateral_direction
-from ..structures.params import did_you_mean
+from ..messages import did_you_mean
 from .model import EZ, Model, Plane, motions_in_plane
 from .fill import Fill, fill_forces
 from .surface import LoadError, _on_top, _upward_faces, _vector, top_surface

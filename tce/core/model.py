@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 
 from .. import display
 from ..structures.assembly import Assembly
-from ..structures.geometry import cross, lateral_direction
+from ..structures.geometry import lateral_direction
 
 __all__ = [
     "InterfaceMap",
@@ -80,7 +80,7 @@ def _contact_groups(assembly: Assembly, plane: Plane, tol: float) -> tuple[NDArr
     eps = tol * assembly.size
     rel = t.points - plane.origin
     off = rel @ plane.m
-    s = np.einsum("ij,ij->i", rel, cross(plane.m[None, :], t.normal)[owner])
+    s = np.einsum("ij,ij->i", rel, np.cross(plane.m[None, :], t.normal)[owner])
     lo, hi = np.minimum.reduceat(s, start), np.maximum.reduceat(s, start)
     if np.any(hi - lo <= eps):
         return None
@@ -369,7 +369,7 @@ def _wrench_operators(
     sup: list[tuple[NDArray, NDArray, NDArray]] = []
     for block, sign in ((t.b[contact_interface], 1.0), (t.a[contact_interface], -1.0)):
         arm = points - assembly.centroids[block]
-        wrench = sign * np.concatenate([directions, cross(arm[:, None, :], directions)], axis=2)  # (nc, dim, 6)
+        wrench = sign * np.concatenate([directions, np.cross(arm[:, None, :], directions)], axis=2)  # (nc, dim, 6)
         free, on_sup = ~is_sup[block], is_sup[block]
         w6 = wrench[on_sup]
         rows6 = rank[block[on_sup]][:, None, None] * 6 + np.arange(6)
@@ -460,7 +460,7 @@ def build_model(assembly: Assembly, kind: ModelKind | Literal["auto"] = "auto", 
         share = np.where(c_area[mc] > 0, w / np.where(c_area[mc] > 0, c_area[mc], 1.0), 1.0 / count[mc])
         c_itf = np.repeat(used, 2)
         n = t.normal[c_itf]
-        tan = cross(plane.m[None, :], n)
+        tan = np.cross(plane.m[None, :], n)
         tan /= np.linalg.norm(tan, axis=1)[:, None]
         directions = np.stack([n, tan], axis=1)  # (nc, 2, 3)
         tangents = directions[:, 1:, :]

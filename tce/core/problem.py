@@ -56,7 +56,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .conic import ConeRows, LawCheck, Scaling, cone_rows, law_violation, matvec
+from .conic import ConeRows, LawCheck, Scaling, cone_rows, law_violation
 from .material import Material
 from .model import Model
 
@@ -65,7 +65,6 @@ __all__ = [
     "Formulation",
     "lateral_ray_problem",
     "least_violation_problem",
-    "LimitProblems",
     "limit_problem",
     "nearest_least_violation_problem",
     "nearest_state_problem",
@@ -188,11 +187,6 @@ class Formulation:
         else:
             self.law_check = partial(law_violation, rows)
         self.kkt = kkt_method(model)
-        # F -> diag(1 / row_div) A_eq F, as the scaled operator times F / W: one copy of the
-        # model's largest operator fewer (0.33 GB on a 100,000-block dome, docs/scaling.md)
-        scaled_times = matvec(self.A_eq)
-        self._eq_rel_times: Callable[[NDArray[np.float64]], NDArray[np.float64]] = lambda F: scaled_times(F / W)
-        self.B_sup_times = matvec(model.B_sup)
         n = model.n_vars
         if material.rigid:
             self.D: NDArray[np.float64] | None = None
@@ -220,10 +214,16 @@ class Formulation:
         """Scaled offset of the contact-law rows, ``h / W``."""
         return self.law.offset() / self.scaling.force
 
+    @cached_property
+    def _B_sup_T(self) -> sp.csr_matrix:
+        """``B_sup'``, built once (scipy builds a new matrix object for every ``.T``, which costs
+        more than the product in :meth:`q`)."""
+        return self.model.B_sup.T.tocsr()
+
     def q(self, U: NDArray[np.float64]) -> NDArray[np.float64]:
         """Scaled linear objective of the TCE: ``-(B_sup' U) W``, divided by the Hessian's
         largest entry (compliant) or normalised to a largest entry of 1 (rigid)."""
-        q = -(self.model.B_sup.T @ U) * self.scaling.force
+        q = -(self._B_sup_T @ U) * self.scaling.force
         if self.D is None:
             m = np.abs(q).max(initial=0.0)
             return q / m if m > 0 else q
@@ -252,13 +252,15 @@ class Formulation:
     def residuals_scaled(self, F: NDArray[np.float64], b_eq: NDArray[np.float64]) -> tuple[float, float]:
         """:meth:`residuals` for the scaled right-hand side ``b_eq = -rhs / row_div`` (the first
         ``m_eq`` entries of :func:`tce_b`, which a solve has already computed)."""
-        eq = self._eq_rel_times(F) - b_eq
+        # diag(1 / row_div) A_eq F as the scaled operator times F / W (no second copy of the
+        # model's largest operator: 0.33 GB on a 100,000-block dome, docs/scaling.md)
+        eq = self.A_eq @ (F / self.scaling.force) - b_eq
         return float(np.abs(eq).max(initial=0.0)), self.law_check(F) / self.scaling.force
 
     def energy(self, F: NDArray[np.float64], U: NDArray[np.float64], wrench: NDArray[np.float64] | None = None) -> float:
         """Total complementary energy ``1/2 F'DF - U' B_sup F`` (kN m); ``wrench`` is
         ``B_sup F`` when the caller has it."""
-        e = -float((self.B_sup_times(F) if wrench is None else wrench) @ U)
+        e = -float((self.model.B_sup @ F if wrench is None else wrench) @ U)
         if self.D is not None:
             e += 0.5 * float(F @ (self.D * F))
         return e
@@ -366,60 +368,17 @@ def limit_problem(f: Formulation, b_fixed: NDArray[np.float64], b_live: NDArray[
     Unknowns ``(x, lam)`` (n + 1); rows: ``m_eq`` equalities, then the contact law. The
     multipliers ``z`` of the equality rows, divided by ``row_div``, are the virtual block
     velocities of the collapse mechanism (:mod:`tce.core.limit`).
-
-    The problem's arrays are its own; :class:`LimitProblems` builds the problems of one
-    formulation in place instead (what :class:`tce.core.limit.LimitSolver` solves).
     """
-    return LimitProblems(f)(b_fixed, b_live)
-
-
-class LimitProblems:
-    """:func:`limit_problem` for one formulation and any loads, built once and then updated.
-
-    ``A`` is :attr:`Formulation.constraints` with the live load's column appended to its CSC
-    arrays. A call whose live load has the nonzero rows of the previous call's writes the
-    new column values (and ``b``) into the same arrays; another pattern rebuilds them by
-    concatenation, never by sparse stacking. Each problem returned is therefore valid until
-    the next call: solve it before asking for another. On the paper's arch this brought the
-    build from 0.5 ms (stacking per call) to 0.01-0.07 ms against a 0.3 ms planar solve.
-
-    Parameters
-    ----------
-    f : Formulation
-    """
-
-    def __init__(self, f: Formulation) -> None:
-        law = f.law
-        self.f = f
-        self.m, n = f.A_eq.shape
-        self.q = np.zeros(n + 1)
-        self.q[-1] = -1.0
-        self.q.flags.writeable = False
-        self.P = sp.csc_matrix((n + 1, n + 1))
-        self.cones = _cones(("zero", self.m + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
-        self._rows: NDArray[np.int64] | None = None
-        self._A: sp.csc_matrix | None = None
-
-    def __call__(self, b_fixed: NDArray[np.float64], b_live: NDArray[np.float64]) -> ConicProblem:
-        """The limit problem of ``b_fixed`` and ``b_live`` (kN, kN m; ``A_eq``'s row layout)."""
-        f = self.f
-        base = f.constraints
-        live = b_live / f.row_div
-        rows = np.flatnonzero(live)
-        if self._A is not None and self._rows is not None and np.array_equal(rows, self._rows):
-            self._A.data[base.nnz :] = live[rows]
-        else:
-            self._A = sp.csc_matrix(
-                (
-                    np.concatenate([base.data, live[rows]]),
-                    np.concatenate([base.indices, rows.astype(base.indices.dtype)]),
-                    np.append(base.indptr, base.nnz + len(rows)).astype(base.indptr.dtype),
-                ),
-                shape=(base.shape[0], base.shape[1] + 1),
-            )
-            self._rows = rows
-        b = np.concatenate([f.b_eq(b_fixed), f.law_h])
-        return ConicProblem("limit", self.P, self.q, self._A, b, self.cones)
+    law = f.law
+    m, n = f.A_eq.shape
+    live = b_live / f.row_div
+    rows = np.flatnonzero(live)  # the live load's column: nonzero in the equilibrium rows only
+    column = sp.csc_matrix((live[rows], rows, [0, len(rows)]), shape=(m + law.n_rows, 1))
+    A = sp.hstack([f.constraints, column], format="csc")
+    q = np.zeros(n + 1)
+    q[-1] = -1.0
+    cones = _cones(("zero", m + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
+    return ConicProblem("limit", sp.csc_matrix((n + 1, n + 1)), q, A, tce_b(f, b_fixed), cones)
 
 
 def restrained_limit_problem(

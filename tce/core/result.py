@@ -22,9 +22,8 @@ solves use their own outcome words where the four do not fit (a load path ends i
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
-from functools import cache
-from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -41,15 +40,6 @@ STATUSES = ("optimal", "infeasible", "unbounded", "numerical")
 WRENCH_COMPONENTS = ("Fx", "Fy", "Fz", "Mx", "My", "Mz")
 DOFS = ("vx", "vy", "vz", "wx", "wy", "wz")
 XYZ = ("x", "y", "z")
-
-R = TypeVar("R", bound="Result")
-
-
-@cache
-def _field_names(cls: type) -> frozenset[str]:
-    """The names of a result class's fields (computed once per class)."""
-    return frozenset(f.name for f in fields(cls))
-
 
 @dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class Result:
@@ -129,23 +119,3 @@ class Result:
     def ok(self) -> bool:
         """True when the result's numbers are an answer (``status`` in ``OK``)."""
         return self.status in self.OK
-
-    @classmethod
-    def of_fields(cls: type[R], values: dict[str, Any]) -> R:
-        """The instance whose fields are ``values`` (every field named once, no defaults).
-
-        The same object as ``cls(**values)`` without the frozen ``__init__``, which sets each
-        field through ``object.__setattr__`` (about 8 us for a :class:`tce.core.solve.TCEResult`,
-        a fifth of the load path's own time per solve).
-
-        Raises
-        ------
-        TypeError
-            When ``values`` does not name exactly the class's fields.
-        """
-        names = _field_names(cls)
-        if values.keys() != names:
-            raise TypeError(f"{cls.__name__}.of_fields: fields {sorted(names ^ values.keys())} missing or unknown")
-        obj = object.__new__(cls)
-        obj.__dict__.update(values)
-        return obj

@@ -284,8 +284,6 @@ class TCESolver:
         self._warm: ClarabelSolver | None = None
         self._warm_q: NDArray[np.float64] | None = None
         self._warm_restraint: Restraint | None = None
-        #: (copy of the last U, its q, the U array itself, whether q is rescaled, whether anything moves)
-        self._q_last: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], bool, bool] | None = None
         self._feas: ClarabelSolver | None = None
         self._feas_restraint: Restraint | None = None
         self._recession_cache: dict[bytes, tuple[float, float, NDArray[np.float64]]] = {}
@@ -318,18 +316,6 @@ class TCESolver:
         ``loads``, or of the default pattern in direction ``alpha``: ``b_dead + lam * b_lat(alpha)``."""
         b_fixed, b_live = self.vectors(as_pattern(alpha, loads))
         return b_fixed + lam * b_live
-
-    def _q(self, U: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Scaled linear objective for support motions ``U``; the last one is kept, so a load
-        path (same ``U``) gets the same array back and the warm solver updates only ``b``."""
-        last = self._q_last
-        # a read-only U (Analysis.path's) that is the very array of the last call is unchanged
-        if last is not None and ((U is last[2] and not U.flags.writeable) or np.array_equal(last[0], U)):
-            return last[1]
-        q = self.formulation.q(U)
-        q.flags.writeable = False
-        self._q_last = (np.array(U, dtype=float), q, U, q_scale(q) != 1.0, bool(np.any(U)))
-        return q
 
     def _check_scene(self, loads: LoadPattern, U: NDArray[np.float64]) -> None:
         names = self.model.assembly.support_names
@@ -366,23 +352,27 @@ class TCESolver:
             return F, p, (eq, max(law, bound))
         return check
 
-    def _main(self, U: NDArray[np.float64], b: NDArray[np.float64], restraint: Restraint | None) -> Solution:
-        """The warm solver for the scaled right-hand side ``b`` (:meth:`_bounded` of
-        :func:`tce.core.problem.tce_b`): set up on the first call and for a new restraint, then
-        only its vectors are updated (``b`` alone while ``U`` is unchanged; iterative
-        refinement as ``options.refine``)."""
-        f, q = self.formulation, self._q(U)
-        if self._q_last[3] or self._warm is None or restraint is not self._warm_restraint:
-            settings = self.options.settings(refine=self.options.refine, kkt=f.kkt, b_norm=_b_norm(b))
-            if self._q_last[3]:  # an objective rescaled for this scene (extreme stiffness): a solver of its own
-                return solve_once(self._problem(b, U, restraint), settings)
-            self._warm = ClarabelSolver(self._problem(b, U, restraint), settings)
-            self._warm_restraint = restraint
-        elif q is self._warm_q:
-            self._warm.update(b=b)
-        else:
-            self._warm.update(q=q if restraint is None else np.concatenate([q, np.zeros(restraint.size)]), b=b)
-        self._warm_q = q
+    def _main(self, q: NDArray[np.float64], U: NDArray[np.float64], b: NDArray[np.float64],
+              restraint: Restraint | None) -> Solution:
+        """The warm solver for the scaled objective ``q`` (:meth:`tce.core.problem.Formulation.q` of ``U``) and
+        right-hand side ``b`` (:meth:`_bounded` of :func:`tce.core.problem.tce_b`): set up on the
+        first call and for a new restraint, then only its vectors are updated (``b`` alone while
+        ``q`` is unchanged; iterative refinement as ``options.refine``). A scene whose objective
+        is rescaled (:func:`tce.core.problem.q_scale`: an extreme stiffness) gets a solver of its
+        own."""
+        rescaled = q_scale(q) != 1.0
+        if self._warm is not None and restraint is self._warm_restraint and not rescaled:
+            if np.array_equal(q, self._warm_q):
+                self._warm.update(b=b)
+            else:
+                self._warm.update(q=q if restraint is None else np.concatenate([q, np.zeros(restraint.size)]), b=b)
+                self._warm_q = q
+            return self._warm.solve()
+        settings = self.options.settings(refine=self.options.refine, kkt=self.formulation.kkt, b_norm=_b_norm(b))
+        if rescaled:
+            return solve_once(self._problem(b, U, restraint), settings)
+        self._warm = ClarabelSolver(self._problem(b, U, restraint), settings)
+        self._warm_q, self._warm_restraint = q, restraint
         return self._warm.solve()
 
     def _phase1(self, rhs: NDArray[np.float64], restraint: Restraint | None = None) -> tuple[float, float, str]:
@@ -467,7 +457,7 @@ class TCESolver:
             raise ValueError(f"lam must be a finite number, got lam={lam!r}")
         pattern = as_pattern(alpha, loads)
         if isinstance(settlements, np.ndarray):
-            U = np.asarray(settlements, dtype=float)
+            U = np.array(settlements, dtype=float)  # the result's own
         else:
             U = settlement_vector(self.model, settlements)
         self._check_scene(pattern, U)
@@ -487,7 +477,8 @@ class TCESolver:
         f = self.formulation
         b = self._bounded(tce_b(f, rhs), restraint)
         check = self._check(b, restraint)
-        sol = self._main(U, b, restraint)
+        q = f.q(U)
+        sol = self._main(q, U, b, restraint)
         stime, setup = sol.solve_time, sol.setup_time
         notes = [f"clarabel: {sol.status}"]
         status, retry, F, p, res = "numerical", "", None, None, None
@@ -539,7 +530,7 @@ class TCESolver:
             F = p = res = None
         elif f.D is None and self.options.canonical:
             x = (F if p is None else np.concatenate([F, p])) / self.scaling.force
-            can = self._canonical_solver().state(b, self._q(U), x, check, restraint)
+            can = self._canonical_solver().state(b, q, x, check, restraint)
             stime += can.solve_time
             setup += can.setup_time
             if can.forces is not None and can.residuals is not None:
@@ -587,18 +578,17 @@ class TCESolver:
             tce = eq = cone = float("nan")
         else:
             forces = F.reshape(model.n_contacts, model.dim)
-            wrench = self.formulation.B_sup_times(F)
+            wrench = model.B_sup @ F
             wrenches = wrench.reshape(-1, 6)
             eq, cone = res
             tce = self.formulation.energy(F, U, wrench)
         if self.formulation.D is not None:
             unique = True
-        elif unique is None and not (self._q_last[4] if self._q_last is not None and self._q_last[2] is U
-                                     else np.any(U)):
+        elif unique is None and not np.any(U):
             unique = False  # undecided (no canonical state): every admissible state is a minimiser
         if retry:
             log.debug("solve at lam=%g of %s: %s decided by %s (%s)", lam, loads, status, retry, message)
-        return TCEResult.of_fields(dict(
+        return TCEResult(
             status=status,
             message=message,
             solver=SOLVER_NAME,
@@ -620,4 +610,4 @@ class TCESolver:
             retry=retry,
             interface_map=model.interface_map,
             restraint_forces=restraint_forces,
-        ))
+        )

@@ -37,6 +37,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from ..files import atomic_write
 from ..structures.assembly import Assembly
 from .data import assembly, geometry, optimal_steps, scenarios, slug
 
@@ -63,9 +64,9 @@ def _write(path: Path, points: NDArray, cells: list, point_data: dict | None = N
            cell_data: dict | None = None) -> Path:
     import meshio
 
-    path.parent.mkdir(parents=True, exist_ok=True)
-    meshio.write(path, meshio.Mesh(points, cells, point_data=point_data or {}, cell_data=cell_data or {}),
-                 file_format="vtu")
+    with atomic_write(path) as tmp:
+        meshio.write(tmp, meshio.Mesh(points, cells, point_data=point_data or {}, cell_data=cell_data or {}),
+                     file_format="vtu")
     return path
 
 
@@ -148,7 +149,8 @@ def export_vtk(ds: xr.Dataset, out: Path | str, names: Sequence[str] | None = No
         rows = "\n".join(f'    <DataSet timestep="{t:.12g}" part="{part}" file={quoteattr(f)}/>'
                          for t, part, f in entries)
         pvd = out / f"{slug(s)}.pvd"
-        pvd.write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
-                       f"{rows}\n  </Collection>\n</VTKFile>\n", encoding="utf-8")
+        with atomic_write(pvd) as tmp:
+            tmp.write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
+                           f"{rows}\n  </Collection>\n</VTKFile>\n", encoding="utf-8")
         written.append(pvd)
     return written

@@ -33,7 +33,6 @@ The number of figures does not grow with the number of scenarios beyond those th
 from __future__ import annotations
 
 import logging
-import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -53,9 +52,10 @@ from .data import (
     structure_frame,
     swept_parameters,
 )
+from ..files import atomic_write
 from ..study.progress import Progress, track
 
-__all__ = ["DPI", "PARALLEL_AT", "builder", "figure_tasks", "render", "temporary", "write_figures"]
+__all__ = ["DPI", "PARALLEL_AT", "builder", "figure_tasks", "render", "write_figures"]
 
 log = logging.getLogger(__name__)
 
@@ -182,14 +182,9 @@ def builder(kind: str) -> Callable:
             "mechanism": figures.mechanism_view, "summary": figures.summary_figure}[kind]
 
 
-def temporary(path: Path) -> Path:
-    """The temporary file :func:`render` writes ``path`` through."""
-    return path.with_name(f".{path.name}.tmp")
-
-
 def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
-    """Draw one task and write its file atomically: the :func:`temporary` file, then renamed
-    to its name (a failed or interrupted write leaves neither).
+    """Draw one task and write its file whole or not at all (:func:`tce.files.atomic_write`:
+    a failed or interrupted write leaves neither the file nor its temporary).
 
     Raises
     ------
@@ -197,21 +192,15 @@ def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
         The file cannot be written (a full disk): its ``filename`` is the file's path.
     """
     path = Path(outdir) / task.name
-    tmp = temporary(path)
     out = builder(task.kind)(ds, *task.args)
     try:
-        with open(tmp, "wb") as fh:
+        with atomic_write(path) as tmp, open(tmp, "wb") as fh:
             if isinstance(out, bytes):  # a page (view.html)
                 fh.write(out)
             else:
                 out.savefig(fh, format="png", dpi=DPI)
-        os.replace(tmp, path)
     except OSError as exc:
-        tmp.unlink(missing_ok=True)
         raise OSError(exc.errno, exc.strerror, str(path)) from exc
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
     return path
 
 

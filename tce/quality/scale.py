@@ -48,7 +48,7 @@ def dome_stages(n: int, max_blocks: int | None = None) -> dict[str, Any]:
     from ..core.clarabel_solver import ClarabelSolver, SolverOptions
     from ..core.material import Material
     from ..core.model import build_model
-    from ..core.problem import Formulation, LimitProblems
+    from ..core.problem import Formulation, limit_problem
     from ..structures import params
     from ..structures.dome import hemispherical_dome
 
@@ -70,7 +70,7 @@ def dome_stages(n: int, max_blocks: int | None = None) -> dict[str, Any]:
     mark("model's operators built")
     f = Formulation(model, Material(friction=0.8))
     mark("formulation")
-    problem = LimitProblems(f)(model.b_dead, model.b_lateral(0.0))
+    problem = limit_problem(f, model.b_dead, model.b_lateral(0.0))
     mark("[A_eq; -M] and the limit problem")
     solver = ClarabelSolver(problem, SolverOptions(tol=1e-10, max_iter=500).settings(refine=False, kkt=f.kkt))
     mark("Clarabel set up")

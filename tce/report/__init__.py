@@ -22,6 +22,8 @@ from pathlib import Path
 
 import xarray as xr
 
+from ..files import atomic_write
+
 __all__ = ["ReportFiles", "find_browser", "print_pdf", "report_html", "write_report"]
 
 log = logging.getLogger(__name__)
@@ -130,19 +132,15 @@ def print_pdf(html: Path, pdf: Path, browser: str | None = None) -> str:
     browser = browser or find_browser()
     if browser is None:
         return "no chromium found (apt-get install chromium, or set TCE_CHROMIUM)"
-    tmp = pdf.with_name(f".{pdf.name}.tmp")
-    with tempfile.TemporaryDirectory(prefix="tce-chromium-") as profile:
-        cmd = [browser, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", f"--print-to-pdf={tmp}",
-               html.resolve().as_uri()]
-        try:
+    try:
+        with atomic_write(pdf) as tmp, tempfile.TemporaryDirectory(prefix="tce-chromium-") as profile:
+            cmd = [browser, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", f"--print-to-pdf={tmp}",
+                   html.resolve().as_uri()]
             done = subprocess.run(cmd, capture_output=True, text=True, timeout=PRINT_TIMEOUT, check=False)
-        except (OSError, subprocess.TimeoutExpired) as exc:
-            tmp.unlink(missing_ok=True)
-            return f"chromium failed: {exc}"
-    if done.returncode != 0 or not tmp.is_file() or tmp.stat().st_size == 0:
-        tmp.unlink(missing_ok=True)
-        return f"chromium failed (exit {done.returncode}): {done.stderr.strip()[-300:]}"
-    tmp.replace(pdf)
+            if done.returncode != 0 or not tmp.is_file() or tmp.stat().st_size == 0:
+                raise ChildProcessError(f"exit {done.returncode}: {done.stderr.strip()[-300:]}")
+    except (OSError, subprocess.TimeoutExpired) as exc:  # ChildProcessError is an OSError
+        return f"chromium failed: {exc}"
     return ""
 
 
@@ -171,9 +169,8 @@ def write_report(results: Path, out: Path | None = None, figures: list[Path] | N
             study_figures(ds, results.parent, Path(scratch))
         page = report_html(ds, results, pngs)
     html = out / "report.html"
-    tmp = html.with_name(f".{html.name}.tmp")
-    tmp.write_text(page, encoding="utf-8")
-    tmp.replace(html)
+    with atomic_write(html) as tmp:
+        tmp.write_text(page, encoding="utf-8")
     if not pdf:
         return ReportFiles(html, None, "not asked for")
     why = print_pdf(html, out / "report.pdf")

@@ -45,7 +45,7 @@ from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
 
 from .assembly import Assembly, AssemblyError, Block, Interface
-from .geometry import FaceTable, _ring, cross, frames_from_normals
+from .geometry import FaceTable, _ring, frames_from_normals
 
 __all__ = ["block_pairs", "check_overlaps", "detect_interfaces"]
 
@@ -327,7 +327,7 @@ def _test_points(T: FaceTable, convex: NDArray[np.bool_], tol: float) -> tuple[N
     # convex faces of the non-convex polyhedra: every turn of the loop the normal's way
     p = T.points[T.loop]
     e = p[nxt] - p
-    turn = np.einsum("ij,ij->i", cross(e, e[nxt]), T.faces.newell[owner])
+    turn = np.einsum("ij,ij->i", np.cross(e, e[nxt]), T.faces.newell[owner])
     size2 = T.size[face_poly[owner]] ** 2
     bent = np.bincount(owner, weights=(turn < -tol * size2).astype(float), minlength=len(face_poly)) > 0
     use_face = convex[face_poly] | ~bent

@@ -28,7 +28,6 @@ __all__ = [
     "PolygonTable",
     "Polyhedron",
     "box",
-    "cross",
     "frame_from_normal",
     "frames_from_normals",
     "lateral_direction",
@@ -44,15 +43,6 @@ __all__ = [
 
 class GeometryError(ValueError):
     """Raised for geometry that cannot describe a rigid block (open, inverted, non-planar...)."""
-
-
-def cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Row-wise cross product of two ``(..., 3)`` arrays (``np.cross`` without its overhead)."""
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
-    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
-    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
-    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-    return out
 
 
 def _segment_sum(values: NDArray[np.float64], owner: NDArray[np.int64], n: int) -> NDArray[np.float64]:
@@ -129,7 +119,7 @@ class PolygonTable:
     def newell(self) -> NDArray[np.float64]:
         """Newell vector of each polygon, (k, 3): twice its vector area (m^2)."""
         a, b = self._edges
-        return _segment_sum(cross(a, b), self.owner, len(self))
+        return _segment_sum(np.cross(a, b), self.owner, len(self))
 
     @cached_property
     def area(self) -> NDArray[np.float64]:
@@ -147,7 +137,7 @@ class PolygonTable:
         nn = np.linalg.norm(n, axis=1)
         unit = n / np.where(nn > 0, nn, 1.0)[:, None]
         a, b = self._edges
-        w = np.einsum("ij,ij->i", cross(a, b), unit[self.owner])  # twice the signed triangle areas
+        w = np.einsum("ij,ij->i", np.cross(a, b), unit[self.owner])  # twice the signed triangle areas
         total = _segment_sum(w, self.owner, len(self))
         moment = _segment_sum(w[:, None] * (a + b) / 3.0, self.owner, len(self))
         ok = (nn > 0) & (total != 0)
@@ -165,8 +155,8 @@ class PolygonTable:
         owner, nxt, prv = self._ring
         p, c = self.points, self.centroid[owner]
         m_next, m_prev = 0.5 * (p + p[nxt]), 0.5 * (p + p[prv])
-        t1 = 0.5 * np.linalg.norm(cross(m_prev - c, p - c), axis=1)
-        t2 = 0.5 * np.linalg.norm(cross(p - c, m_next - c), axis=1)
+        t1 = 0.5 * np.linalg.norm(np.cross(m_prev - c, p - c), axis=1)
+        t2 = 0.5 * np.linalg.norm(np.cross(p - c, m_next - c), axis=1)
         return np.where(self.counts[owner] > 2, t1 + t2, 0.0)
 
 
@@ -221,7 +211,7 @@ def frames_from_normals(normals: ArrayLike) -> NDArray[np.float64]:
         t1[flat] = -n[flat, 0:1] * n[flat]
         t1[flat, 0] += 1.0
     t1 /= np.linalg.norm(t1, axis=1)[:, None]
-    return np.stack([n, t1, cross(n, t1)], axis=1)
+    return np.stack([n, t1, np.cross(n, t1)], axis=1)
 
 
 def frame_from_normal(normal: ArrayLike) -> NDArray[np.float64]:
@@ -453,7 +443,7 @@ class FaceTable:
         a = self.points[self.loop[self.start[owner[tri]]]] - o
         b = self.points[self.loop[tri]] - o
         c = self.points[self.loop[nxt[tri]]] - o
-        dv = np.einsum("ij,ij->i", a, cross(b, c)) / 6.0
+        dv = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
         vol = np.bincount(poly, weights=dv, minlength=n)
         first = _segment_sum(dv[:, None] * (a + b + c) / 4.0, poly, n)
         with np.errstate(invalid="ignore", divide="ignore"):

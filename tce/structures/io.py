@@ -49,7 +49,10 @@ compas_dem ``BlockModel`` JSON (``data.elements`` and ``data.graph``)
 
 Every value is checked for its type (not its truthiness: ``"support": "no"`` is an error,
 not a support; a face index must be a whole number, a coordinate a JSON number, a name a
-string), and an error names the file and the key (``blocks[1] (top).faces[0][2]``).
+string), and an error names the file and the key (``blocks[1] (top).faces[0][2]``): a tce
+file by the pydantic model :class:`TceAssemblyFile` (its first problem, worded by
+:func:`tce.messages.describe`), a COMPAS file, whose format is free-form (wrappers, nulls
+for defaults, attributes tce does not read), by typed access to the values tce reads.
 
 Stored interfaces (tce or COMPAS)
     A file's interfaces are used instead of detection (which remains the fallback when the
@@ -84,20 +87,24 @@ import logging
 import math
 import re
 import stat
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
 import numpy as np
 
 import shapely
+from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, TypeAdapter, ValidationError
 from shapely.geometry import Polygon
 
+from ..files import atomic_write
+from ..messages import describe, did_you_mean
+from ..messages import key as location_key
 from .assembly import Assembly, AssemblyError, Block, Interface
 from .contacts import check_overlaps, detect_interfaces
 from .geometry import GeometryError, Polyhedron, frame_from_normal, newell_normal
-from .params import MAX_BLOCKS, did_you_mean
+from .params import MAX_BLOCKS
 
 __all__ = [
     "MAX_BLOCKS",
@@ -106,6 +113,7 @@ __all__ = [
     "MAX_FILE_BYTES",
     "MAX_VERTICES",
     "InputLimitError",
+    "TceAssemblyFile",
     "load_assembly",
     "read_compas_json",
     "read_obj",
@@ -217,9 +225,20 @@ def _check_counts(path: Path, blocks: list[RawBlock]) -> None:
         raise InputLimitError(f"{path}: {total} vertices, more than MAX_VERTICES = {MAX_VERTICES}")
 
 
+def _point_data(value: Any) -> Any:
+    """The data of a COMPAS 2 ``Point`` or ``Vector`` (``{"dtype": "compas.geometry/Point",
+    "data": [x, y, z]}``); any other value as it is."""
+    if isinstance(value, Mapping) and "dtype" in value:
+        if not str(value["dtype"]).endswith(("/Point", "/Vector")):
+            raise ValueError(f"must be a point, got a {value['dtype']!r}; fix: write [x, y, z]")
+        return value.get("data")
+    return value
+
+
 class _Doc:
-    """Typed access to a decoded JSON document: every value is checked for its type (not its
-    truthiness), and every error names the file and the key (``blocks[2].faces[0][1]``)."""
+    """Typed access to a decoded COMPAS document (free-form: tce reads some of its values): each
+    value read is checked for its type (not its truthiness), and every error names the file
+    and the key (``graph.node.1.vertex.0.x``)."""
 
     def __init__(self, path: Path) -> None:
         self.path = path
@@ -248,14 +267,6 @@ class _Doc:
             raise self.fail(key, f"must be a list [...], got {self._got(value)}")
         return value
 
-    def text(self, key: str, value: Any) -> str:
-        """A non-empty string without control characters (names become labels and file names)."""
-        if not isinstance(value, str) or not value:
-            raise self.fail(key, f"must be a non-empty string, got {self._got(value)}")
-        if any(ord(c) < 32 or ord(c) == 127 for c in value):
-            raise self.fail(key, f"holds a control character, got {self._got(value)}")
-        return value
-
     def flag(self, key: str, value: Any) -> bool:
         if not isinstance(value, bool):
             raise self.fail(key, f"must be true or false, got {self._got(value)}")
@@ -268,19 +279,13 @@ class _Doc:
             raise self.fail(key, f"must be a finite number{' > 0' if positive else ''}, got {self._got(value)}")
         return float(value)
 
-    def index(self, key: str, value: Any, size: int) -> int:
-        """A whole number in ``[0, size)`` (not a boolean, not 1.5)."""
-        if not isinstance(value, int) or isinstance(value, bool) or not 0 <= value < size:
-            raise self.fail(key, f"must be a vertex index, a whole number from 0 to {size - 1}, got {self._got(value)}")
-        return value
-
     def point(self, key: str, value: Any) -> list[float]:
         """``[x, y, z]``, ``{"x": .., "y": .., "z": ..}`` or a COMPAS 2 ``Point``
         (``{"dtype": "compas.geometry/Point", "data": [x, y, z]}``)."""
-        if isinstance(value, Mapping) and "dtype" in value:
-            if not str(value["dtype"]).endswith(("/Point", "/Vector")):
-                raise self.fail(key, f"must be a point, got a {value['dtype']!r}")
-            value = value.get("data")
+        try:
+            value = _point_data(value)
+        except ValueError as exc:
+            raise self.fail(key, str(exc)) from None
         if isinstance(value, Mapping):
             return [self.number(f"{key}.{c}", value.get(c)) for c in "xyz"]
         if not isinstance(value, list) or len(value) != 3:
@@ -290,78 +295,146 @@ class _Doc:
     def points(self, key: str, value: Any) -> np.ndarray:
         return np.array([self.point(f"{key}[{i}]", p) for i, p in enumerate(self.array(key, value))], dtype=float).reshape(-1, 3)
 
-    def faces(self, key: str, value: Any, size: int) -> list[list[int]]:
-        out = []
-        for i, f in enumerate(self.array(key, value)):
-            loop = self.array(f"{key}[{i}]", f)
-            if len(loop) < 3:
-                raise self.fail(f"{key}[{i}]", f"a face needs at least 3 vertex indices, got {self._got(loop)}")
-            out.append([self.index(f"{key}[{i}][{j}]", k, size) for j, k in enumerate(loop)])
-        return out
+
+# ------------------------------------------------------ the tce JSON format, as pydantic models
+def _given(value: Any) -> Any:
+    """Refuse an explicit ``null`` where a key may only be left out."""
+    if value is None:
+        raise ValueError("null is not a value here; fix: give a value or leave the key out")
+    return value
 
 
-#: keys of a tce JSON file, of one of its blocks and of one of its interfaces
-_TCE_KEYS = ("format", "version", "units", "unit_weight", "blocks", "interfaces", "meta")
-_BLOCK_KEYS = ("name", "vertices", "faces", "support", "unit_weight")
-_INTERFACE_KEYS = ("a", "b", "points", "normal", "stiffness")
+def _as_list(value: Any) -> Any:
+    """A COMPAS 2 ``Point`` or ``{"x": .., "y": .., "z": ..}`` as ``[x, y, z]``; any other
+    value as it is."""
+    value = _point_data(value)
+    if isinstance(value, Mapping) and {"x", "y", "z"} & set(value):
+        return [value.get(c) for c in "xyz"]
+    return value
+
+
+def _version_1(value: int) -> int:
+    if value != 1:
+        raise ValueError(f"this tce reads version 1; fix: write 1 (a file of version {value} needs another tce)")
+    return value
+
+
+Absent = AfterValidator(_given)
+Positive = Annotated[float, Field(gt=0)]
+#: a non-empty name without control characters (names become labels and file names)
+Name = Annotated[str, Field(min_length=1, pattern=r"^[^\x00-\x1f\x7f]*$")]
+Point = Annotated[list[float], BeforeValidator(_as_list), Field(min_length=3, max_length=3)]
+Face = Annotated[list[int], Field(min_length=3)]
+_NAME = TypeAdapter(Name, config=ConfigDict(strict=True))
+
+
+class _Strict(BaseModel):
+    # a number is a JSON number (not a boolean, not quoted, finite), a flag true or false
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True, strict=True)
+
+
+class UnitsItem(_Strict):
+    """``units``: the file's length and force units."""
+
+    length: Literal["m", "cm", "mm"] = "m"
+    force: Literal["kN", "N"] = "kN"
+
+
+class BlockItem(_Strict):
+    """One of ``blocks``: its name (default ``b<position>``), vertices, faces (0-based
+    indices, counter-clockwise seen from outside), support flag and unit weight."""
+
+    name: Annotated[Name | None, Absent] = None
+    vertices: list[Point]
+    faces: list[Face]
+    support: bool = False
+    unit_weight: Annotated[Positive | None, Absent] = None
+
+
+class InterfaceItem(_Strict):
+    """One of ``interfaces``: blocks ``a`` and ``b`` by name, the polygon ``points``, an
+    optional ``normal`` from ``a`` into ``b`` and a stiffness multiplier."""
+
+    a: Name
+    b: Name
+    points: list[Point]
+    normal: Point | None = None
+    stiffness: Positive = 1.0
+
+
+class TceAssemblyFile(_Strict):
+    """A tce JSON assembly (``docs/assembly-format.md``)."""
+
+    format: Literal["tce-assembly"] = "tce-assembly"
+    version: Annotated[int, AfterValidator(_version_1)] = 1
+    units: UnitsItem = UnitsItem()
+    unit_weight: Annotated[Positive | None, Absent] = None
+    blocks: list[BlockItem]
+    interfaces: Annotated[list[InterfaceItem] | None, Absent] = None
+    meta: dict[str, Any] = Field(default_factory=dict)
+
+
+#: hints of a block file that replace :data:`tce.messages.HINTS`
+_HINTS = {
+    "model_type": "it must be an object {{...}} of the keys in docs/assembly-format.md",
+    "dict_type": "it must be an object {{...}}",
+    "string_pattern_mismatch": "remove the control characters",
+    "too_short": "give at least {min_length} items ([x, y, z] for a point, 3 vertex indices for a face)",
+    "too_long": "give exactly 3 numbers [x, y, z]",  # only a point has a longest length
+}
+
+
+def _where(d: Mapping) -> Callable[[tuple[Any, ...]], str]:
+    """The key of a location in the tce document ``d``, a block's name beside its position
+    (``blocks[1] (top).support``) when it has a valid one."""
+
+    def where(loc: tuple[Any, ...]) -> str:
+        text = location_key(loc)
+        if len(loc) > 2 and loc[0] == "blocks" and loc[2] != "name":
+            block = d["blocks"][loc[1]]
+            try:
+                name = _NAME.validate_python(block.get("name"))
+            except (ValidationError, AttributeError):  # no valid name, or the block is no object
+                return text
+            text = text.replace(f"blocks[{loc[1]}]", f"blocks[{loc[1]}] ({name})", 1)
+        return text
+
+    return where
 
 
 def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
-    """Parse a tce JSON assembly (see module docstring), checking every value's type."""
+    """Parse a tce JSON assembly (see module docstring), checking every value's type
+    (:class:`TceAssemblyFile`); the first problem is raised, naming the file and the key."""
     path = Path(path)
     d = _load_json(path, _read_text(path)) if data is None else data
-    doc = _Doc(path)
     if not isinstance(d, Mapping) or "blocks" not in d:
         raise _err(path, f'not a tce assembly: expected an object with a "blocks" list, got {_kind(d)}')
-    doc.obj("", d, _TCE_KEYS)
-    raw_blocks = doc.array("blocks", d["blocks"])
-    if len(raw_blocks) > MAX_BLOCKS:
-        raise InputLimitError(f"{path}: {len(raw_blocks)} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
-    units = doc.obj("units", d.get("units", {}), ("length", "force"))
-    lu, fu = units.get("length", "m"), units.get("force", "kN")
-    if not isinstance(lu, str) or lu not in _LENGTH:
-        raise doc.fail("units.length", f"must be one of {list(_LENGTH)}, got {doc._got(lu)}")
-    if not isinstance(fu, str) or fu not in _FORCE:
-        raise doc.fail("units.force", f"must be one of {list(_FORCE)}, got {doc._got(fu)}")
-    if "version" in d and (d["version"] != 1 or isinstance(d["version"], bool)):
-        raise doc.fail("version", f"this tce reads version 1, got {doc._got(d['version'])}")
-    if "format" in d and d["format"] != "tce-assembly":
-        raise doc.fail("format", f'must be "tce-assembly", got {doc._got(d["format"])}')
+    if isinstance(d["blocks"], list) and len(d["blocks"]) > MAX_BLOCKS:
+        raise InputLimitError(f"{path}: {len(d['blocks'])} blocks, more than MAX_BLOCKS = {MAX_BLOCKS}")
+    try:
+        doc = TceAssemblyFile.model_validate(d)
+    except ValidationError as exc:
+        raise AssemblyError(describe(path, exc, TceAssemblyFile, "docs/assembly-format.md", _HINTS, where=_where(d))[0]) from None
     blocks = []
-    for k, b in enumerate(raw_blocks):
-        doc.obj(f"blocks[{k}]", b, _BLOCK_KEYS)
-        name = doc.text(f"blocks[{k}].name", b["name"]) if "name" in b else f"b{k + 1}"
-        key = f"blocks[{k}] ({name})" if "name" in b else f"blocks[{k}]"
-        for need in ("vertices", "faces"):
-            if need not in b:
-                raise doc.fail(key, f"needs {need!r} ([[x, y, z], ...] and [[i, j, k, ...], ...])")
-        v = doc.points(f"{key}.vertices", b["vertices"])
-        faces = doc.faces(f"{key}.faces", b["faces"], len(v))
-        support = doc.flag(f"{key}.support", b["support"]) if "support" in b else False
-        uw = doc.number(f"{key}.unit_weight", b["unit_weight"], positive=True) if "unit_weight" in b else None
-        blocks.append(RawBlock(name, v, faces, support, uw))
+    for k, b in enumerate(doc.blocks):
+        name = b.name if b.name is not None else f"b{k + 1}"
+        for i, face in enumerate(b.faces):
+            for j, index in enumerate(face):
+                if not 0 <= index < len(b.vertices):
+                    raise AssemblyError(
+                        f"{path}: {_where(d)(('blocks', k, 'faces', i, j))}: must be a vertex index, a whole number "
+                        f"from 0 to {len(b.vertices) - 1}, got {index}"
+                    )
+        vertices = np.array(b.vertices, dtype=float).reshape(-1, 3)
+        blocks.append(RawBlock(name, vertices, [list(f) for f in b.faces], b.support, b.unit_weight))
     interfaces = None
-    if "interfaces" in d:
-        interfaces = []
-        for k, it in enumerate(doc.array("interfaces", d["interfaces"])):
-            key = f"interfaces[{k}]"
-            doc.obj(key, it, _INTERFACE_KEYS)
-            for need in ("a", "b", "points"):
-                if need not in it:
-                    raise doc.fail(key, f"needs {need!r} (blocks a and b by name, points [[x, y, z], ...])")
-            normal = None if it.get("normal") is None else doc.point(f"{key}.normal", it["normal"])
-            interfaces.append(dict(
-                a=doc.text(f"{key}.a", it["a"]), b=doc.text(f"{key}.b", it["b"]),
-                points=doc.points(f"{key}.points", it["points"]).tolist(), normal=normal, label=key,
-                stiffness=doc.number(f"{key}.stiffness", it["stiffness"], positive=True) if "stiffness" in it else 1.0,
-            ))
+    if doc.interfaces is not None:
+        interfaces = [
+            dict(a=it.a, b=it.b, points=it.points, normal=it.normal, label=f"interfaces[{k}]", stiffness=it.stiffness)
+            for k, it in enumerate(doc.interfaces)
+        ]
     return RawAssembly(
-        blocks,
-        interfaces,
-        doc.number("unit_weight", d["unit_weight"], positive=True) if "unit_weight" in d else None,
-        _LENGTH[lu],
-        _FORCE[fu],
-        dict(doc.obj("meta", d["meta"])) if "meta" in d else {},
+        blocks, interfaces, doc.unit_weight, _LENGTH[doc.units.length], _FORCE[doc.units.force], dict(doc.meta)
     )
 
 
@@ -884,7 +957,8 @@ def save_assembly_json(assembly: Assembly, path: str | Path, interfaces: bool = 
     ----------
     assembly : Assembly
     path : str or Path
-        Output file (``.json``); parent directories are created.
+        Output file (``.json``), written whole (:func:`tce.files.atomic_write`); parent
+        directories are created.
     interfaces : bool
         Store the interfaces too (then :func:`load_assembly` uses them instead of
         detecting them again).
@@ -926,6 +1000,6 @@ def save_assembly_json(assembly: Assembly, path: str | Path, interfaces: bool = 
             }
             for i in assembly.interfaces
         ]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(doc, indent=1))
+    with atomic_write(path) as tmp:
+        tmp.write_text(json.dumps(doc, indent=1), encoding="utf-8")
     return path

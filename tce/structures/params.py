@@ -6,11 +6,10 @@ at the key (``docs/studies.md``).
 
 from __future__ import annotations
 
-import difflib
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 
-__all__ = ["MAX_BLOCKS", "check_blocks", "check_choice", "check_positive", "check_whole", "did_you_mean"]
+__all__ = ["MAX_BLOCKS", "check_blocks", "check_choice", "check_positive", "check_whole"]
 
 #: Most blocks in an assembly: a block file's (:mod:`tce.structures.io`) and every generator's.
 MAX_BLOCKS = 50_000
@@ -55,8 +54,3 @@ def check_choice(value: str, name: str, options: Sequence[str]) -> str:
         raise ValueError(f"{name} must be one of {list(options)}, got {value!r}")
     return value
 
-
-def did_you_mean(word: str, choices: Iterable[str]) -> str:
-    """``" (did you mean 'x'?)"`` for the choice closest to a misspelt ``word``, else ``""``."""
-    close = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1, cutoff=0.6)
-    return f" (did you mean {close[0]!r}?)" if close else ""

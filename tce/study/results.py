@@ -7,8 +7,8 @@ The study's ``results.nc`` is the concatenation of those files along ``scenario`
 study's order, with the load paths padded to a common number of steps
 (:func:`merge_scenarios`).
 
-Storage rules: every file is written atomically (:func:`write_atomic`: a temporary file in
-the same folder, fsync, rename, fsync of the folder), so a reader sees the old file or the
+Storage rules: every file is written atomically (:func:`tce.files.atomic_write`: a temporary
+file in the same folder, fsync, rename, fsync of the folder), so a reader sees the old file or the
 complete new one, never a part; a write that fails raises :class:`StorageError` naming the
 path and the cause and leaves no temporary behind. A scenario file records the hash of
 its scenario's definition (:attr:`tce.study.Scenario.key`) and of its own content; a
@@ -45,6 +45,7 @@ from ..core.model import InterfaceMap
 from ..core.resultants import global_vertex_forces
 from ..core.result import DOFS, WRENCH_COMPONENTS, XYZ
 from ..core.solve import SOLVER_NAME, TCEResult
+from ..files import atomic_write, temporaries
 from .schema import Scenario, Study
 
 __all__ = [
@@ -457,46 +458,27 @@ def storage_error(path: Path, exc: BaseException) -> StorageError:
 
 
 def write_atomic(ds: xr.Dataset, path: Path, engine: str | None = None) -> Path:
-    """Write ``ds`` to ``path`` as netCDF atomically: a temporary file in the same folder,
-    fsync, :func:`os.replace`, fsync of the folder. ``engine`` is xarray's writer (default:
-    netCDF-4).
+    """Write ``ds`` to ``path`` as netCDF, whole or not at all (:func:`tce.files.atomic_write`).
+    ``engine`` is xarray's writer (default: netCDF-4).
 
     Raises
     ------
     StorageError
         The file cannot be written (no temporary file is left).
     """
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        ds.to_netcdf(tmp, engine=engine)
-        with open(tmp, "rb") as fh:
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-        _fsync_dir(path.parent)
+        with atomic_write(path) as tmp:
+            ds.to_netcdf(tmp, engine=engine)
     except (OSError, RuntimeError) as exc:
         raise storage_error(path, exc) from None
-    finally:
-        with contextlib.suppress(OSError):
-            tmp.unlink(missing_ok=True)
     return path
-
-
-def _fsync_dir(directory: Path) -> None:
-    """Make a rename in ``directory`` durable."""
-    fd = os.open(directory, os.O_RDONLY)
-    try:
-        os.fsync(fd)
-    finally:
-        os.close(fd)
 
 
 def remove_temporaries(directory: Path, pid: int | None = None) -> list[Path]:
     """Remove the temporary files :func:`write_atomic` left in ``directory`` (a writer
     killed mid-write): those of process ``pid``, or all (the caller holds the folder's lock)."""
-    pattern = f".*.{pid}.tmp" if pid is not None else ".*.tmp"
     gone = []
-    for tmp in directory.glob(pattern):
+    for tmp in temporaries(directory, pid):
         with contextlib.suppress(OSError):
             tmp.unlink()
             gone.append(tmp)

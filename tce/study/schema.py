@@ -44,6 +44,7 @@ from pydantic import (
 )
 
 from .. import __version__, display
+from ..messages import describe, did_you_mean
 from ..analysis.loadpath import MAX_INCREMENTS
 from ..core.loads import LoadError, LoadPattern, resolve
 from ..core.material import Material
@@ -51,7 +52,6 @@ from ..core.fill import DISPERSION_2_TO_1
 from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.assembly import Assembly
 from ..structures.io import MAX_BLOCKS, InputLimitError
-from ..structures.params import did_you_mean
 from . import guards
 from .guards import StudyError
 from .names import PLOT_KINDS
@@ -858,105 +858,19 @@ _LISTS = (
     " ([ux, uy, uz, rx, ry, rz] in m and rad for a displacement, [x, y, z] for a point or a force, "
     "[x, y] for a plan point, [from, to] for a plan range)"
 )
+#: hints of a study file that replace :data:`tce.messages.HINTS`
 _HINTS = {
-    "extra_forbidden": "remove it or correct its spelling (keys: docs/studies.md)",
-    "missing": "add it",
-    "greater_than": "use a value > {gt}",
-    "greater_than_equal": "use a value >= {ge}",
-    "less_than": "use a value < {lt}",
-    "multiple_of": "use a multiple of {multiple_of}",
-    "finite_number": "use a finite number (NaN and inf are not allowed)",
     "too_short": "give exactly {min_length} numbers" + _LISTS,
     "too_long": "give exactly {max_length} numbers" + _LISTS,
-    "float_type": "write a number",
-    "float_parsing": "write a number",
-    "int_type": "write a whole number",
-    "int_from_float": "write a whole number",
-    "int_parsing": "write a whole number",
-    "list_type": "write a list, e.g. [1, 2]",
-    "dict_type": "write a table",
-    "model_type": "write a table",
-    "string_type": "write a quoted string",
     "string_pattern_mismatch": "use only letters, digits, '_', '.' and '-', not starting with '.' or '-'",
-    "string_too_short": "give a non-empty value",
-    "string_too_long": "use at most {max_length} characters",
-    "less_than_equal": "use a value <= {le}",
-    "bool_type": "write true or false",
-    "value_error": "{fix}",
-    "union_tag_invalid": "use one of the structure types listed",
+    "union_tag_invalid": "use one of the structure types {tags}",
     "union_tag_not_found": "add type = \"semicircular_arch\" (or another structure type)",
-    "literal_error": "use one of the values listed",
 }
-
-
-def _key(loc: tuple[Any, ...]) -> str:
-    """Dotted TOML key of a pydantic location (drops the union tags pydantic inserts)."""
-    parts: list[str] = []
-    for item in loc:
-        if isinstance(item, int):
-            parts[-1] = f"{parts[-1]}[{item}]" if parts else f"[{item}]"
-        elif item in ("float", "list[float]", *STRUCTURE_TYPES) or "[" in str(item):
-            continue
-        else:
-            parts.append(str(item))
-    return ".".join(parts) or "(top level)"
-
 
 #: ``[structure] type`` -> its section (from the ``Structure`` union)
 _STRUCTURES: dict[str, type[BaseModel]] = {
     get_args(cls.model_fields["type"].annotation)[0]: cls for cls in get_args(get_args(Structure)[0])
 }
-
-
-def _siblings(loc: tuple[Any, ...]) -> list[str]:
-    """The keys allowed beside the last item of a pydantic location (for "did you mean")."""
-    model: type[BaseModel] | None = StudyFile
-    for item in loc[:-1]:
-        if isinstance(item, int):  # an item of a list of tables ([[loads.point]])
-            continue
-        if item in _STRUCTURES:
-            model = _STRUCTURES[item]
-        elif model is not None and item in model.model_fields:
-            ann = model.model_fields[item].annotation
-            ann = get_args(ann)[0] if get_args(ann) and getattr(ann, "__origin__", None) is list else ann
-            model = ann if isinstance(ann, type) and issubclass(ann, BaseModel) else None
-        else:
-            return []
-    return list(model.model_fields) if model is not None else []
-
-
-def _hint(err: dict[str, Any]) -> str:
-    """How to fix one pydantic error: the hint of its type, with a "did you mean"."""
-    ctx = dict(err.get("ctx", {}))
-    if err["type"] == "value_error":  # our validators write "what is wrong; fix: how"
-        ctx["fix"] = str(ctx.get("error", "")).partition("; fix: ")[2] or "see docs/studies.md"
-    hint = _HINTS.get(err["type"], "see docs/studies.md").format(**ctx)
-    if err["type"] == "extra_forbidden":
-        hint = f"remove it or correct its spelling{did_you_mean(err['loc'][-1], _siblings(err['loc']))} (keys: docs/studies.md)"
-    elif err["type"] == "union_tag_invalid":
-        tag = err["ctx"]["tag"]
-        hint = f"use one of the structure types {list(_STRUCTURES)}{did_you_mean(tag, _STRUCTURES)}"
-    return hint
-
-
-def _describe(path: Path, exc: ValidationError) -> str:
-    """One line per problem: file, key, what is wrong, how to fix it."""
-    lines, seen = [], set()
-    for err in exc.errors():
-        key = _key(err["loc"])
-        if key in seen:  # a union reports each alternative: keep the first
-            continue
-        seen.add(key)
-        got = "" if err["type"] in ("missing", "value_error", "union_tag_invalid") else f" (got {_short(err.get('input'))})"
-        msg = str(err["ctx"]["error"]).partition("; fix: ")[0] if err["type"] == "value_error" else err["msg"]
-        lines.append(f"{path}: {key}: {msg}{got}; fix: {_hint(err)}")
-    return "\n".join(lines)
-
-
-def _short(value: Any) -> str:
-    """``repr`` of an input, cut to 60 characters."""
-    text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def parse_study(text: str, path: Path | str = "<study>") -> Study:
@@ -976,7 +890,7 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
     try:
         spec = StudyFile.model_validate(data)
     except ValidationError as exc:
-        raise StudyError(_describe(path, exc)) from None
+        raise StudyError("\n".join(describe(path, exc, StudyFile, "docs/studies.md", _HINTS, _STRUCTURES))) from None
     guards.check_work(path, spec)
     if isinstance(spec.structure, FileStructure):
         where = (path.parent / spec.structure.path).resolve()

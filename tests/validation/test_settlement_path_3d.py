@@ -20,7 +20,7 @@ from scipy.spatial.transform import Rotation
 
 from reference import spreading as rs
 from tce.analysis import Analysis
-from tce.analysis.settlement_path import rotation_matrices, settlement_path
+from tce.analysis.settlement_path import settlement_path
 from tce.structures.arch import semicircular_arch
 from tce.structures.dome import hemispherical_dome, radial_settlement
 from tce.study.runner import run_study
@@ -28,12 +28,6 @@ from tce.study.schema import load_study
 
 STUDIES = Path(__file__).resolve().parents[2] / "studies"
 SPREAD = {"left": [-1.0, 0, 0, 0, 0, 0], "right": [1.0, 0, 0, 0, 0, 0]}
-
-
-def test_rodrigues_equals_scipy():
-    w = np.random.default_rng(3).normal(size=(50, 3)) * 1.3
-    w[0] = 0.0
-    np.testing.assert_allclose(rotation_matrices(w), Rotation.from_rotvec(w).as_matrix(), atol=1e-14)
 
 
 @lru_cache(maxsize=None)
@@ -91,15 +85,22 @@ def test_dome_first_state_is_todays_tce():
     assert r.wrenches()[0][:, 2].sum() == pytest.approx(d.weights[list(d.free_indices)].sum(), rel=1e-9)
 
 
-def test_dome_radial_spread_collapses_symmetrically_and_converges():
+def test_dome_radial_spread_cracks_symmetrically_and_converges():
     """The lunes: every meridian joint opens, each lune hinges at the intrados of its
     course 1|2 joint and at the extrados of its course 3|4 joint; the eight sectors move
-    alike (rotational symmetry); halving the increment moves the capacity less than 1e-3.
-    Pin: 0.74781 m of radial spread (measured here with both increments)."""
+    alike (rotational symmetry); halving the increment moves the last standing magnitude
+    less than 1e-3, and nothing stands one bracket (increment / 64) beyond it. Pin: 0.74781 m
+    of radial spread (measured here with both increments). Beyond it the lunes fall; HiGHS
+    (1.x with scipy 1.17) fails on the program of the configuration where their fall closes
+    a joint, so whether they come to rest there is undecided: ``numerical``, never a collapse
+    (``collapse`` once HiGHS decides it)."""
     a, b = dome_path(0.02), dome_path(0.01)
-    assert a.status == b.status == "collapse"
-    assert abs(a.capacity - b.capacity) < 1e-3
-    assert b.capacity == pytest.approx(0.74781, abs=2e-4)
+    for r, h in ((a, 0.02), (b, 0.01)):
+        assert r.status in ("collapse", "numerical"), r.message
+        assert r.status == "collapse" or "HiGHS" in r.message, r.message
+        assert 0 < r.upper - r.magnitudes[-1] <= h / 64 + 1e-12
+    assert abs(a.magnitudes[-1] - b.magnitudes[-1]) < 1e-3
+    assert b.magnitudes[-1] == pytest.approx(0.74781, abs=2e-4)
     d = dome()
     disp = b.displacements()[-1]
     # sector j's blocks are sector 1's turned by 45 j degrees about z
@@ -120,15 +121,19 @@ def test_dome_radial_spread_collapses_symmetrically_and_converges():
 
 
 @pytest.mark.parametrize(
-    "study, capacity",
-    [("dome_spreading.toml", 0.74781), ("arch_file_spreading.toml", 0.22825)],
+    "study, outcomes, standing",
+    [("dome_spreading.toml", ("collapse", "numerical"), 0.74781), ("arch_file_spreading.toml", ("collapse",), 0.22825)],
     ids=["dome", "block_file"],
 )
-def test_study_files_run_the_path(study, capacity, tmp_path):
-    """The dome's radial spread and a user's block file run from their study files (pins
-    measured here; the file's arch is compas_dem's, studies/data)."""
+def test_study_files_run_the_path(study, outcomes, standing, tmp_path):
+    """The dome's radial spread and a user's block file run from their study files (pins of
+    the last standing magnitude measured here, the capacity of a collapse; the file's arch is
+    compas_dem's, studies/data). The dome's fall is undecided by HiGHS (see above)."""
     report = run_study(load_study(STUDIES / study), out=tmp_path, jobs=1, plots=False)
     ds = xr.open_dataset(report.results)
-    assert str(ds.settlement_outcome.values[0]) == "collapse"
-    assert float(ds.settlement_capacity.values[0]) == pytest.approx(capacity, abs=2e-4)
+    outcome = str(ds.settlement_outcome.values[0])
+    assert outcome in outcomes
+    assert float(ds.settlement_magnitude.max()) == pytest.approx(standing, abs=2e-4)
+    if outcome == "collapse":
+        assert float(ds.settlement_capacity.values[0]) == pytest.approx(standing, abs=2e-4)
     assert ds.settlement_reaction.dims == ("scenario", "settlement_step", "support", "component")
