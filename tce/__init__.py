@@ -24,13 +24,6 @@ from __future__ import annotations
 from importlib import import_module as _import_module
 from importlib.metadata import PackageNotFoundError as _PackageNotFoundError
 from importlib.metadata import version as _version
-import os as _os
-import sys as _sys
-
-if _sys.argv and _os.path.basename(_sys.argv[0]) == "tce":  # the tce program: Ctrl-C from now on in one line
-    from .signals import handle_signals as _handle_signals
-
-    _handle_signals(raising=False)
 
 try:
     __version__ = _version("tce")

@@ -100,8 +100,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--out", type=Path, default=Path("results"), metavar="DIR", help="results root (default: results)")
     run.add_argument("--jobs", type=_jobs, default=None, metavar="N", help="parallel workers (default: in-process when the study is smaller than starting workers costs, else all cores)")
     run.add_argument(
-        "--backend", choices=("loky", "dask"), default="loky",
-        help="loky: processes on this machine (default); dask: a Dask distributed cluster",
+        "--backend", choices=("processes", "dask"), default="processes",
+        help="processes: worker processes on this machine (default); dask: a Dask distributed cluster",
     )
     run.add_argument(
         "--scheduler", metavar="ADDR", default=None,
@@ -589,29 +589,18 @@ def _bench(args: argparse.Namespace) -> int:
     return 0
 
 
-def _without_dask() -> None:
-    """Keep xarray from importing dask in this program and its workers (:mod:`tce.study.jobs`)."""
-    from .study.jobs import NO_DASK, block_dask_import
-
-    os.environ[NO_DASK] = "1"
-    block_dask_import()
-
-
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tce`` command; returns the exit code.
 
     Parameters
     ----------
     argv : sequence of str, optional
-        Arguments without the program name (default: ``sys.argv[1:]``, the ``tce``
-        program, which then keeps dask from being imported unless ``--backend dask``).
+        Arguments without the program name (default: ``sys.argv[1:]``, the ``tce`` program).
     """
-    before = handle_signals()  # first: Ctrl-C or SIGTERM at any moment, imports included, ends in one line
+    before = handle_signals()  # first: Ctrl-C or SIGTERM from here on, imports included, ends in one line
     try:
         args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line
         _setup_logging(args.verbose, args.quiet)
-        if argv is None and getattr(args, "backend", None) != "dask":
-            _without_dask()
         commands = {"run": _run, "show": _show, "plot": _plot, "view": _view, "export": _export, "report": _report,
                     "check": _check, "bench": _bench}
         for option, value in vars(args).items():

@@ -1,9 +1,7 @@
-"""Choosing in-process or parallel runs, and keeping dask out of the ``tce`` program."""
+"""Choosing in-process or parallel runs."""
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -72,20 +70,6 @@ def test_run_logs_its_choice(tmp_path, caplog):
         run_study(study, tmp_path)
     assert any(r.message.startswith("running fig7_8_inplane: 4 scenarios; in-process: the study's work")
                for r in caplog.records)
-
-
-@pytest.mark.parametrize("jobs", [[], ["--jobs", "2"]], ids=["default", "two workers"])
-def test_tce_program_does_not_import_dask(tmp_path, jobs):
-    # the program, in-process or with workers (which inherit TCE_NO_DASK), runs without dask
-    code = (
-        "import sys\n"
-        "from tce.cli import main\n"
-        f"sys.argv = ['tce', 'run', {str(STUDIES / 'fig9_outofplane.toml')!r}, '--out', {str(tmp_path)!r}, '--no-plots', *{jobs!r}]\n"
-        "rc = main()\n"
-        "print(rc, sys.modules.get('dask', 'absent'))\n"
-    )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.split()[-2:] == ["0", "None"]  # blocked: never imported
 
 
 def test_the_estimate_is_cpu_time_not_wall(fig8, monkeypatch):

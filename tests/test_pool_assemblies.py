@@ -1,8 +1,7 @@
-"""Worker processes hold the structure of their last scenario (issue 24): the parent sends an
-assembly only when a worker's next scenario has another one. A geometry sweep of three
-scenarios per structure on two workers (so some worker gets two scenarios of one structure in
-a row, and every worker meets several structures) must give the in-process dataset: a worker
-that kept a stale structure would solve a scenario on another geometry."""
+"""Worker processes keep the analyses of the structures they met (issue 24). A geometry sweep
+of three scenarios per structure on two workers (so some worker gets two scenarios of one
+structure in a row, and every worker meets several structures) must give the in-process
+dataset: a worker that reused a stale analysis would solve a scenario on another geometry."""
 
 from __future__ import annotations
 

@@ -8,8 +8,6 @@ needs xarray and joblib, is imported from :mod:`tce.study.runner`).
 
 from typing import Any
 
-from . import jobs as _jobs  # noqa: F401  (first: honours TCE_NO_DASK before anything imports xarray)
-
 __all__ = ["Scenario", "Study", "StudyError", "build_material", "build_structure", "load_study", "parse_study"]
 
 

@@ -1,7 +1,7 @@
 """How many worker processes a run uses: in-process when the work is smaller than starting workers.
 
 A parallel run pays a fork server that imports numpy, scipy, xarray, Clarabel and tce once
-(:func:`tce.study.runner._context`), a fork per worker, the analyses each worker builds again
+(:mod:`tce.study.runner`), a fork per worker, the analyses each worker builds again
 and the pickling of every scenario and answer: :data:`WORKER_START_S` CPU seconds, whatever
 the study. Most paper studies solve in well under that (the Fig. 8 study's whole solver work
 is about 30 ms), so running them on all cores makes them slower (2.4x on this project's
@@ -25,14 +25,6 @@ scenario, :data:`SCENARIO_S` the recording and writing of one answer and ``t_bui
 time to build its analysis (assembly, model). An assembly whose model has more than
 :data:`LARGE_MODEL` unknowns is taken as large work without solving anything (one solve of
 it costs about a worker start).
-
-Dask: xarray imports dask, when it is installed, the first time it makes a Dataset
-(``xarray.namedarray.pycompat.array_type("dask")``), about 0.8 s per process on this
-project's machine. The ``tce`` program sets ``TCE_NO_DASK=1`` unless ``--backend dask`` is
-chosen; :func:`block_dask_import` (called when this module is imported with that variable
-set, in the program and in its loky workers, which inherit the environment) makes that import
-fail fast, which xarray takes as "dask not installed". xarray remembers whether dask is
-installed from its own import on, so :mod:`tce.study` imports this module first.
 """
 
 from __future__ import annotations
@@ -40,17 +32,16 @@ from __future__ import annotations
 import logging
 import math
 import os
-import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:  # imported lazily: this module must load before anything imports xarray
+if TYPE_CHECKING:
     from ..core.analysis import Analysis
     from .schema import Scenario
 
-__all__ = ["LARGE_MODEL", "SCENARIO_S", "WORKER_START_S", "JobsChoice", "block_dask_import", "choose_jobs", "estimate_work"]
+__all__ = ["LARGE_MODEL", "SCENARIO_S", "WORKER_START_S", "JobsChoice", "choose_jobs", "estimate_work"]
 
 log = logging.getLogger(__name__)
 
@@ -63,23 +54,6 @@ WORKER_START_S = 1.5
 SCENARIO_S = 0.02
 #: Unknowns above which a model is taken as large work without a timed solve.
 LARGE_MODEL = 20_000
-#: Environment variable that keeps dask from being imported (see module docstring).
-NO_DASK = "TCE_NO_DASK"
-
-
-def block_dask_import() -> bool:
-    """Make ``import dask`` fail in this process; True if blocked. Nothing is done once dask
-    or xarray is imported (xarray has then already taken note that dask is installed)."""
-    if sys.modules.get("dask") is not None or "xarray" in sys.modules:
-        return False
-    sys.modules["dask"] = None  # type: ignore[assignment]  # import raises ModuleNotFoundError
-    return True
-
-
-if os.environ.get(NO_DASK) == "1":
-    block_dask_import()
-
-
 @dataclass(frozen=True)
 class JobsChoice:
     """How many processes run the scenarios, and why.
@@ -142,7 +116,7 @@ def choose_jobs(
     scenarios: Sequence[Scenario],
     jobs: int | None,
     analysis_of: Callable[[Scenario], Analysis],
-    backend: str = "loky",
+    backend: str = "processes",
     cpus: int | None = None,
 ) -> JobsChoice:
     """How many processes should solve ``scenarios`` (module docstring).

@@ -3,29 +3,34 @@
 :func:`run_study` expands a :class:`tce.study.Study` into scenarios, skips those already
 written under ``<out>/<study name>/scenarios/`` that can be trusted
 (:func:`tce.study.results.load_finished`), and solves the rest: in this process with
-``jobs=1``, in a pool of worker processes with ``jobs > 1`` (``backend="loky"``, the
-default; workers are forked from a fork server that imported tce once, see
-:func:`_context`), or on a Dask distributed cluster through joblib's ``dask`` backend. Each worker
-keeps the :class:`tce.analysis.Analysis` of the structures and materials it has met, so
-operators are built once per worker and reused; the structure itself is built once per
-run (when the study is validated) and sent to a worker only when its next scenario has
-another structure than its last one. The answer of a scenario does
-not depend on where or in which order it runs.
+``jobs=1``, in a :class:`concurrent.futures.ProcessPoolExecutor` of ``jobs`` worker processes
+with ``jobs > 1`` (``backend="processes"``, the default; workers are forked from a fork server
+that imported tce once, see :func:`_context`), or on a Dask distributed cluster through
+joblib's ``dask`` backend. Each worker keeps the :class:`tce.analysis.Analysis` of the
+structures and materials it has met, so operators are built once per worker and reused; the
+structures themselves are built once per run (when the study is validated) and sent to each
+worker once, when it starts. The answer of a scenario does not depend on where or in which order it runs.
 
 Faults (``docs/studies.md``, "Faults and resuming"):
 
 - Each scenario is written, atomically, by the process that solved it, before the
   parent is told it is done; what is finished is on disk whatever happens next.
-- A worker that dies (killed by a signal, e.g. by the out-of-memory killer) is reported
-  with its scenario and signal; that scenario is not retried in this run (it would likely
-  die again) and the run goes on with the others in a new worker. A results folder that
-  cannot be written stops the dispatch (the running scenarios finish). Either way the run
-  ends with :class:`RunFault` (exit code 3 in the CLI) after every other scenario is
-  kept, ``results.nc`` is not replaced, and a rerun solves only what is missing.
-- Ctrl-C (:class:`KeyboardInterrupt`) stops the workers at once (a worker that is writing
-  a file finishes it first), removes the temporary files and re-raises.
-- Workers ignore Ctrl-C from their start (the parent decides: :mod:`tce.signals`) and
-  end within a second, silently, if the parent dies.
+- A worker that dies (killed by a signal, e.g. by the out-of-memory killer) breaks the pool
+  (:class:`concurrent.futures.process.BrokenProcessPool`), which fails every scenario then
+  running, without saying which one killed it. The run keeps at most ``jobs + 1`` scenarios
+  in the pool (one queued, so that a worker that ends a scenario finds its next at once), so
+  those are all the suspects: the scenarios not yet given to the pool go on in a new pool,
+  and each suspect is solved again alone (nothing else in the pool). A suspect that breaks the
+  pool alone is the one that kills its worker: it is reported and not retried; a worker death
+  that every suspect survives is a warning: nothing is lost. A results folder that
+  cannot be written stops the dispatch (the running scenarios finish). A lost or failed
+  scenario ends the run with :class:`RunFault` (exit code 3 in the CLI) after every other
+  scenario is kept; ``results.nc`` is not replaced, and a rerun solves only what is missing.
+- Workers start with Ctrl-C ignored (the parent decides: :mod:`tce.signals`). Each holds the
+  read end of a pipe whose only write end is the parent's: when the parent closes it (Ctrl-C,
+  SIGTERM: :class:`KeyboardInterrupt`) or ends (``kill -9`` of ``tce run``), a thread of each
+  worker reads end-of-file and ends its process at once, after the scenario file it may be
+  writing. The parent then removes the temporary files and re-raises.
 - One run at a time per study folder (:func:`tce.study.results.folder_lock`); the folder
   is created and locked before anything is solved, so an unwritable destination fails
   with :class:`RunError` before the run.
@@ -37,15 +42,15 @@ import contextlib
 import logging
 import math
 import multiprocessing as mp
-import multiprocessing.connection
 import os
 import shutil
-import signal
 import threading
 import time
 import traceback
 from collections import deque
 from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import FIRST_COMPLETED, BrokenExecutor, Future, ProcessPoolExecutor, wait
+from multiprocessing.connection import Connection
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal
@@ -91,7 +96,7 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-Backend = Literal["loky", "dask"]
+Backend = Literal["processes", "dask"]
 #: called after each finished scenario with (scenarios done, scenarios to solve, load steps done)
 Progress = Callable[[int, int, int], None]
 #: draws a results dataset: (dataset, study folder, processes) -> files written
@@ -263,97 +268,44 @@ def with_drawn_states(analysis: Analysis, lp: LoadPathResult, lams: Sequence[flo
     )
 
 
+#: held by a process while it writes a scenario file: a worker told to end finishes the file first
+_WRITING = threading.Lock()
+
+
 def _solve_and_write(sc: Scenario, assembly: Assembly, directory: Path) -> xr.Dataset:
     """Solve ``sc`` and write its file; return its dataset (what the file holds), which the
     run merges without reading the file back."""
     ds = solve_scenario(sc, assembly)
-    with _writing():
+    with _WRITING:
         write_scenario(ds, directory, sc)
     return ds
 
 
-class _Stop:
-    """A worker's termination request, deferred while it writes a file."""
-
-    writing = False
-    requested = False
+#: a pool worker's structures of the run: assembly digest -> assembly (set when it starts)
+_ASSEMBLIES: dict[str, Assembly] = {}
 
 
-@contextlib.contextmanager
-def _writing() -> Iterator[None]:
-    _Stop.writing = True
-    try:
-        yield
-    finally:
-        _Stop.writing = False
-        if _Stop.requested:
-            os._exit(1)
-
-
-def _on_terminate(signum: int, frame: Any) -> None:
-    if _Stop.writing:
-        _Stop.requested = True
-    else:
-        os._exit(1)
-
-
-def _watch_parent(parent: int) -> None:
-    """End this worker within a second of its parent's death (``kill -9`` of ``tce run``).
-
-    The worker's own parent is ``parent`` (spawned) or the fork server (forked from it,
-    which ends when ``parent`` does): either way the worker is re-parented when its parent
-    dies; ``parent`` is also watched directly."""
-    ppid = os.getppid()
-    while os.getppid() == ppid and _alive(parent):
-        time.sleep(0.5)
-    os.kill(os.getpid(), signal.SIGTERM)
-
-
-def _alive(pid: int) -> bool:
-    """Whether a process ``pid`` exists and has not ended (a zombie, killed but not yet
-    reaped by its own parent, has ended)."""
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    try:
-        with open(f"/proc/{pid}/stat", "rb") as fh:
-            return fh.read().rpartition(b")")[2].split()[0] != b"Z"
-    except (OSError, IndexError):  # no /proc: existing is alive
-        return True
-
-
-def _worker(conn: mp.connection.Connection, directory: str, parent: int, level: int) -> None:
-    """Worker process: solve the scenarios the parent sends, write each, reply in one message.
-
-    A task is ``(scenario, assembly)``, the assembly None when it is the one of the worker's
-    previous task (:func:`_in_pool` sends each structure once per run of scenarios sharing it)."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is for the parent to handle
-    signal.signal(signal.SIGTERM, _on_terminate)
-    threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+def _start_worker(stop: Connection, level: int, assemblies: dict[str, Assembly]) -> None:
+    """Initializer of a pool worker: the ``tce`` log level of the parent, the run's structures
+    (sent once per worker, not with each scenario), and a thread that ends the process when
+    ``stop`` reads end-of-file (module docstring)."""
     logging.getLogger("tce").setLevel(level)
-    assembly = None
-    while True:
-        try:
-            task = conn.recv()
-        except (EOFError, OSError):  # the parent ended (a reset connection when it was killed)
-            return
-        if task is None:
-            return
-        sc, sent = task
-        assembly = sent if sent is not None else assembly
-        try:
-            reply: tuple = ("done", sc.name, _solve_and_write(sc, assembly, Path(directory)))
-        except StorageError as exc:
-            reply = ("storage", sc.name, str(exc))
-        except Exception as exc:  # noqa: BLE001 - reported to the parent with its traceback
-            reply = ("error", sc.name, f"{type(exc).__name__}: {exc}", traceback.format_exc())
-        try:
-            conn.send(reply)
-        except OSError:  # the parent ended: the scenario's file is written, a rerun reuses it
-            return
+    _ASSEMBLIES.update(assemblies)
+    threading.Thread(target=_end_on_close, args=(stop,), daemon=True).start()
+
+
+def _solve_in_worker(sc: Scenario, directory: Path) -> xr.Dataset:
+    """A pool worker's task: :func:`_solve_and_write` on the scenario's structure."""
+    return _solve_and_write(sc, _ASSEMBLIES[sc.assembly_digest], directory)
+
+
+def _end_on_close(stop: Connection) -> None:
+    """Wait until the parent closes its end of ``stop`` or ends, then end this process (after
+    the scenario file it may be writing)."""
+    with contextlib.suppress(EOFError, OSError):
+        stop.recv_bytes()  # the parent never writes: this returns only by raising
+    with _WRITING:
+        os._exit(1)
 
 
 # ----------------------------------------------------------------------------- caller side
@@ -432,16 +384,10 @@ def _in_process(todo: list[Scenario], study: Study, directory: Path, tally: _Tal
         tally.done(sc.name, ds)
 
 
-def _death(process: mp.process.BaseProcess, sc: Scenario | None) -> str:
-    """One line on a worker that ended without replying."""
-    code = process.exitcode
-    if code is not None and code < 0:
-        name = signal.Signals(-code).name
-        how = f"was killed by {name}" + (" (as the out-of-memory killer does)" if name == "SIGKILL" else "")
-    else:
-        how = f"exited with code {code}"
-    what = f"while solving scenario {sc.name!r}: that scenario is not saved" if sc else "between scenarios"
-    return f"worker process {process.pid} {how} {what}; the other scenarios went on"
+def _lost(sc: Scenario) -> str:
+    """One line on a scenario whose worker died when it ran alone."""
+    return (f"scenario {sc.name!r} is not saved: its worker process ended abruptly, twice, the second time "
+            "alone (killed, as the out-of-memory killer does, or crashed); the other scenarios went on")
 
 
 def _context() -> mp.context.BaseContext:
@@ -451,99 +397,83 @@ def _context() -> mp.context.BaseContext:
 
     The fork server is started by the first pool of the process and kept for later runs;
     it ignores Ctrl-C and ends with the process. A forked worker starts in milliseconds
-    instead of a fresh interpreter's 1.5-3 CPU seconds of imports."""
+    instead of a fresh interpreter's 1.5-3 CPU seconds of imports. ``dask.array`` is preloaded
+    too: xarray imports it, where it is installed, when it makes its first Dataset (0.3 CPU
+    seconds per worker); where it is not, the fork server skips it (an ImportError of a
+    preloaded module is ignored)."""
     if "forkserver" not in mp.get_all_start_methods():
         return mp.get_context("spawn")
     ctx = mp.get_context("forkserver")
-    ctx.set_forkserver_preload([__name__])
+    ctx.set_forkserver_preload([__name__, "dask.array"])
     return ctx
 
 
 def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tally: _Tally) -> None:
     """Solve ``todo`` in ``jobs`` worker processes (see the module docstring for faults)."""
     ctx = _context()
-    queue = deque(todo)
-    workers: dict[Any, list] = {}  # parent end of the pipe -> [process, scenario being solved]
-    # parent end of the pipe -> digest of the assembly the worker holds: each structure is
-    # pickled once per worker and run of scenarios (70 kB, 0.3-0.5 ms each way on the paper's arch)
-    holds: dict[Any, str] = {}
-    stopping = False
+    stop, keep = ctx.Pipe(duplex=False)  # workers hold ``stop``; closing ``keep`` ends them
+    waiting = deque(todo)
+    again: deque[Scenario] = deque()  # running when a worker died: each is solved again alone
+    retried: set[str] = set()
+    running: dict[Future, Scenario] = {}
     level = logging.getLogger("tce").getEffectiveLevel()
-
-    def start() -> Any:
-        conn, child = ctx.Pipe()
-        process = ctx.Process(target=_worker, args=(child, str(directory), os.getpid(), level), daemon=True)
-        with quiet_children():  # a Ctrl-C while it imports its modules is the parent's to handle
-            process.start()
-        child.close()
-        workers[conn] = [process, None]
-        return conn
-
-    def feed(conn: Any) -> None:
-        """Give the worker its next scenario, or tell it to end."""
-        sc = queue.popleft() if queue and not stopping else None
-        workers[conn][1] = sc
-        try:
-            if sc is None:
-                conn.send(None)
-            elif holds.get(conn) == sc.assembly_digest:
-                conn.send((sc, None))
-            else:
-                conn.send((sc, study.assembly(sc.structure)))
-                holds[conn] = sc.assembly_digest
-        except OSError:  # it died between scenarios: its end shows in the next wait
-            if sc is not None:
-                queue.appendleft(sc)
-            workers[conn][1] = "dead"
-
-    def bury(conn: Any) -> None:
-        """Report a worker that ended without replying, clean after it, replace it."""
-        process, sc = workers.pop(conn)
-        holds.pop(conn, None)
-        conn.close()
-        process.join(5)
-        tally.fault(_death(process, sc if isinstance(sc, Scenario) else None))
-        remove_temporaries(directory, process.pid)
-        if queue and not stopping:
-            feed(start())
-
+    assemblies = {sc.assembly_digest: study.assembly(sc.structure) for sc in todo}
+    pool: ProcessPoolExecutor | None = None
+    stopping = False
     try:
-        for _ in range(min(jobs, len(todo))):
-            feed(start())
-        while busy := [c for c, (_, sc) in workers.items() if sc is not None]:
-            for conn in mp.connection.wait(busy):
-                try:
-                    reply = conn.recv()
-                except (EOFError, OSError):
-                    bury(conn)
-                    continue
-                kind, name, *rest = reply
-                sc = workers[conn][1]
-                if kind == "done":
-                    tally.done(name, *rest)
-                elif kind == "storage":
-                    tally.fault(rest[0])
-                    stopping = True  # the destination takes no more: the running ones finish
+        while running or (waiting or again) and not stopping:
+            if pool is None:
+                pool = ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_start_worker,
+                                           initargs=(stop, level, assemblies))
+            broken = False
+            # a scenario solved again runs alone; the others fill the pool
+            while not stopping and not any(sc.name in retried for sc in running.values()):
+                if again and not running:
+                    sc = again.popleft()
+                elif waiting and not again and len(running) <= jobs:  # one queued: a worker that ends finds its next
+                    sc = waiting.popleft()
                 else:
-                    tally.fault(_failed(sc, RuntimeError(rest[0])), rest[1])
-                feed(conn)
+                    break
+                try:
+                    with quiet_children():  # workers (and the fork server) start with Ctrl-C ignored
+                        running[pool.submit(_solve_in_worker, sc, directory)] = sc
+                except BrokenExecutor:  # a worker died between scenarios
+                    (again if sc.name in retried else waiting).appendleft(sc)
+                    broken = True
+                    break
+            done = wait(running, return_when=FIRST_COMPLETED).done if running else set()
+            if broken or any(isinstance(f.exception(), BrokenExecutor) for f in done):
+                done = wait(running).done  # the broken pool fails every scenario it holds
+                pool.shutdown()
+                pool = None
+            suspects = []
+            for future in done:
+                sc = running.pop(future)
+                exc = future.exception()
+                if exc is None:
+                    tally.done(sc.name, future.result())
+                elif isinstance(exc, StorageError):
+                    tally.fault(str(exc))
+                    stopping = True  # the destination takes no more: the running ones finish
+                elif not isinstance(exc, BrokenExecutor):
+                    tally.fault(_failed(sc, exc), "".join(traceback.format_exception(exc)))
+                elif sc.name in retried:
+                    tally.fault(_lost(sc))
+                else:
+                    suspects.append(sc)
+            if suspects:
+                log.warning("a worker process ended abruptly while %s ran: solved again, each alone",
+                            ", ".join(repr(sc.name) for sc in suspects))
+                retried.update(sc.name for sc in suspects)
+                again.extend(suspects)
+        if pool is not None:
+            pool.shutdown()  # the workers end on the pool's own request
     finally:
-        _end(workers, directory)
-
-
-def _end(workers: dict[Any, list], directory: Path) -> None:
-    """Stop the workers (one that is writing a file finishes it), wait for them, remove
-    their temporary files."""
-    for process, sc in workers.values():
-        if sc is not None and process.is_alive():
-            process.terminate()
-    for conn, (process, _) in workers.items():
-        process.join(10)
-        if process.is_alive():
-            process.kill()
-            process.join()
-        conn.close()
-        remove_temporaries(directory, process.pid)
+        keep.close()  # workers still running a scenario end now
+        if pool is not None:
+            pool.shutdown(cancel_futures=True)
+        stop.close()
+        remove_temporaries(directory)  # of the workers ended mid-write (this run holds the folder)
 
 
 def _on_dask(todo: list[Scenario], study: Study, directory: Path, scheduler: str | None, jobs: int, tally: _Tally) -> None:
@@ -606,7 +536,7 @@ def run_study(
     study: Study,
     out: Path | str = "results",
     jobs: int | None = None,
-    backend: Backend = "loky",
+    backend: Backend = "processes",
     scheduler: str | None = None,
     progress: Progress | None = None,
     plots: Draw | None = None,
@@ -627,8 +557,8 @@ def run_study(
         (:func:`tce.study.jobs.choose_jobs`, its reason logged at info). With
         ``backend="dask"`` and no ``scheduler``, the size of the local cluster started
         (default: all cores).
-    backend : {"loky", "dask"}
-        ``loky``: worker processes on this machine; ``dask``: a Dask distributed cluster.
+    backend : {"processes", "dask"}
+        ``processes``: worker processes on this machine; ``dask``: a Dask distributed cluster.
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:port``).
     progress : callable, optional
@@ -661,8 +591,8 @@ def run_study(
     """
     if jobs is not None and jobs < 1:
         raise RunError(f"jobs must be >= 1, got {jobs}")
-    if backend not in ("loky", "dask"):
-        raise RunError(f"unknown backend {backend!r}: use 'loky' or 'dask'")
+    if backend not in ("processes", "dask"):
+        raise RunError(f"unknown backend {backend!r}: use 'processes' or 'dask'")
     directory = _study_folder(out, study.name)
     folder = directory / "scenarios"
     scenarios = study.scenarios()

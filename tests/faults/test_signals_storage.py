@@ -11,7 +11,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -44,13 +43,6 @@ def finished(study, tmp_path_factory) -> Path:
     return runner.run_study(study, tmp_path_factory.mktemp("finished"), jobs=1, plots=False).results
 
 
-def _wait_for(predicate, timeout: float = 120.0) -> None:
-    end = time.monotonic() + timeout
-    while not predicate():
-        assert time.monotonic() < end, "timed out"
-        time.sleep(0.05)
-
-
 def _started(study: Path, out: Path, *args: str, fault: str) -> subprocess.Popen:
     env = dict(os.environ, MPLBACKEND="Agg", TCE_FAULT=fault)
     env["PYTHONPATH"] = os.pathsep.join([str(Path(__file__).parent / "hook"), *filter(None, [env.get("PYTHONPATH")])])
@@ -59,14 +51,22 @@ def _started(study: Path, out: Path, *args: str, fault: str) -> subprocess.Popen
                             preexec_fn=as_from_a_shell)
 
 
+def _until_three_done(run: subprocess.Popen) -> None:
+    """Read the run's progress lines until three of its four scenarios are done (and written):
+    the fourth is held, so a line says ``3/4`` within seconds (a "still working" one at least)."""
+    for line in run.stderr:
+        if "3/4 scenarios" in line:
+            return
+    raise AssertionError("the run ended before three scenarios were done")
+
+
 @pytest.mark.parametrize("jobs", ["1", "2"])
 def test_sigterm_stops_a_run_as_ctrl_c_does(study, reference, tmp_path: Path, jobs: str) -> None:
     """SIGTERM to the main process (as a scheduler or ``kill`` sends it) while the last
     scenario is held: exit 143, one line, three scenarios kept, a rerun equals a full run."""
-    out, gate = tmp_path / "out", tmp_path / "gate"
-    run = _started(write(tmp_path), out, "--jobs", jobs, fault=f"hold:{NAMES[-1]}:{gate}")
-    _wait_for(lambda: sum(files(study, out).values()) == 3)
-    time.sleep(0.3)  # the parent is waiting for the held scenario
+    out = tmp_path / "out"
+    run = _started(write(tmp_path), out, "--jobs", jobs, fault=f"hold:{NAMES[-1]}")
+    _until_three_done(run)
     run.send_signal(signal.SIGTERM)
     _, err = run.communicate(timeout=60)
     assert run.returncode == 143
@@ -77,11 +77,11 @@ def test_sigterm_stops_a_run_as_ctrl_c_does(study, reference, tmp_path: Path, jo
 
 
 def test_sigkill_of_the_main_process_leaves_workers_silent(study, reference, tmp_path: Path) -> None:
-    """``kill -9`` of ``tce run``: its workers end within seconds without a traceback (one of
-    them is held inside a scenario), every finished scenario is kept, a rerun resumes."""
-    out, gate = tmp_path / "out", tmp_path / "gate"
-    run = _started(write(tmp_path), out, "--jobs", "2", fault=f"hold:{NAMES[-1]}:{gate}")
-    _wait_for(lambda: sum(files(study, out).values()) == 3)
+    """``kill -9`` of ``tce run``: its workers end without a traceback (one of them is held
+    inside a scenario, the other waits for one), every finished scenario is kept, a rerun resumes."""
+    out = tmp_path / "out"
+    run = _started(write(tmp_path), out, "--jobs", "2", fault=f"hold:{NAMES[-1]}")
+    _until_three_done(run)
     run.send_signal(signal.SIGKILL)
     _, err = run.communicate(timeout=60)  # the pipes close when the workers have ended too
     assert run.returncode == -signal.SIGKILL
@@ -91,19 +91,24 @@ def test_sigkill_of_the_main_process_leaves_workers_silent(study, reference, tmp
     resume_equals(study, reference, out, reused=3)
 
 
-def test_ctrl_c_while_tce_imports_its_modules(tmp_path: Path) -> None:
-    """The tce program handles Ctrl-C from ``import tce`` on: one line, exit 130."""
+def test_ctrl_c_while_a_command_imports_its_modules(finished: Path) -> None:
+    """Signal handlers are the command line's: ``import tce`` leaves them alone, and Ctrl-C
+    while a command imports xarray ends it with one line, exit 130."""
     code = (
-        "import os, signal, sys, time\n"
-        "sys.argv[0] = 'tce'\n"
-        "import tce\n"
-        "os.kill(os.getpid(), signal.SIGINT)\n"
-        "import xarray\n"
-        "time.sleep(30)\n"
+        "import builtins, os, signal, sys\n"
+        "import tce.cli\n"
+        "assert signal.getsignal(signal.SIGINT) is signal.default_int_handler\n"
+        "real = builtins.__import__\n"
+        "def ctrl_c_at_xarray(name, *args, **kwargs):\n"
+        "    if name == 'xarray':\n"
+        "        os.kill(os.getpid(), signal.SIGINT)\n"
+        "    return real(name, *args, **kwargs)\n"
+        "builtins.__import__ = ctrl_c_at_xarray\n"
+        f"sys.exit(tce.cli.main(['show', {str(finished)!r}]))\n"
     )
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
                          preexec_fn=as_from_a_shell)
-    assert run.returncode == 130
+    assert run.returncode == 130, run.stderr
     assert run.stderr == "tce: interrupted (SIGINT)\n"
 
 

@@ -6,12 +6,13 @@ for the scenario named SCENARIO:
 
 - ``kill``: the process solving it kills itself with SIGKILL before solving (as the
   out-of-memory killer does);
-- ``interrupt``: after its file is written (and, with ARG, once ARG scenario files are in its
-  folder, so that another worker's scenario is finished too), the process sends SIGINT to its
-  process group (as Ctrl-C in a terminal does) and waits 3 s before reporting it done, so the
-  parent is interrupted while a finished scenario is not yet returned;
+- ``kill-once``: the same, the first time only (the file ARG, created then, says it was done);
+- ``interrupt``: after its file is written, the process sends SIGINT to its process group (as
+  Ctrl-C in a terminal does) and waits until it is ended, so that the parent is interrupted
+  while a finished scenario is not yet returned;
 - ``fill``: after its file is written, the file system of the folder ARG is filled up;
-- ``hold``: before solving, the process waits until the file ARG exists.
+- ``hold``: before solving, the process waits until it is ended (a signal, or the parent
+  ending its workers).
 """
 
 import os
@@ -20,7 +21,7 @@ _SPEC = os.environ.get("TCE_FAULT")
 
 if _SPEC:
     import signal
-    import time
+    import threading
     from pathlib import Path
 
     from tce.study import runner
@@ -38,18 +39,27 @@ if _SPEC:
         except OSError:
             pass
 
+    def _until_ended() -> None:
+        """Block until this process is ended (in the main thread a signal handler's exception
+        interrupts the wait)."""
+        threading.Event().wait()
+
     def _faulty(sc, assembly, directory):
+        if sc.name == _NAME and _KIND == "kill-once":
+            try:
+                Path(_ARG[0]).touch(exist_ok=False)
+            except FileExistsError:
+                pass
+            else:
+                os.kill(os.getpid(), signal.SIGKILL)
         if sc.name == _NAME and _KIND == "kill":
             os.kill(os.getpid(), signal.SIGKILL)
         if sc.name == _NAME and _KIND == "hold":
-            while not Path(_ARG[0]).exists():
-                time.sleep(0.05)
+            _until_ended()
         result = _solve_and_write(sc, assembly, directory)
         if sc.name == _NAME and _KIND == "interrupt":
-            while _ARG and len(list(Path(directory).glob("*.nc"))) < int(_ARG[0]):
-                time.sleep(0.05)
             os.killpg(os.getpgrp(), signal.SIGINT)
-            time.sleep(3)
+            _until_ended()
         if sc.name == _NAME and _KIND == "fill":
             _fill(Path(_ARG[0]))
         return result
