@@ -7,7 +7,7 @@ Measured with tce 0.1.0 (Clarabel 0.11.1) at commit 81fada9 on 2026-11-21 (first
 re-measured at commit 6b1b1bd on 2026-11-22: every lambda_max and the dome thrust came out
 bit-for-bit the same; the 8 x 6 dome's minimum thickness came out one bisection step lower
 (0.0393945 instead of 0.0394141), and is pinned at that value. The samples use the README's
-supports, friction and unit weights (see tests/test_io.py).
+supports, friction and unit weights (see tests/structures/test_io.py).
 
 Tolerances: the direct lambda_max and the thrust are one Clarabel solve at tolerance 1e-10,
 reproducible to ~1e-9: pinned to 1e-7. A minimum thickness is the upper end of a bisection
@@ -27,7 +27,7 @@ from tce.structures.dome import hemispherical_dome, radial_settlement
 from tce.core.material import Material
 from tce.analysis.thickness import minimum_thickness
 
-from test_io import SAMPLES, _load_sample
+from structures.test_io import SAMPLES, _load_sample
 
 # ---------------------------------------------------------------- the compas_cra samples
 # Direct lambda_max (spatial model) in x (alpha 0) and y (alpha 90), measured (see the module

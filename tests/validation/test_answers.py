@@ -59,7 +59,7 @@ MATERIALS = {
 }
 
 
-# a rigid Heyman arch has no minimum under transversal motions (unbounded: tests/test_solver.py)
+# a rigid Heyman arch has no minimum under transversal motions (unbounded: tests/core/test_solver.py)
 ARCH_CASES = [
     (mat, scene)
     for mat in sorted(MATERIALS)

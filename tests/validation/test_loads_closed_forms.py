@@ -1,4 +1,4 @@
-"""General loads against references tce did not produce (moved from tests/test_loads.py):
+"""General loads against references tce did not produce (moved from tests/core/test_loads.py):
 closed forms of rigid blocks (rocking, sliding, overturning of a column, a surcharge) and the
 paper's arch against a linear program written here from its geometry (scipy's HiGHS, not
 tce's model or solver).

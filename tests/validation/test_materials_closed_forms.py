@@ -1,5 +1,5 @@
 """Materials beyond the paper against closed forms and an LP written by hand (moved from
-tests/test_materials.py): cohesion, tensile and compressive strength on one block, the stress
+tests/core/test_materials.py): cohesion, tensile and compressive strength on one block, the stress
 block reached with strips, and the non-associative bracket of two blocks side by side.
 
 Every reference is a closed form derived here or an LP written in the test (scipy's HiGHS on

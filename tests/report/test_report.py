@@ -20,7 +20,7 @@ import pytest
 from helpers import BROWSER, chromium
 from tce.cli import main
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SHOT = ROOT / "results" / "report" / "report_screenshot.png"
 
 STUDY = """

@@ -178,7 +178,7 @@ def test_clarabel_direct_and_cvxpy_agree_on_unbounded(arch):
 def test_clarabel_direct_and_cvxpy_agree(arch, kind, mat, scene):
     model = build_model(arch, kind)
     # the solvers' own states: where the optimum is not unique both return a point near the
-    # analytic centre of the optimal face, not tce's canonical state (tests/test_canonical.py)
+    # analytic centre of the optimal face, not tce's canonical state (tests/core/test_canonical.py)
     direct = TCESolver(model, MATERIALS[mat], SolverOptions(canonical=False)).solve(0.1, 0.0, SCENES[scene])
     cvx = CvxTCE(model, MATERIALS[mat]).solve(
         0.1, 0.0, SCENES[scene], solver="CLARABEL", tol_gap_abs=1e-11, tol_gap_rel=1e-11, tol_feas=1e-11

@@ -9,7 +9,7 @@ import pytest
 
 from tce.study.schema import StudyError, load_study, parse_study
 
-STUDIES = Path(__file__).resolve().parents[1] / "studies"
+STUDIES = Path(__file__).resolve().parents[2] / "studies"
 
 BASE = """
 [study]

@@ -15,7 +15,7 @@ import pytest
 from tce.structures.assembly import AssemblyError
 from tce.structures.io import load_assembly
 
-DATA = Path(__file__).resolve().parent / "data" / "compas2"
+DATA = Path(__file__).resolve().parents[1] / "data" / "compas2"
 
 
 def _by_pair(asm):

@@ -21,7 +21,7 @@ from tce.structures.geometry import box
 from tce.cli import main
 
 from helpers import block_on_support
-from test_io import DATA, _load_sample
+from structures.test_io import DATA, _load_sample
 
 
 def _between_walls(n_boxes: int) -> Assembly:

@@ -20,7 +20,7 @@ from tce.plot.view import view_html
 from tce.study.runner import run_study
 from tce.study.schema import parse_study
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SHOT = ROOT / "results" / "view" / "view_screenshot.png"
 STUDY = """
 [study]

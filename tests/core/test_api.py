@@ -152,7 +152,7 @@ def test_the_other_objects_a_user_meets_have_short_reprs(results) -> None:
     from tce.core.model import build_model
     from tce.study.schema import load_study
 
-    study = load_study(Path(__file__).resolve().parents[1] / "studies" / "fig5_6_transversal.toml")
+    study = load_study(Path(__file__).resolve().parents[2] / "studies" / "fig5_6_transversal.toml")
     mech = results["limit"].mechanism
     objects = {
         "Study": study, "Scenario": study.scenarios()[0], "Mechanism": mech,

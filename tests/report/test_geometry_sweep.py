@@ -21,7 +21,7 @@ from tce.plot.data import assembly  # noqa: E402
 from tce.report import write_report  # noqa: E402
 from tce.study import load_study  # noqa: E402
 from tce.study.runner import run_study  # noqa: E402
-from test_geometry_sweep import STUDY as GEOMETRY_SWEEP  # noqa: E402
+from study.test_geometry_sweep import STUDY as GEOMETRY_SWEEP  # noqa: E402
 
 STUDY = GEOMETRY_SWEEP.split("\n[plots]")[0]  # the thickness sweep of test_geometry_sweep, without its figures
 

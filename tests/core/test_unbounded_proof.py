@@ -20,7 +20,7 @@ from tce.structures.arch import semicircular_arch
 from tce.structures.assembly import Assembly
 from tce.structures.io import load_assembly
 
-WALL = Path(__file__).resolve().parents[1] / "studies" / "data" / "wall.json"
+WALL = Path(__file__).resolve().parents[2] / "studies" / "data" / "wall.json"
 
 
 def _wall() -> tuple[Assembly, LoadPattern]:
@@ -40,7 +40,7 @@ def test_the_wall_turned_by_any_angle_has_no_limit() -> None:
     """Turned by 88.96 degrees the limit solve ended ``AlmostDualInfeasible`` (Clarabel's
     ray residual 3.7e-9 of its size, measured on branch hdef) and the limit was `numerical`:
     the proof decides it. At the other angles Clarabel's own certificate does."""
-    from tests.battery.transform import Similarity
+    from battery.transform import Similarity
 
     asm, pattern = _wall()
     for angle in (0.0, 30.0, 88.95955609983429, 90.0):

@@ -18,7 +18,7 @@ from tce.structures.arch import segmental_arch, semicircular_arch
 from tce.cli import main
 from tce.study.schema import parse_study
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 STUDY = """
 [study]

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from helpers import equal_blocks_side_by_side
-from test_materials import running_bond_wall
+from core.test_materials import running_bond_wall
 
 from tce import Analysis, Material
 from tce.analysis import nonassoc

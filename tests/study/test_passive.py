@@ -17,7 +17,7 @@ from tce.core.fill import passive_bounds
 from tce.structures.arch import segmental_arch
 from tce.study.schema import parse_study
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 STUDY = """
 [study]

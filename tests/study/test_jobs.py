@@ -14,7 +14,7 @@ from tce.study.jobs import LARGE_MODEL, choose_jobs, estimate_work
 from tce.study.runner import _analysis as _runner_analysis, run_study
 from tce.study.schema import load_study
 
-STUDIES = Path(__file__).resolve().parents[1] / "studies"
+STUDIES = Path(__file__).resolve().parents[2] / "studies"
 
 
 FIG8 = load_study(STUDIES / "fig7_8_inplane.toml")

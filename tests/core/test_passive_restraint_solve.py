@@ -11,7 +11,7 @@ residual check and canonical state, so
   energy among the optimal states (checked against states the solver reports at other points).
 
 tce against itself: the validation of the restraint is tests/validation/test_passive_restraint.py
-(an independent LP) and of the canonical state tests/test_canonical.py. Speed is measured in
+(an independent LP) and of the canonical state tests/core/test_canonical.py. Speed is measured in
 ``benchmarks/solver_overhead.py``, never here.
 """
 

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from tce.study.progress import Progress, track
 
-STUDY = Path(__file__).resolve().parents[1] / "studies" / "fig9_outofplane.toml"
+STUDY = Path(__file__).resolve().parents[2] / "studies" / "fig9_outofplane.toml"
 
 
 def _run_on_pty(args: list[str]) -> str:

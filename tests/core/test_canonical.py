@@ -83,7 +83,7 @@ def test_planar_and_spatial_give_one_canonical_state(arch) -> None:
 
 def test_a_unique_optimum_is_decided_unique() -> None:
     """A block on a support pushed to its limit: at lambda_max one state is admissible."""
-    from tests.helpers import block_on_support
+    from helpers import block_on_support
 
     an = Analysis(block_on_support(b=0.4, h=1.0), Material(friction=0.8))
     lim = an.limit(0.0).lambda_max
@@ -141,7 +141,7 @@ def test_a_thin_face_the_solver_cannot_solve_is_widened_not_left_undecided() -> 
 
     from tce.structures.dome import hemispherical_dome
 
-    study = tomllib.loads((Path(__file__).parent.parent / "studies" / "fig10_dome.toml").read_text())
+    study = tomllib.loads((Path(__file__).parents[2] / "studies" / "fig10_dome.toml").read_text())
     spread = study["scenarios"]["radial_outward"]
     dome = hemispherical_dome(radius=5.0, thickness=0.5, sectors=8, courses=6).validate()
     path = Analysis(dome, Material(friction=0.8)).path(0.0, spread)
