@@ -9,7 +9,6 @@ only when no chromium or chromedriver can be found (``.ci/run`` installs them).
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import pytest
@@ -46,13 +45,15 @@ def browser():
 
 
 def wait_for(driver, script: str, timeout: float = 30.0):
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        value = driver.execute_script(script)
-        if value:
-            return value
-        time.sleep(0.1)
-    raise AssertionError(f"timed out waiting for: {script}")
+    """What ``script`` returns once it is true (selenium's wait on the page's own condition;
+    ``timeout`` only bounds a page that never gets there)."""
+    from selenium.common.exceptions import TimeoutException
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    try:
+        return WebDriverWait(driver, timeout).until(lambda d: d.execute_script(script))
+    except TimeoutException:
+        raise AssertionError(f"timed out waiting for: {script}") from None
 
 
 def test_view_in_chromium(browser, tmp_path: Path) -> None:
