@@ -11,7 +11,7 @@ import struct
 import subprocess
 import sys
 import termios
-import time
+import threading
 from pathlib import Path
 
 from tce.study.progress import Progress, track
@@ -57,11 +57,23 @@ def test_run_logs_plain_progress_when_not_a_terminal(tmp_path):
 
 
 def test_long_items_are_not_silent(caplog):
-    with caplog.at_level(logging.DEBUG, logger="tce"):
-        with Progress(3, "slow things", unit="thing", every=0.2, bar=False) as bar:
-            bar.doing("the first")
-            time.sleep(1.0)  # one long item: the heartbeat speaks meanwhile
-            bar.update()
+    spoke = threading.Event()
+
+    class Heard(logging.Handler):
+        def emit(self, record: logging.LogRecord) -> None:
+            if "still working" in record.getMessage():
+                spoke.set()
+
+    heard = Heard()
+    logging.getLogger("tce.study.progress").addHandler(heard)
+    try:
+        with caplog.at_level(logging.DEBUG, logger="tce"):
+            with Progress(3, "slow things", unit="thing", every=0.2, bar=False) as bar:
+                bar.doing("the first")
+                assert spoke.wait(60)  # one long item: the heartbeat speaks meanwhile
+                bar.update()
+    finally:
+        logging.getLogger("tce.study.progress").removeHandler(heard)
     lines = [r.getMessage() for r in caplog.records if r.name == "tce.study.progress"]
     assert any(line.startswith("slow things: still working, 0/3 things (the first)") for line in lines)
     assert lines[-1].startswith("slow things: stopped at 1/3 things")
