@@ -275,9 +275,8 @@ class NonAssocSolver:
     max_iter : int
         Largest number of non-associative solves.
     tol : float
-        Relative change of ``lambda`` (absolute below 1) in each of the last two iterations,
-        change of the normal forces and violation of the Coulomb law (both over ``W``)
-        accepted at a fixed point.
+        Tolerance of the fixed-point test (module docstring, 3.): on ``lambda`` (relative,
+        absolute below 1) and on forces (over ``W``).
     relaxation : float
         Under-relaxation ``w`` in (0, 1] of the normal forces that fix the capacities:
         ``fn <- fn + w (fn_k - fn)``; ``w < 1`` damps the cycling of problems whose

@@ -589,9 +589,8 @@ class SettlementPathResult(Result):
     """A finite-settlement path (``ok`` when ``status`` is ``collapse``, ``snap_through`` or
     ``contact_lost``: a capacity was bracketed).
 
-    The path's coordinates are those of the assembly: in its plane ``(x, z)`` and one
-    rotation for a planar assembly (``plane`` set), ``(x, y, z)`` and rotation vectors in
-    space (``plane`` None); :meth:`wrenches` and :meth:`displacements` give both in the
+    Coordinates and signs as in the module docstring: planar with ``plane`` set, spatial
+    with ``plane`` None; :meth:`wrenches` and :meth:`displacements` give both in the
     global frame.
 
     Attributes
@@ -599,8 +598,7 @@ class SettlementPathResult(Result):
     status : str
         How the path ended (module docstring); ``message`` says what decided it.
     settlements : dict
-        The scenario's settlement vectors ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad):
-        the motion at magnitude ``s`` is ``s`` times these.
+        The scenario's settlement vectors ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad).
     capacity : float
         Settlement capacity: the largest magnitude found standing (multiples of the
         settlement vectors; NaN unless ``ok``).
@@ -609,17 +607,16 @@ class SettlementPathResult(Result):
     magnitudes : (k,) ndarray
         Magnitude of every standing configuration of the path, increasing.
     reactions : (k, n_supports, 3 or 6) ndarray
-        The wrench of each support on the structure at each magnitude (kN, kN m), the moment
-        about the support's current centroid: planar ``(Rx, Rz, M)`` (``Rx`` along the
-        plane's horizontal direction, ``M`` counter-clockwise), spatial
-        ``(Fx, Fy, Fz, Mx, My, Mz)``.
+        The wrench of each support on the structure at each magnitude (kN, kN m): planar
+        ``(Rx, Rz, M)``, spatial ``(Fx, Fy, Fz, Mx, My, Mz)``, about the support's current
+        centroid.
     lambda_max : (k,) ndarray
         lambda_max of the lateral pattern (``alpha``) on the deformed structure (NaN when
         not asked for).
     placements : (k, n_blocks, 3 or 6) ndarray
-        Every block's displacement from its reference placement: planar ``(dx, dz, theta)``,
-        spatial ``(dx, dy, dz, rx, ry, rz)`` (the centroid's translation, m, and the rotation
-        about it, rad; a rotation vector in space).
+        Every block's displacement from its reference placement (the centroid's translation,
+        m, and the rotation about it, rad): planar ``(dx, dz, theta)``, spatial
+        ``(dx, dy, dz, rx, ry, rz)``.
     hinges : list of list of int
         Per magnitude, the interfaces that rotate in the mechanism (hinges).
     hinge_points : (k, n_interfaces, 3) ndarray
@@ -638,7 +635,6 @@ class SettlementPathResult(Result):
         Magnitudes at which nothing stood and the structure fell, with the supports held,
         to a new standing configuration (a joint closed: a hinge migrated); each appears
         twice in ``magnitudes``, before and after the fall.
-    n_solves : int
     """
 
     OK = ("collapse", "snap_through", "contact_lost")
@@ -705,9 +701,7 @@ def settlement_path(
         Any assembly of rigid blocks.
     settlements : dict
         ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad) about each support's centroid (in
-        the plane of a planar assembly): the motion of unit magnitude. At magnitude ``s`` a
-        support is translated by ``s (ux, uy, uz)`` and turned about its centroid by the
-        rotation vector ``s (rx, ry, rz)``.
+        the plane of a planar assembly): the motion of unit magnitude (module docstring).
     material : Material, optional
         Must be the rigid Heyman material (the default): no friction limit, cohesion,
         strengths or stiffness (sliding and crushing are not followed).
