@@ -8,16 +8,15 @@ analysis, :class:`tce.core.limit.LimitSolver`): the number of times the factored
 (e.g. a vehicle at its critical position) can be applied before collapse. At least 1: the
 structure is adequate for the load; below 1: it is not.
 
-Defaults are 1.0 on both (no factor): the factors are the assessing engineer's (a code's)
-choice, within one rule (:data:`DEAD_FACTOR_RULE`). For a material without cohesion or
-strengths (Heyman, friction) the admissible loads form a cone, so the factored answer is
+Defaults are 1.0 on both: the factors are the assessing engineer's (a code's) choice,
+within one rule (:data:`DEAD_FACTOR_RULE`). For a material without cohesion or strengths
+(Heyman, friction) the admissible loads form a cone, so the factored answer is
 ``lambda_max gamma_dead / gamma_live`` exactly: the dead load of an arch holds it up
 (favourable), and a factor above 1 on it would raise the adequacy factor. A favourable
-permanent action takes the lower partial factor of the code, ``gamma_G,inf`` (EN 1990:2002,
-6.4.3.2 and Annex A2, Table A2.4(B): ``gamma_G,sup = 1.35`` where the permanent action is
-unfavourable, ``gamma_G,inf = 1.00`` where it is favourable), so ``dead_factor`` above 1 is
-refused (:func:`check_dead_factor`): a study with it exits 2, a call raises ``ValueError``.
-A factor below 1 (a code that reduces a favourable dead load) is applied as given.
+permanent action takes the code's lower partial factor (EN 1990:2002, 6.4.3.2 and Annex A2,
+Table A2.4(B): ``gamma_G,sup = 1.35`` unfavourable, ``gamma_G,inf = 1.00`` favourable), so
+a ``dead_factor`` above 1 is refused (:func:`check_dead_factor`: a study exits 2, a call
+raises ``ValueError``); one below 1 is applied as given.
 """
 
 from __future__ import annotations

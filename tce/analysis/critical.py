@@ -6,36 +6,32 @@ its reference (:meth:`~tce.core.loads.LoadPattern.moved`). :func:`critical_posit
 finds the reference position ``x`` of least ``lambda_max(x)``, the direct limit
 (:meth:`tce.core.analysis.Analysis.limit`), to a tolerance, whatever grid the caller gives.
 
-Why the search can be exact for point loads (wheels without a contact patch): while every
-wheel stays on one planar top face of one block, the live load vector is affine in ``x``,
-``b_live(x) = b0 + x b1``. The set ``C`` of ``(mu, nu)`` with ``b_fixed + mu b0 + nu b1``
-equilibrated by an admissible force state is convex and holds the origin when the fixed
-loads stand, and ``lambda_max(x) = max {mu : (mu, mu x) in C} = 1 / g(1, x)`` with ``g`` the
-gauge of ``C``, convex. So ``1 / lambda_max`` is convex on each such piece and
-``lambda_max`` takes its least value on a piece at one of its ends: where a wheel crosses
-an edge of the top surface (a joint's extrados, :func:`tce.core.vehicles.deck_edges`), or
-at an end of the range. The search evaluates every such breakpoint on both sides (a wheel
-``DELTA`` of the range before and after the edge), the midpoints between them (the scan at
-the scale of the joints), the caller's positions, and then refines the best local minima by
-bounded Brent search (:func:`scipy.optimize.minimize_scalar`) to ``xtol``: exact for point
-loads by the argument above, and to ``xtol`` for contact patches (whose load is not affine
-in ``x``: pieces of a patch change area as it moves) when the least value lies inside a
-piece.
+Why the search is exact for point loads (wheels without a contact patch): while every
+wheel stays on one planar top face of one block, ``b_live(x) = b0 + x b1`` is affine. The
+set ``C`` of ``(mu, nu)`` with ``b_fixed + mu b0 + nu b1`` carried by an admissible force
+state is convex and holds the origin when the fixed loads stand, and
+``lambda_max(x) = 1 / g(1, x)`` with ``g`` the (convex) gauge of ``C``. So
+``1 / lambda_max`` is convex on each such piece and ``lambda_max`` is least at one of its
+ends: where a wheel crosses an edge of the top surface (a joint's extrados,
+:func:`tce.core.vehicles.deck_edges`), or at an end of the range. The search evaluates
+every breakpoint on both sides (``DELTA`` of the range before and after), the midpoints
+between them, the caller's positions, and refines the best local minima by bounded Brent
+search (:func:`scipy.optimize.minimize_scalar`) to ``xtol``: exact for point loads, and to
+``xtol`` for contact patches (whose load is not affine in ``x``) when the least value lies
+inside a piece.
 
-Vehicles off the deck: at a position where a moving vehicle has no wheel on the deck (over
-a support block in between spans, or beyond the deck's width) the search drops that vehicle
-there (:func:`on_deck`; nothing of it acts on the structure), and a position where no live
-load is left is carried at any multiplier. A vehicle with no wheel on the deck at every
-position scanned is an input error (:func:`check_on_deck`), raised before any solve.
+Vehicles off the deck: at a position where a moving vehicle has no wheel on the deck, the
+search drops that vehicle there (:func:`on_deck`), and a position where no live load is
+left is carried at any multiplier. A vehicle with no wheel on the deck at every position
+scanned is an input error (:func:`check_on_deck`), raised before any solve.
 
-Mirror ties: positions (farther apart than the tolerance) whose ``lambda_max`` equals the
-least within :data:`TIE_RTOL` are reported in :attr:`CriticalResult.ties`; the critical
-position reported is the leftmost of them (least x), a rule that does not depend on the
-order of evaluation.
+Ties: positions (farther apart than the tolerance) whose ``lambda_max`` equals the least
+within :data:`TIE_RTOL` are reported in :attr:`CriticalResult.ties`; the critical position
+reported is the leftmost of them (least x), whatever the order of evaluation.
 
-The direct limit does not depend on support motions (the admissible force states do not:
-the static theorem), so the search holds for every settlement scenario of a rigid material;
-with a non-associative material it is the associative critical position.
+The direct limit does not depend on support motions (static theorem), so the search holds
+for every settlement scenario of a rigid material; with a non-associative material it is
+the associative critical position.
 """
 
 from __future__ import annotations
@@ -335,7 +331,7 @@ class _Infeasible(Exception):
 
 def _refine(lam, values: dict[float, float], xtol: float) -> None:
     """Bounded Brent search between the neighbours of the best local minima of the values."""
-    from scipy.optimize import minimize_scalar  # on first use: every run paid its import (issue 24)
+    from scipy.optimize import minimize_scalar  # imported on first use: it is slow to import
 
     x = np.array(sorted(values))
     y = np.array([values[v] for v in x])

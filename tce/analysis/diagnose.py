@@ -15,13 +15,12 @@ solves a scene and explains a non-``optimal`` answer:
 
 No finite limit (:func:`explain_no_limit`, :func:`no_limit_reason`): when the load path
 reaches ``lambda_cap`` (outcome ``no_limit``) or the direct limit is unbounded, the reason
-in words. An unbounded direct limit has a certificate: a force state ``F`` with
-``A_eq F + b_live = 0`` that is admissible, i.e. a way to carry the live load (the lateral
-load of the paper's pattern) with no self-weight
+in words. An unbounded direct limit has a certificate: an admissible force state ``F`` with
+``A_eq F + b_live = 0``, carrying the live load with no self-weight
 (:meth:`tce.core.limit.LimitSolver.lateral_ray`); any multiple of it can be added to any
-admissible state, so no load collapses the structure. The interfaces it loads are the ones
-responsible. If the contacts of the free blocks with the supports can carry it alone, the
-live load goes straight into a support; otherwise the blocks lock against each other.
+admissible state. The interfaces it loads are the ones responsible: if the contacts of the
+free blocks with the supports can carry it alone, the live load goes straight into a
+support; otherwise the blocks lock against each other.
 """
 
 from __future__ import annotations
@@ -95,14 +94,11 @@ def binding_interfaces(
 
 @dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class Diagnosis(Result):
-    """What a scene's status means, where.
+    """What a scene's status means, where (``status``: that of the scene's TCE solve;
+    ``message``: the explanation, also :attr:`summary`).
 
     Attributes
     ----------
-    status : str
-        Status of the scene's TCE solve.
-    message : str
-        One or two sentences for the user (also :attr:`summary`).
     binding : list of (str, str)
         ``(interface "A|B", "hinge" | "sliding" | "self-stress")``.
     mechanism : Mechanism or None
@@ -156,21 +152,8 @@ def explain_no_limit(
     analysis: Analysis, alpha: float | None = None, reached: float | None = None, loads: LoadPattern | None = None
 ) -> NoLimit:
     """Why lateral loads in direction ``alpha`` (degrees), or the live loads of the pattern
-    ``loads``, find no collapse (module docstring).
-
-    Parameters
-    ----------
-    analysis : Analysis
-    alpha : float, optional
-    reached : float, optional
-        The largest multiplier a load path found admissible (for the message when the
-        direct limit is finite).
-    loads : LoadPattern, optional
-
-    Returns
-    -------
-    NoLimit
-    """
+    ``loads``, find no collapse (module docstring); ``reached`` is the largest multiplier a
+    load path found admissible (for the message when the direct limit is finite)."""
     pattern = as_pattern(alpha, loads)
     where = f"in direction {pattern.alpha:g} deg" if pattern.default else "for the live loads of the pattern"
     what = "lateral load" if pattern.default else "live load"
@@ -237,14 +220,8 @@ def explain_no_limit(
 
 
 def no_limit_reason(analysis: Analysis, lp: LoadPathResult) -> str:
-    """The explanation of a load path whose outcome is ``no_limit`` ("" for any other outcome).
-
-    Parameters
-    ----------
-    analysis : Analysis
-        The analysis that ran the load path.
-    lp : LoadPathResult
-    """
+    """The explanation of the load path ``lp`` run by ``analysis`` when its outcome is
+    ``no_limit`` ("" for any other outcome)."""
     if lp.outcome != "no_limit":
         return ""
     reached = max((r.lam for r in lp.steps if r.ok), default=None)

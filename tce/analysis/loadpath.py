@@ -7,17 +7,14 @@ until the first step whose status is not ``optimal`` (``numerical`` steps are ke
 reported and stepped over: they are never taken as the limit). When that step is
 ``infeasible``, it narrows the bracket between the last ``optimal`` and the first
 ``infeasible`` multiplier until ``hi - lo <= max(atol, rtol * hi)`` or until no float lies
-between them (so any tolerance ends); ``lambda_max`` is the last ``optimal`` multiplier (a
-safe lower bound). A path never takes more than :data:`MAX_INCREMENTS` increments. Every run
-also reports the direct lambda_max (:mod:`tce.core.limit`) and the gap, so the answer is checked
-each time.
+between them; ``lambda_max`` is the last ``optimal`` multiplier (a safe lower bound). A
+path never takes more than :data:`MAX_INCREMENTS` increments. Every run also reports the
+direct lambda_max (:mod:`tce.core.limit`) and the gap.
 
 Narrowing (``bracket``): ``"direct"`` (default) first solves the two ends of a bracket
-narrower than the tolerance around the direct lambda_max (:func:`_confirm_direct`): an
-``optimal`` lower end and an ``infeasible`` upper end confirm it in two solves; otherwise
-what they showed narrows the bracket and bisection goes on from there. ``"bisection"``
-halves the bracket from the last increment. Both give a verified admissible ``lambda_max``
-within the tolerance of the limit; the direct bracket takes about half the solves.
+narrower than the tolerance around the direct lambda_max (:func:`_confirm_direct`), then
+bisects what remains; ``"bisection"`` halves the bracket from the last increment. Both give
+a verified admissible ``lambda_max`` within the tolerance of the limit.
 """
 
 from __future__ import annotations
@@ -51,8 +48,7 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-#: Most load increments a path may take (``lam_cap / step``): 100,000 took 52 s on a 6-voussoir arch;
-#: 10,000 resolve a path to 1e-4 of lambda_cap (the limit itself is bisected to ``atol``).
+#: Most load increments a path may take (``lam_cap / step``; the limit itself is bisected to ``atol``).
 MAX_INCREMENTS = 10_000
 #: increments a path takes up to its direct limit when no step is given
 AUTO_INCREMENTS = 20
@@ -96,10 +92,6 @@ class LoadPathResult(Result):
     limit : LimitResult
         The direct limit analysis of the same pattern.
     n_solves : int
-    solve_time : float
-        Wall time inside the solver's solve calls, summed over the steps (s).
-    wall_time : float
-        Time of the whole call (s).
     """
 
     HEADLINE = ("lambda_max", "lambda_upper", "lambda_direct", "alpha", "n_solves")
@@ -170,9 +162,9 @@ def _confirm_direct(
 
     Solves the TCE at ``direct -+ 0.49 w`` (``w = max(atol, rtol * direct)``, the bisection's
     tolerance; ends outside ``(lo, hi)`` are not solved): an ``optimal`` lower end and an
-    ``infeasible`` upper end confirm the limit. Either way the bracket becomes the narrowest
-    one the solved ends support (a ``numerical`` end tells nothing), so bisection can go on
-    from it. With no finite direct value, ``(lo, hi)`` is returned unchanged.
+    ``infeasible`` upper end confirm the limit; otherwise the bracket becomes the narrowest
+    one the solved ends support (a ``numerical`` end tells nothing). With no finite direct
+    value, ``(lo, hi)`` is returned unchanged.
 
     Returns
     -------
@@ -248,15 +240,13 @@ def load_path(
     """Increment lambda from 0, then narrow the first inadmissible increment.
 
     The direct limit (:meth:`tce.core.analysis.Analysis.limit`) is solved first and anchors
-    the path (issue 21), so that a live load of 1 N, 1 kN or 1 MN gives the same adequacy
-    factor in the same number of solves:
+    the path, so that the number of solves does not depend on the live load's size:
 
-    - **step**: by default the path reaches the direct lambda_max in :data:`AUTO_INCREMENTS`
-      increments (``lambda_direct / (AUTO_INCREMENTS + 0.5)``, so no increment falls on the
-      limit itself); :data:`DEFAULT_STEP` when the direct limit is not a positive number.
-      An explicit step is kept, unless it would take more than :data:`MAX_INCREMENTS`
-      increments to reach the direct limit (then the default is taken and the message
-      says so).
+    - **step**: by default ``lambda_direct / (AUTO_INCREMENTS + 0.5)`` (no increment falls
+      on the limit itself); :data:`DEFAULT_STEP` when the direct limit is not a positive
+      number. An explicit step is kept unless it would take more than
+      :data:`MAX_INCREMENTS` increments to reach the direct limit (then the default is
+      taken and the message says so).
     - **cap**: none by default when the direct limit is finite (the path goes on until an
       increment is inadmissible); ``AUTO_INCREMENTS * step`` when it is unbounded or
       infeasible (the direct problem decided: the increments trace the path);
@@ -290,8 +280,7 @@ def load_path(
         direct lambda_max, or bisection alone.
     mechanism : bool
         Whether the result's direct ``limit`` carries its collapse mechanism (classified
-        once, after the path; a study stores it). Without it the path costs its solves and
-        one direct lambda_max.
+        once, after the path).
 
     Returns
     -------
@@ -383,11 +372,9 @@ def load_path(
                 outcome = "numerical"
                 break
         if outcome == "limit" and hi - lo > max(atol, rtol * abs(hi), math.ulp(hi)):
-            # the bracket closed on undecided steps, which lie next to the limit: the
-            # admissible set thins to a point there, and the solver's accuracy goes with it
-            # (on the paper's arch with crushing, Clarabel stops `AlmostSolved` within
-            # ~5e-7 of lambda_direct = 4.4528840 and solves at ~9e-7). The multiplier
-            # furthest from the limit that still closes the bracket is solved once more.
+            # the bracket closed on undecided steps next to the limit, where the admissible
+            # set thins to a point: the multiplier furthest from the limit that still closes
+            # the bracket is solved once more
             lam = hi - CLOSING * max(atol, rtol * abs(hi))
             if lo < lam < hi and run(lam).status == "optimal":
                 lo = lam

@@ -12,76 +12,57 @@ for 3D blocks [2]_:
    ``fn_0``;
 2. iteration ``k`` fixes the friction capacity of every contact from the normal forces of
    the previous ones, ``||ft|| <= mu max(fn_{k-1}, 0) + c A`` (``fn_{k-1}`` under-relaxed,
-   :class:`NonAssocSolver`) (a pseudo-cohesion, friction
-   angle zero), leaves the normal forces free within ``-t A <= fn <= fc A``, and solves the
-   limit problem again (:func:`tce.core.conic.cone_rows` with ``shear_capacity``). The
-   flow rule of this law has no dilatancy: a sliding contact that carries load does not
-   open (its normal relative velocity is zero by complementarity). The sub-problem's
-   optimal states are seldom unique; the iterate is the one nearest to the normal forces in
-   use, with the least tangential forces (:func:`tce.core.problem.nearest_state_problem`,
-   strictly convex: one state, the same in every frame), taken ``1e-8`` (relative) below
-   ``lambda_k`` where the face has room; iteration 0 is the associative optimal state of
-   least norm, chosen alike. Clarabel's own choice, the centre of the optimal face reached
-   to its tolerance along a path that changes with the frame, made the fixed point depend
-   on the orientation of the scene (a groin vault turned by 30 or 90 degrees did not
-   converge where the same vault as built did);
+   :class:`NonAssocSolver`; a pseudo-cohesion, friction angle zero), leaves the normal
+   forces free within ``-t A <= fn <= fc A``, and solves the limit problem again
+   (:func:`tce.core.conic.cone_rows` with ``shear_capacity``). This law's flow rule has no
+   dilatancy: a sliding contact that carries load does not open. The iterate is the
+   optimal state nearest to the normal forces in use, with the least tangential forces
+   (:func:`tce.core.problem.nearest_state_problem`: strictly convex, so one state, the same
+   in every frame), taken ``1e-8`` (relative) below ``lambda_k``; iteration 0 takes the
+   associative optimal state of least norm alike. (The solver's own choice among optimal
+   states depends on the frame, and so would the fixed point.)
 3. the scheme stops at a fixed point, a state ``F`` that is a non-associative collapse
    state to ``tol`` (times the total weight ``W`` for forces): ``lambda`` settled (the
-   last three iterates within ``tol`` of each other, relative, absolute below 1: two changes
-   in a row, because one small change is not a converged ``lambda`` where the next is larger,
-   as after an extrapolation, 5., whose jump mixes the modes of the approach; a test of one
-   change stopped such a run 12 ``tol`` short of its fixed point, in one order of the blocks
-   and not in another); ``F`` an optimal state of the last
-   sub-problem (equilibrium at ``lambda_k``, its capacities met), admissible for the
-   Coulomb law itself (violation ``<= tol W``); and, at every contact that slides in the
-   last mechanism (tangential speed above :data:`DILATANCY_TOL` of the largest vertex
-   speed), ``|fn - fn_used| <= tol W`` (the capacity used, ``mu fn_used``, is the one of
-   the state's own normal force) and ``mu fn + c A - ||ft|| <= tol W`` (it slides at its
-   Coulomb capacity). Contacts that do not slide may carry any admissible normal force.
-   The mechanism (the dual of the last sub-problem) then slides without opening; this is
-   checked at loaded sliding contacts (``dilatancy``).
-4. where a sub-problem's optimal states are not unique, the state the solver returns (the
-   centre of the optimal face, for Clarabel's interior point) shifts as the capacities
-   shift, and the plain scheme may circle without settling. Once ``lambda`` has settled
-   (3.), each iteration also solves
+   last three iterates within ``tol`` of each other, relative, absolute below 1: two
+   changes in a row, because one small change may be followed by a larger one, as after an
+   extrapolation, 5.); ``F`` an optimal state of the last sub-problem (equilibrium at
+   ``lambda_k``, its capacities met), admissible for the Coulomb law itself (violation
+   ``<= tol W``); and, at every contact that slides in the last mechanism (tangential speed
+   above :data:`DILATANCY_TOL` of the largest vertex speed), ``|fn - fn_used| <= tol W``
+   (the capacity used, ``mu fn_used``, is the one of the state's own normal force) and
+   ``mu fn + c A - ||ft|| <= tol W`` (it slides at its Coulomb capacity). Contacts that do
+   not slide may carry any admissible normal force. The mechanism (the dual of the last
+   sub-problem) then slides without opening; this is checked at loaded sliding contacts
+   (``dilatancy``).
+4. where a sub-problem's optimal states are not unique the plain scheme may circle without
+   settling. Once ``lambda`` has settled (3.), each iteration also solves
    :func:`tce.core.problem.least_violation_problem`: among the optimal states of the
    sub-problem, the one of least Coulomb violation and least ``|fn - fn_used|`` at the
    sliding contacts (of those, the one nearest to the normal forces in use:
    :func:`tce.core.problem.nearest_least_violation_problem`), and tests that state as in
-   3. A polished state that fails the test is not carried on: its normal forces away from
-   the sliding contacts are any of the face's, and as the next capacities they threw the
-   groin vault under a point load, turned by -60 degrees, into a cycle of six or seven
-   iterations (law violation up to 8e-3 W); the plain step goes on instead. On a 6-course
-   running-bond wall (``docs/materials.md``) the plain scheme with Clarabel's states
-   circled between lambda 0.641341 and 0.641355; with the nearest states and this step it
-   stops after 37 iterations at 0.639971.
-5. near a fixed point the plain iterates approach it linearly, and where one mode of
-   ratio close to 1 carries ``lambda`` the approach is slow (the groin vault under a point
-   load: ratio 0.978 per iteration, law violation still 2e-5 W after 100 iterations). Where
-   the last seven plain steps show such an approach, the normal forces that fix the next
-   capacities are extrapolated to its limit (:func:`slow_mode_limit`, reduced-rank
-   extrapolation). The safeguard: if the state of the extrapolated capacities is not
-   nearer to a fixed point (the larger of its law violation and its consistency error at
-   the sliding contacts, 3., did not decrease), the scheme goes on from the plain step the
-   extrapolation replaced and extrapolates no more (the approach is not linear over the
-   distance: on LACT3's sample wall, ``docs/validation.md``, an extrapolation along a mode of
-   ratio 0.994 raised the error from 6e-5 W to 4e-4 W, and each of 15 more would have been
-   refused too). The extrapolation only chooses the next capacities; a state is
-   accepted by the test of 3. alone. The vault then converges after 53 to 70 iterations
-   at 2.312301 to 2.312313 in any frame (the plain scheme's limit, after 400 iterations:
-   2.3123053).
+   3. A polished state that fails the test is not carried on (its normal forces away from
+   the sliding contacts are arbitrary on the optimal face, and as capacities they can
+   start a cycle); the plain step goes on instead.
+5. near a fixed point the plain iterates approach it linearly, slowly where one mode of
+   ratio close to 1 carries ``lambda``. Where the last seven plain steps show such an
+   approach, the normal forces that fix the next capacities are extrapolated to its limit
+   (:func:`slow_mode_limit`, reduced-rank extrapolation). The safeguard: if the state of
+   the extrapolated capacities is not nearer to a fixed point (the larger of its law
+   violation and its consistency error at the sliding contacts, 3., did not decrease), the
+   scheme goes on from the plain step the extrapolation replaced and extrapolates no more.
+   The extrapolation only chooses the next capacities; a state is accepted by the test of
+   3. alone.
 
 The fixed point is a collapse state of the non-associative problem, so ``lambda_nonassoc``
 is at most ``lambda_assoc`` (its state is statically admissible); it is the scheme's
 estimate, not a proven lower bound: a non-associative problem may have several collapse
-states and the lowest is a nonconvex problem (Ferris and Tin-Loi, 2001). Where a sub-problem's optimal force state is not unique,
-the fixed point reached depends on the state the solver returns (Clarabel's interior point
-returns the centre of the optimal face): two blocks side by side rocking together collapse,
-without dilatancy, at any load of an interval whose lowest end is each block rocking alone
-(``tests/validation/test_materials_closed_forms.py``), and the scheme returns one load in it
-(with the nearest-state iterates, its lowest end to 1e-6). The scheme may
-also fail to settle (Gilbert et al. report cycling on some problems); the result then says
-``not_converged`` and carries the iterates, never a number dressed as converged.
+states and the lowest is a nonconvex problem (Ferris and Tin-Loi, 2001). Two blocks side by
+side rocking together collapse, without dilatancy, at any load of an interval whose lowest
+end is each block rocking alone (``tests/validation/test_materials_closed_forms.py``); the
+scheme returns one load in it (with the nearest-state iterates, its lowest end to 1e-6).
+The scheme may also fail to settle (Gilbert et al. report cycling on some problems); the
+result then says ``not_converged`` and carries the iterates, never a number dressed as
+converged.
 
 References
 ----------
@@ -165,9 +146,8 @@ class NonAssocResult(Result):
     admissibility : float
         Largest violation of the material's law by the final state, over ``W``.
     consistency : float
-        At the contacts that slide in the final mechanism, the largest ``|fn - fn_used|``
-        (``mu fn_used`` the capacity the last sub-problem gave them) and ``mu fn + c A -
-        ||ft||`` (sliding below the Coulomb capacity), over ``W``.
+        Largest ``|fn - fn_used|`` or ``mu fn + c A - ||ft||`` at the contacts that slide in
+        the final mechanism (module docstring, 3.), over ``W``.
     dilatancy : float
         Largest normal opening of a loaded sliding contact in the final mechanism, relative
         to its largest vertex speed (0 for a mechanism without dilatancy).
@@ -226,20 +206,17 @@ def slow_mode_limit(
 
     The scheme's iterates are ``fn_{j+1} = fn_j + w d_j`` with ``d_j = T(fn_j) - fn_j``
     (``T``: the normal forces of the nearest optimal state of the sub-problem whose
-    capacities ``fn_j`` fixes). Near a fixed point they approach it linearly; where one mode
-    of ratio close to 1 dominates (the groin vault under a point load: ratio 0.978 per
-    iteration, ``docs/materials.md``) the plain scheme needs hundreds of iterations. The
-    extrapolation is the reduced-rank extrapolation (RRE; Smith, Ford and Sidi 1987, in
-    Anderson's (1965) form, Walker and Ni 2011): the affine combination ``sum g_j``
-    ``(fn_j + w d_j)``, ``sum g_j = 1``, whose combined step ``||sum g_j d_j||`` is least.
-    It removes from a linear approach as many modes as the window has steps minus one.
+    capacities ``fn_j`` fixes). The extrapolation is the reduced-rank extrapolation (RRE;
+    Smith, Ford and Sidi 1987, in Anderson's (1965) form, Walker and Ni 2011): the affine
+    combination ``sum g_j (fn_j + w d_j)``, ``sum g_j = 1``, whose combined step
+    ``||sum g_j d_j||`` is least. It removes from a linear approach as many modes as the
+    window has steps minus one.
 
     It is returned only where the approach is a slow linear one, seen as:
 
     - ``lambda`` creeping: its changes over the window of one sign, the last between
-      :data:`ACCELERATION_LAMBDA_DECAY` and 1 times the first (where ``lambda`` settles while only
-      normal forces creep, the polish step of :class:`NonAssocSolver` ends the approach, and
-      the fixed point it reaches is left alone: the running-bond walls);
+      :data:`ACCELERATION_LAMBDA_DECAY` and 1 times the first (where ``lambda`` settles while
+      only normal forces creep, the polish step of :class:`NonAssocSolver` ends the approach);
     - the steps ``d_j`` of one direction (successive cosines at least
       :data:`ACCELERATION_COS`) and contracting by a steady ratio below 1 (spread of the
       successive ratios ``d_j . d_{j+1} / |d_j|^2`` at most :data:`ACCELERATION_SPREAD`).
@@ -298,15 +275,12 @@ class NonAssocSolver:
     max_iter : int
         Largest number of non-associative solves.
     tol : float
-        Relative change of ``lambda`` (absolute below 1) in each of the last two iterations,
-        change of the normal forces and violation of the Coulomb law (both over ``W``)
-        accepted at a fixed point.
+        Tolerance of the fixed-point test (module docstring, 3.): on ``lambda`` (relative,
+        absolute below 1) and on forces (over ``W``).
     relaxation : float
         Under-relaxation ``w`` in (0, 1] of the normal forces that fix the capacities:
-        ``fn <- fn + w (fn_k - fn)``. The plain scheme (``w = 1``) cycles on problems whose
-        sub-problems have many optimal force states (a whole course sliding); ``w = 0.5``
-        damps that, and the least-violation step (module docstring, point 4) ends the
-        cycling that remains (``docs/materials.md``).
+        ``fn <- fn + w (fn_k - fn)``; ``w < 1`` damps the cycling of problems whose
+        sub-problems have many optimal force states (a whole course sliding).
     """
 
     def __init__(
@@ -427,9 +401,7 @@ class NonAssocSolver:
                 step, before = pending
                 pending = None
                 if not error < before:
-                    # the safeguard: the extrapolated capacities did not bring the state
-                    # nearer to a fixed point, so the approach is not linear over that
-                    # distance; go on from the plain step they replaced, and extrapolate no more
+                    # the safeguard (module docstring, 5.): back to the plain step, no more extrapolation
                     log.debug("iteration %d: extrapolation rejected (error %.3g W, was %.3g W)", k, error, before)
                     fn = step
                     extrapolating = False
@@ -455,8 +427,7 @@ class NonAssocSolver:
 
     def _settled(self, history: list[float]) -> bool:
         """Whether the last three values of ``lambda`` (the associative one included) lie
-        within ``tol`` (relative, at least absolute ``tol``) of each other: two changes in a
-        row, since one small change need not be followed by smaller ones (module docstring, 3.)."""
+        within ``tol`` (relative, absolute below 1) of each other (module docstring, 3.)."""
         if len(history) < 3:
             return False
         last = history[-3:]
@@ -474,9 +445,8 @@ class NonAssocSolver:
         self, forces: NDArray[np.float64], fn_used: NDArray[np.float64], sliding: NDArray[np.bool_]
     ) -> tuple[float, float]:
         """``(violation, consistency)`` of a state, both over ``W``: the largest violation of
-        the material's own Coulomb law, and at the sliding contacts the larger of
-        ``|fn - fn_used|`` (the capacity was ``mu fn_used``, it must be ``mu fn``) and
-        ``mu fn + c A - ||ft||`` (a contact slides only at its Coulomb capacity)."""
+        the material's own Coulomb law, and the consistency error at the sliding contacts
+        (module docstring, 3.)."""
         mat, W = self.material, self.model.assembly.total_weight
         viol = cone_violation(self.model, mat.friction, forces, **mat.strengths) / W
         f = forces[sliding]
@@ -492,11 +462,9 @@ class NonAssocSolver:
         fn_used: NDArray[np.float64],
         sliding: NDArray[np.bool_],
     ) -> NDArray[np.float64] | None:
-        """Among the optimal states of the sub-problem ``sub`` (its law, equilibrium at its
-        ``lambda_k``: ``rhs``), the one of least violation of the Coulomb law and of
-        ``|fn - fn_used|`` at the sliding contacts (:func:`tce.core.problem.least_violation_problem`);
-        None when that solve fails or its state misses equilibrium or the sub-problem's law
-        by more than 1e-8 (of ``W`` and ``W L``)."""
+        """The polished state of the sub-problem ``sub`` at its ``lambda_k`` (``rhs``; module
+        docstring, 4.); None when that solve fails or its state misses equilibrium or the
+        sub-problem's law by more than 1e-8 (of ``W`` and ``W L``)."""
         f = sub.formulation
         held = np.where(sliding, fn_used, np.nan)
         settings = sub.options.settings(refine=True, kkt=f.kkt)
@@ -526,12 +494,10 @@ class NonAssocSolver:
         """Among the states of ``solver``'s law in equilibrium at ``lam`` (its
         ``lambda_max``: the optimal face), the one nearest to the normal forces
         ``normal_ref`` with the least tangential forces
-        (:func:`tce.core.problem.nearest_state_problem`: unique, and the same in every frame).
-
-        The face at ``lambda_max`` itself has no interior and Clarabel stops short of it
-        (``NumericalError`` on the groin vault), so the state is taken at ``lam (1 -``
-        :data:`NEAREST_BACKOFF` ``)``, within that of the face. None when that solve fails or
-        misses equilibrium or the law by more than 1e-8 (of ``W`` and ``W L``) at every step."""
+        (:func:`tce.core.problem.nearest_state_problem`: unique, and the same in every frame),
+        taken at ``lam (1 -`` :data:`NEAREST_BACKOFF` ``)`` because the face at ``lambda_max``
+        itself has no interior. None when that solve fails or misses equilibrium or the law
+        by more than 1e-8 (of ``W`` and ``W L``) at every step."""
         f = solver.formulation
         settings = solver.options.settings(refine=True, kkt=f.kkt)
         for backoff in NEAREST_BACKOFF:

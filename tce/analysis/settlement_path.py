@@ -2,16 +2,14 @@
 
 For rigid blocks of a Heyman material (no tension, no sliding, unlimited compressive
 strength), the support motion ``s * U`` (``U`` the scenario's settlement vectors, ``s`` the
-magnitude, a multiple of ``U``) grows from ``s = 0``. A planar assembly (an arch in its own
-plane: :func:`tce.core.model.find_plane`) is followed in its plane, with three dofs per block;
-any other (domes, vaults, block files) in space, with six; one code path serves both
-(:class:`_Planar` and :class:`_Spatial` hold the only differences: the moment arm, the
-rotation update and the tangent directions). At every configuration the contact points are
-those of the interfaces, carried by both of their blocks: in the plane the two ends of each
-joint's trace, in space the vertices of its polygon. A point is *closed* when its two copies
-meet (the gap, measured along block A's
-normal, is within ``gap_tol``) and *open* otherwise. On the closed points, the Total
-Complementary Energy of the rigid problem (the paper, eq. (11), ``D = 0``)::
+magnitude) grows from ``s = 0``. A planar assembly (:func:`tce.core.model.find_plane`) is
+followed in its plane, with three dofs per block; any other in space, with six
+(:class:`_Planar` and :class:`_Spatial` hold the only differences). At every configuration
+the contact points are those of the interfaces, carried by both of their blocks: in the
+plane the two ends of each joint's trace, in space the vertices of its polygon. A point is
+*closed* when its two copies meet (the gap, measured along block A's normal, is within
+``gap_tol``) and *open* otherwise. On the closed points, the Total Complementary Energy of
+the rigid problem (the paper, eq. (11), ``D = 0``)::
 
     minimise    sum_j f_j . h_j                     (= -sum_s R_s . U_s)
     subject to  G' f + b = 0,   fn >= 0             (G: compatibility, b: self-weight)
@@ -29,16 +27,14 @@ program is bounded exactly when an admissible force state exists on the current 
 (weak and strong duality), infeasible when the motion cannot be accommodated without
 interpenetration (``incompatible``), unbounded when nothing stands (collapse).
 
-An increment ``ds`` moves every block rigidly by ``v ds`` (a rotation about its centroid,
-composed with the block's rotation in space by :class:`scipy.spatial.transform.Rotation`, and
-a translation; the supports exactly to ``(s + ds) U``), then projects the configuration back onto
-the contacts that stayed closed (one Gauss-Newton step on their relative displacements, so
-that the hinges of a long path do not drift apart), reclassifies every end (a joint that
-hinged has one closed end; a joint whose rotation reverses closes again; a new hinge forms
-wherever the program lets a closed joint rotate, which is how hinges migrate to a
-neighbouring joint as the geometry changes) and solves again. An increment after which the
-program is unbounded is bisected (from the last standing configuration) until the bracket
-is narrower than ``atol``: the settlement capacity is the largest magnitude found standing.
+An increment ``ds`` moves every block rigidly by ``v ds`` (a rotation about its centroid
+and a translation; the supports exactly to ``(s + ds) U``), projects the configuration back
+onto the contacts that stayed closed (one Gauss-Newton step on their relative
+displacements, so that the hinges of a long path do not drift apart), reclassifies every
+contact point (hinges open, close again or migrate to a neighbouring joint as the geometry
+changes) and solves again. An increment after which the program is unbounded is bisected
+(from the last standing configuration) until the bracket is narrower than ``atol``: the
+settlement capacity is the largest magnitude found standing.
 
 Outcomes (``status``): ``collapse`` (bracketed: no admissible state above ``capacity``),
 ``snap_through`` (the mechanism's speed per unit support motion exceeds ``snap_ratio``
@@ -112,7 +108,7 @@ _LP_STATUS = {0: "optimal", 2: "infeasible", 3: "unbounded"}
 def _linprog(c: NDArray[np.float64], **kwargs: object) -> tuple[str, OptimizeResult]:
     """``min c . x`` by HiGHS (:func:`scipy.optimize.linprog`, ``kwargs`` its constraints and
     bounds), and the status word of the answer: a failure of HiGHS is ``numerical``."""
-    from scipy.optimize import linprog  # on first use: every run paid its import (issue 24)
+    from scipy.optimize import linprog  # imported on first use: it is slow to import
 
     res = linprog(c, method="highs", **kwargs)
     return _LP_STATUS.get(res.status, "numerical"), res
@@ -121,14 +117,14 @@ def _linprog(c: NDArray[np.float64], **kwargs: object) -> tuple[str, OptimizeRes
 def _rotation_matrices(w: ArrayLike) -> NDArray[np.float64]:
     """Rotation matrices ``(n, 3, 3)`` of rotation vectors ``w`` ``(n, 3)`` (rad, right-handed
     about the vector's direction)."""
-    from scipy.spatial.transform import Rotation  # on first use (issue 24)
+    from scipy.spatial.transform import Rotation  # imported on first use
 
     return Rotation.from_rotvec(np.asarray(w, dtype=float).reshape(-1, 3)).as_matrix()
 
 
 def _rotation_vectors(R: NDArray[np.float64]) -> NDArray[np.float64]:
     """Rotation vectors ``(n, 3)`` (rad, angles up to pi) of rotation matrices ``(n, 3, 3)``."""
-    from scipy.spatial.transform import Rotation  # on first use (issue 24)
+    from scipy.spatial.transform import Rotation  # imported on first use
 
     return Rotation.from_matrix(np.asarray(R, dtype=float).reshape(-1, 3, 3)).as_rotvec()
 
@@ -345,13 +341,13 @@ class _Step:
 
 
 def _operators(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]):
-    """Compatibility rows of the closed contacts: ``(Gn, Gt, hn, ht, kc, p, dirs)`` with
-    ``G`` (sparse) over the free blocks' scaled velocities ``(v, w L)`` (``ndof`` each; ``L``
-    the assembly's size, so that every column is a length per unit magnitude and the
-    programs do not depend on the unit of length: :func:`_unscale`), ``Gn`` one
-    row per closed contact, ``Gt`` one per closed contact and tangent (tangent by tangent),
-    ``h`` the supports' part, ``kc`` the closed contacts, ``p`` their points and ``dirs``
-    (nk, dim, dim) their directions ``(n, t...)``."""
+    """Compatibility rows of the closed contacts: ``(Gn, Gt, hn, ht, kc, p, dirs)``.
+
+    ``G`` (sparse) acts on the free blocks' scaled velocities ``(v, w L)`` (``L`` the
+    assembly's size: every column is a length per unit magnitude, whatever the unit of
+    length; :func:`_unscale`); ``Gn`` has one row per closed contact, ``Gt`` one per closed
+    contact and tangent (tangent by tangent); ``h`` is the supports' part, ``kc`` the closed
+    contacts, ``p`` their points and ``dirs`` (nk, dim, dim) their directions ``(n, t...)``."""
     p, n, _ = _contacts(sc, cf)
     kc = np.flatnonzero(closed)
     nk, nf, nd = len(kc), len(sc.free), sc.ndof
@@ -467,7 +463,7 @@ def _move(sc: _Scene, cf: _Config, v: NDArray[np.float64], ds: float, advance: b
 def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     """One Gauss-Newton step that closes the relative displacement (every component) of the
     contacts ``keep`` by the least change of the free blocks' placements."""
-    from scipy.sparse.linalg import lsqr  # on first use (issue 24)
+    from scipy.sparse.linalg import lsqr  # imported on first use
 
     if not keep.any():
         return cf
@@ -488,16 +484,16 @@ def _snap(
 
     At each sub-step the direction is the kinematic program's steepest descent of the
     weights with the supports held (block speeds bounded by 1, rotations times the size by
-    1); the blocks move along it until the first open contact closes (the closing contact
-    is then shut exactly by the projection) or by at most 1 % of the size. The fall is
-    taken as quasi-static with perfectly inelastic impacts: the energy released is
-    dissipated when the joint closes. Returns the standing configuration, its closed
-    contacts and its program; None when no contact closes before some block has turned by
-    ``reach`` rad or moved by ``reach`` times the size, or when the fall does not lower the
-    weights (a collapse); the failed :class:`_Step` (``numerical``) when HiGHS fails. ``reach`` is ``limit`` or, if larger, twice the widest opening of a joint open
-    at the start of the fall (the relative rotation of its blocks): a snap closes an open
-    joint by turning its blocks back by that joint's opening, so a path whose hinges have
-    opened wide must be followed as far to find the closure.
+    1); the blocks move along it until the first open contact closes (then shut exactly by
+    the projection), by at most 1 % of the size. The fall is taken as quasi-static with
+    perfectly inelastic impacts (the energy released is dissipated when the joint closes).
+
+    Returns the standing configuration, its closed contacts and its program; None when no
+    contact closes before some block has turned by ``reach`` rad or moved by ``reach`` times
+    the size, or when the fall does not lower the weights (a collapse); the failed
+    :class:`_Step` (``numerical``) when HiGHS fails. ``reach`` is ``limit`` or, if larger,
+    twice the widest relative rotation of a joint open at the start of the fall (a snap
+    turns the blocks back by the opening of the joint it closes).
     """
     b = _weights(sc)
     bounds = (-1.0, 1.0)  # scaled velocities (:func:`_operators`)
@@ -593,9 +589,8 @@ class SettlementPathResult(Result):
     """A finite-settlement path (``ok`` when ``status`` is ``collapse``, ``snap_through`` or
     ``contact_lost``: a capacity was bracketed).
 
-    The path's coordinates are those of the assembly: in its plane ``(x, z)`` and one
-    rotation for a planar assembly (``plane`` set), ``(x, y, z)`` and rotation vectors in
-    space (``plane`` None); :meth:`wrenches` and :meth:`displacements` give both in the
+    Coordinates and signs as in the module docstring: planar with ``plane`` set, spatial
+    with ``plane`` None; :meth:`wrenches` and :meth:`displacements` give both in the
     global frame.
 
     Attributes
@@ -603,8 +598,7 @@ class SettlementPathResult(Result):
     status : str
         How the path ended (module docstring); ``message`` says what decided it.
     settlements : dict
-        The scenario's settlement vectors ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad):
-        the motion at magnitude ``s`` is ``s`` times these.
+        The scenario's settlement vectors ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad).
     capacity : float
         Settlement capacity: the largest magnitude found standing (multiples of the
         settlement vectors; NaN unless ``ok``).
@@ -613,17 +607,16 @@ class SettlementPathResult(Result):
     magnitudes : (k,) ndarray
         Magnitude of every standing configuration of the path, increasing.
     reactions : (k, n_supports, 3 or 6) ndarray
-        The wrench of each support on the structure at each magnitude (kN, kN m), the moment
-        about the support's current centroid: planar ``(Rx, Rz, M)`` (``Rx`` along the
-        plane's horizontal direction, ``M`` counter-clockwise), spatial
-        ``(Fx, Fy, Fz, Mx, My, Mz)``.
+        The wrench of each support on the structure at each magnitude (kN, kN m): planar
+        ``(Rx, Rz, M)``, spatial ``(Fx, Fy, Fz, Mx, My, Mz)``, about the support's current
+        centroid.
     lambda_max : (k,) ndarray
         lambda_max of the lateral pattern (``alpha``) on the deformed structure (NaN when
         not asked for).
     placements : (k, n_blocks, 3 or 6) ndarray
-        Every block's displacement from its reference placement: planar ``(dx, dz, theta)``,
-        spatial ``(dx, dy, dz, rx, ry, rz)`` (the centroid's translation, m, and the rotation
-        about it, rad; a rotation vector in space).
+        Every block's displacement from its reference placement (the centroid's translation,
+        m, and the rotation about it, rad): planar ``(dx, dz, theta)``, spatial
+        ``(dx, dy, dz, rx, ry, rz)``.
     hinges : list of list of int
         Per magnitude, the interfaces that rotate in the mechanism (hinges).
     hinge_points : (k, n_interfaces, 3) ndarray
@@ -642,7 +635,6 @@ class SettlementPathResult(Result):
         Magnitudes at which nothing stood and the structure fell, with the supports held,
         to a new standing configuration (a joint closed: a hinge migrated); each appears
         twice in ``magnitudes``, before and after the fall.
-    n_solves : int
     """
 
     OK = ("collapse", "snap_through", "contact_lost")
@@ -706,13 +698,10 @@ def settlement_path(
     Parameters
     ----------
     assembly : Assembly
-        Any assembly of rigid blocks; followed in its plane when it is planar (module
-        docstring), in space otherwise.
+        Any assembly of rigid blocks.
     settlements : dict
         ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad) about each support's centroid (in
-        the plane of a planar assembly): the motion of unit magnitude. At magnitude ``s`` a
-        support is translated by ``s (ux, uy, uz)`` and turned about its centroid by the
-        rotation vector ``s (rx, ry, rz)``.
+        the plane of a planar assembly): the motion of unit magnitude (module docstring).
     material : Material, optional
         Must be the rigid Heyman material (the default): no friction limit, cohesion,
         strengths or stiffness (sliding and crushing are not followed).
@@ -735,14 +724,12 @@ def settlement_path(
         Where nothing stands, the structure's fall with the supports held is followed until
         an open joint closes (a snap, after which the path goes on); a fall in which some
         block turns by more than ``snap_limit`` rad, or moves by more than ``snap_limit``
-        times the assembly's size, before any joint closes is a collapse. The limit is
-        raised to twice the widest opening of an open joint when that is larger (a snap
-        turns the blocks back by the opening of the joint it closes).
+        times the assembly's size, before any joint closes is a collapse (the limit is
+        raised to twice the widest opening of an open joint when that is larger).
     model : {"auto", "spatial"}
-        ``"auto"`` follows a planar assembly in its plane (two contact points per interface,
-        three dofs per block) and any other in space; ``"spatial"`` follows every assembly
-        in space (the polygon vertices, six dofs per block): the same path, the check of
-        the spatial kinematics on a planar structure.
+        ``"auto"`` follows a planar assembly in its plane and any other in space;
+        ``"spatial"`` follows every assembly in space (the same path: a check of the
+        spatial kinematics on a planar structure).
 
     Returns
     -------

@@ -2,11 +2,10 @@
 
 :func:`minimum_thickness` bisects a geometric parameter ``t`` between a value where the
 structure stands and one where it does not; "stands" means the TCE with no support motion
-is ``optimal`` (an admissible force state exists) under self-weight, or under a fixed load
-pattern (:class:`tce.core.loads.LoadPattern`) at a fixed multiplier ``lam`` of its live part.
-:func:`arch_minimum_thickness` applies it to the semicircular arch with a fixed centreline
-radius ``R`` and number of voussoirs, and reports ``t / R`` (Milankovitch's continuous
-value for a semicircular arch under self-weight is ``t/R = 0.1075``).
+is ``optimal`` under self-weight, or under a load pattern at a fixed multiplier ``lam`` of
+its live part. :func:`arch_minimum_thickness` applies it to the semicircular arch of fixed
+centreline radius ``R`` and reports ``t / R`` (Milankovitch's continuous value under
+self-weight: ``t/R = 0.1075``).
 """
 
 from __future__ import annotations
@@ -29,8 +28,8 @@ __all__ = ["ThicknessResult", "arch_minimum_thickness", "minimum_thickness"]
 
 @dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class ThicknessResult(Result):
-    """Outcome of a minimum-thickness bisection (``status`` is ``optimal``: a bracket was
-    found; the thickness is a verified standing one whatever ``undecided`` says).
+    """Outcome of a minimum-thickness bisection (``status`` ``optimal``: a bracket was found;
+    ``thickness`` is verified standing whatever ``undecided`` says).
 
     Attributes
     ----------
@@ -40,7 +39,6 @@ class ThicknessResult(Result):
         Largest thickness found not to stand (m).
     ratio : float
         ``thickness / reference`` (for arches, the centreline radius).
-    n_solves : int
     undecided : int
         Solves whose status was ``numerical`` (treated as "does not stand").
     """
@@ -87,8 +85,7 @@ def minimum_thickness(
         Multiplier of the pattern's live part (>= 0; default 0: its fixed part only).
     progress : callable, optional
         ``progress(solves done, solves expected)`` after each solve (the expected count is
-        an upper bound until the last call, where both are equal); e.g. a
-        :class:`tce.study.progress.Progress`.
+        an upper bound until the last call, where both are equal).
 
     Raises
     ------
