@@ -8,10 +8,7 @@ load multiplier ``lam``. A :class:`LoadPattern` declares them:
 - the self-weight of every block (always part of ``b_fixed``);
 - the paper's lateral pattern, ``lam`` times every block's weight horizontally in direction
   ``alpha`` (degrees from +x towards +y) at its centroid, part of ``b_live`` when ``lateral``
-  (by default only when the pattern has no live load of its own: lambda multiplies what the
-  engineer declared live, and the lateral pattern joins a vehicle, point or distributed live
-  load only when asked for with ``lateral = True``; :attr:`LoadPattern.multiplies` says it in
-  words);
+  (:class:`LoadPattern`; :attr:`LoadPattern.multiplies` says it in words);
 - point loads (:class:`PointLoad`): a force ``f`` (kN, global frame) at a point ``p`` (m) of
   a free block ``i``, given by block and point or found on the top surface above a plan
   point (``on_top``);
@@ -345,7 +342,7 @@ class LoadPattern:
             "point": [p.to_dict() for p in self.point],
             "distributed": [d.to_dict() for d in self.distributed],
         }
-        if self.vehicle:  # absent otherwise: the patterns of earlier versions read the same
+        if self.vehicle:  # absent otherwise: a pattern without vehicles keeps its plain data
             out["vehicle"] = [v.to_dict() for v in self.vehicle]
         if self.fill is not None:
             out["fill"] = self.fill.to_dict()
