@@ -1,4 +1,4 @@
-"""Canonical force states where the TCE optimum is not unique (issue 21).
+"""Canonical force states where the TCE optimum is not unique.
 
 With rigid contacts the TCE is linear (``Pi_c = -U' B_sup F``), and its minimisers form a
 face of the admissible set: every admissible state when no support moves, often a segment
@@ -19,24 +19,15 @@ bound, of the compliant answer with equal normal and shear stiffness (the strict
 term selects one point of the face). The objective is strictly convex, so the canonical
 state is unique; the planar model gives the spatial one (its contact force spread over the
 vertices in proportion to their areas is the least-energy spread). ``eps`` is
-:data:`FACE_SLACK` times the optimum (the solver's own accuracy is about 1e-10), so the
-quantities the energy fixes (the thrust under a spreading) move by at most that fraction.
-When Clarabel cannot solve the problem with a face that thin (it stops at its iteration
-limit: on the Fig. 10 dome under a radial spread at 8 of 13 load steps), it is solved again
-with the next slack of :data:`FACE_SLACKS` (1e-8: every step of that dome then has its
-canonical state), and those quantities move by at most that fraction. An answer counts as
-solved only when it passes the caller's residual check (``residual_tol``, the check every
-reported state passes), and at the last slack a warm solver that fails is followed by a
-fresh one (equilibrated for this problem), then by one with robust settings
-(:meth:`tce.core.clarabel_solver.SolverOptions.settings`): the thin face is as hard for an
-interior-point method as a load next to its limit (the admissible set is a sliver). The
-robust one decided the limit step of a 6 m ring under 0.3 m of fill with passive restraint
-(kp = 3, one 100 kN wheel at x = -1.8 m, tests/test_passive_study.py), where the others stop
-``AlmostSolved`` 3.2e-8 off equilibrium (18 iterations; measured on branch h24d,
-2026-11-24). On the paper's arch under a 1 mm transversal motion (3D SOCP, load path with
-step 0.02), Clarabel's ``AlmostSolved`` answers missed the check by up to 2x (cone residual 1.8e-9) and were taken
-as solved, so the 1e-8 slack was never tried, and 2 of 14 steps (lambda 0.02 and 0.24) were
-left undecided; now all 14 are decided (measured on branch hdef, 2026-11-24).
+:data:`FACE_SLACK` times the optimum (about the solver's own accuracy), so the quantities
+the energy fixes (the thrust under a spreading) move by at most that fraction. When
+Clarabel cannot solve the problem with a face that thin, it is solved again with the next
+slack of :data:`FACE_SLACKS`, and those quantities move by at most that fraction. An
+answer counts as solved only when it passes the caller's residual check
+(``residual_tol``); at the last slack a warm solver that fails is followed by a fresh one
+(equilibrated for this problem), then by one with robust settings
+(:meth:`tce.core.clarabel_solver.SolverOptions.settings`): a thin face is as hard for an
+interior-point method as a load next to its limit (the admissible set is a sliver).
 
 **Uniqueness is decided** by comparing the solver's answer with the canonical state: an
 interior-point answer lies in the relative interior of the optimal face, so when the face
@@ -46,9 +37,8 @@ the optimum is unique (``unique = True``). The test is exact for a face of one p
 fails only when the analytic centre of a larger face happens to be its least-energy point
 (a symmetric face), which the comparison then reports as unique.
 
-Cost: one more small conic problem per rigid optimal solve (the constraints of the TCE
-problem and one row bounding the energy), solved with a warm solver per support motion;
-``benchmarks/canonical_states.py`` measures the ratio.
+Cost: one more conic problem per rigid optimal solve (the TCE problem's constraints and one
+row bounding the energy), with a warm solver per support motion.
 """
 
 from __future__ import annotations
@@ -71,10 +61,7 @@ __all__ = ["FACE_SLACK", "FACE_SLACKS", "SAME_STATE", "Canonical", "CanonicalSol
 FACE_SLACK = 1e-10
 #: the slacks tried in turn when the thinner face cannot be solved
 FACE_SLACKS = (FACE_SLACK, 1e-8)
-#: weight of the passive restraint's forces in the canonical selection (:func:`restrained_canonical_problem`).
-#: On the 6 m filled bridge under the LM1 tandem (studies/bridge_passive.toml, kp = 3, load path
-#: step 0.1) the summed restraint at lambda = 1.0 (below the 1.176 collapse without it) is 253 kN
-#: (its cap) with weight 0, 50 kN with 1e2 and 0.8 kN with 1e4; at the limit 253 kN with each.
+#: weight of the passive restraint's forces in the canonical selection (:func:`restrained_canonical_problem`)
 RESTRAINT_WEIGHT = 1e4
 #: two states differ when a force component differs by more than this, relative to W
 SAME_STATE = 1e-6
@@ -91,9 +78,8 @@ def canonical_b(f: Formulation, b: NDArray[np.float64], bound: float) -> NDArray
 
 def _insert_row(A: sp.csc_matrix, i: int, row: NDArray[np.float64]) -> sp.csc_matrix:
     """``A`` (CSC, sorted indices) with the nonzeros of the dense ``row`` inserted as row ``i``:
-    the arrays ``sp.vstack([A[:i], row, A[i:]]).tocsc()`` has, without slicing and stacking,
-    which cost three times as much. Every new support motion direction sets up a canonical
-    solver: a sweep of motion directions spends a fifth of its run there with the stacking."""
+    the arrays ``sp.vstack([A[:i], row, A[i:]]).tocsc()`` has, without slicing and stacking
+    (every new support motion direction sets up a canonical solver)."""
     cols = np.flatnonzero(row)
     ptr = A.indptr
     above = np.concatenate([[0], np.cumsum(A.indices < i)])  # entries of rows < i, counted
@@ -136,11 +122,11 @@ def restrained_canonical_problem(
 
     ``p`` carries no TCE, but in the selection it carries the energy ``RESTRAINT_WEIGHT / 2
     (p / W)^2`` (:data:`RESTRAINT_WEIGHT` times the most compliant contact component's, whose
-    normalised entry is 1): with none, the least-energy state leans on the free restraint to
-    unload the joints, and the fill pushes with its full passive capacity far below
-    collapse; with it, the restraint is mobilised only where the contacts cannot carry the
-    load without it (a rule of selection among equally admissible states, not a model of the
-    fill's stiffness). The objective stays strictly convex: the canonical state is unique."""
+    normalised entry is 1): without it the least-energy state would lean on the free
+    restraint and the fill would push with its full capacity far below collapse; with it the
+    restraint is mobilised only where the contacts cannot carry the load alone (a rule of
+    selection among equally admissible states, not a model of the fill's stiffness). The
+    objective stays strictly convex: the canonical state is unique."""
     W = f.scaling.force
     k = G.shape[1]
     # zero in the energy row too: it comes after the equilibrium rows
@@ -229,9 +215,9 @@ class CanonicalSolver:
         self, b: NDArray[np.float64], q: NDArray[np.float64], bound: float, restraint: Restraint | None, fresh: bool
     ) -> Iterator[ClarabelSolver]:
         """The warm solver set to ``(b, q, bound)``; then, with ``fresh`` (the last slack) or
-        when it was set up for another ``q`` or restraint, a new one. The warm solver keeps
-        the equilibration of its first problem; a new one solved the step it could not
-        (lambda 0.24 of the 3D arch)."""
+        when it was set up for another ``q`` or restraint, a new one (the warm solver keeps
+        the equilibration of its first problem); last, with ``fresh``, one with robust
+        settings."""
         f = self.f
         if self._warm is not None and np.array_equal(self._q, q) and self._restraint is restraint:
             self._warm.update(b=canonical_b(f, b, bound))

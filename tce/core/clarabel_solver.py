@@ -1,4 +1,4 @@
-"""The one place tce calls Clarabel: settings, setup, warm updates and honest timing.
+"""The one place tce calls Clarabel: settings, setup, warm updates and timing.
 
 Clarabel (Goulart and Chen, "Clarabel: an interior-point solver for conic programs with
 quadratic objectives", 2024) solves a :class:`tce.core.problem.ConicProblem`. A
@@ -8,8 +8,7 @@ factorisation (presolve is off so that the data layout never changes).
 
 Times are wall-clock times measured here around the calls (``time.perf_counter``):
 ``solve_time`` is the ``solve()`` call alone and ``setup_time`` the set-up or update that
-preceded it. Clarabel's own ``solve_time`` is not used: it includes its set-up, so it
-overstates a warm solve several times.
+preceded it (Clarabel's own ``solve_time`` includes its set-up).
 """
 
 from __future__ import annotations
@@ -48,14 +47,11 @@ class SolverOptions:
         Clarabel's iteration limit.
     refine : bool
         Clarabel's iterative refinement of the KKT solves in the warm TCE solver (retries
-        always refine). Off by default: on ~2,000 load-path solves the statuses were the
-        same, infeasible loads got their certificate in ~15 iterations instead of running
-        to the limit, and solves were 1.5-3x faster; an answer still has to pass
-        ``residual_tol``, so a load within ~1e-8 of lambda_max may be ``optimal``.
+        always refine). An answer still has to pass ``residual_tol``, so a load within
+        ~1e-8 of lambda_max may be ``optimal`` without it.
     canonical : bool
         Report the canonical state of a rigid scene (:mod:`tce.core.canonical`: the optimal
-        state of least unit-stiffness strain energy) and decide its uniqueness, instead of
-        the point of the optimal face the solver happened to return.
+        state of least unit-stiffness strain energy) and decide its uniqueness.
     """
 
     tol: float = 1e-10
@@ -81,18 +77,15 @@ class SolverOptions:
             Iterative refinement of the KKT solves (the warm solver passes ``self.refine``).
         kkt : {"qdldl", "faer"}
             Clarabel's direct KKT factorisation (:func:`tce.core.problem.kkt_method` chooses
-            per model); faer runs on one thread, so its times are the same on any machine.
+            per model); faer runs on one thread.
         b_norm : float
             ``max |b|`` of the problem to solve (0: not given). Clarabel's primal residual is
             relative, ``||Ax + s - b||_inf / max(1, ||b||_inf + ||x||_inf + ||s||_inf)``
             (Goulart and Chen 2024, Sec. 5.2; ``DefaultInfo::update`` of Clarabel 0.9-0.11),
-            while tce's residual check (``residual_tol``) is absolute on the scaled problem.
-            Where the scaled offsets are large (a compressive strength: ``fc A / W`` up to 11
-            on the paper's arch at 3000 kN/m^2, and slacks as large) a ``Solved`` answer could
-            miss ``residual_tol`` by that factor (measured 1.4e-9 near a limit), so the
+            while tce's residual check (``residual_tol``) is absolute on the scaled problem,
+            so where the scaled offsets are large (a compressive strength ``fc A / W``) the
             feasibility tolerance is divided by ``max(1, 2 b_norm)`` (``||s||_inf`` is of the
-            order of ``||b||_inf``; ``x`` is of order 1). Problems of the paper's law have
-            ``b_norm`` below 1 and keep ``tol``.
+            order of ``||b||_inf``; ``x`` is of order 1).
         """
         s = clarabel.DefaultSettings()
         s.verbose = False
@@ -171,8 +164,7 @@ class Solution:
 
 
 def _cones(problem: ConicProblem) -> list:
-    """Clarabel's cone objects of ``problem`` (built once per cone list: a limit problem of
-    the paper's arch spent 7 % of its set-up building them)."""
+    """Clarabel's cone objects of ``problem``, built once per cone list."""
     return _clarabel_cones(problem.cones)
 
 

@@ -40,23 +40,17 @@ fixed loads (part of ``b_fixed``), and it adds no strength of its own.
   voussoir that moves into it with a horizontal pressure up to the passive one, ``kp
   sigma_v`` (Rankine: ``kp = (1 + sin(phi)) / (1 - sin(phi))``). It is not a fixed load: each
   exposed piece gets a horizontal force ``p`` of its own, pointing from the fill into the
-  ring (as the at-rest pressure does), ``0 <= p <= (kp - k0) |n_h| / n_z * W`` (the pressure
-  between at rest and passive over the piece's vertical projection; ``W`` its column's
-  weight as above, ``n_h`` the horizontal part of the outward normal), an unknown of the
-  direct limit analysis and of every TCE force state (:mod:`tce.core.passive`). Dually, a mechanism pays ``p_max`` times
-  the velocity with which the piece moves into the fill, and nothing where it moves away: the
-  fill resists, never drives. This is how mechanism programs for arch bridges model the
-  backfill's restraint, "specified separately" from the live load's spread and independent
-  of the mode of response (Gilbert, Smith, Melbourne and Wang, "Experimental study of
-  soil-arch interaction in masonry bridges", abstract; M. A. Crisfield and A. J. Packham,
-  "A mechanism program for computing the strength of masonry arch bridges", TRRL Research
-  Report 124, 1987; M. Gilbert, *RING 1.5 Theory and Modelling Guide*, University of
-  Sheffield, 2005, "Modelling backfill"), here with the full passive pressure and no wall friction;
-  a partly mobilised pressure is a smaller ``kp`` (e.g. ``k0 + m (Kp - k0)``, ``m`` the
-  mobilisation). The direct limit (and what uses it: the critical position, the adequacy
-  factor) and the Clarabel TCE solves (hence load paths and study files) carry it; the cvxpy
-  backend and the non-associative estimate refuse a pattern with ``kp`` > 0
-  (:func:`tce.core.passive.refuse_passive`) rather than leave it out.
+  ring, ``0 <= p <= (kp - k0) |n_h| / n_z * W`` (the pressure between at rest and passive
+  over the piece's vertical projection; ``n_h`` the horizontal part of the outward normal),
+  an unknown of the direct limit analysis and of every TCE force state
+  (:mod:`tce.core.passive`): the fill resists, never drives. This is the backfill restraint
+  of mechanism programs for arch bridges, specified separately from the live load's spread
+  (Gilbert, Smith, Melbourne and Wang, "Experimental study of soil-arch interaction in
+  masonry bridges"; M. A. Crisfield and A. J. Packham, "A mechanism program for computing
+  the strength of masonry arch bridges", TRRL Research Report 124, 1987; M. Gilbert, *RING
+  1.5 Theory and Modelling Guide*, University of Sheffield, 2005, "Modelling backfill"),
+  here with the full passive pressure and no wall friction; a partly mobilised pressure is a
+  smaller ``kp`` (e.g. ``k0 + m (Kp - k0)``, ``m`` the mobilisation).
 """
 
 from __future__ import annotations

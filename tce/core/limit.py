@@ -57,8 +57,7 @@ class Mechanism:
     ----------
     velocities : (n_blocks, 6) ndarray
         ``(vx, vy, vz, wx, wy, wz)`` of every block about its centroid (supports: zero),
-        scaled so that the largest point velocity of any block vertex is 1 (m per unit
-        amplitude).
+        scaled so that the largest vertex velocity is 1 (m per unit amplitude).
     modes : tuple of str
         Per interface of ``model.interfaces``: ``"hinge"`` (relative rotation),
         ``"sliding"`` (relative tangential translation, no rotation), ``"opening"``
@@ -286,10 +285,8 @@ class LimitSolver:
         (:func:`tce.core.problem.restrained_limit_problem`; :meth:`solve` takes the fill's
         passive restraint from the pattern) and the result carries their values.
 
-        The mechanism (:func:`mechanism_from_velocities`, a fifth of the whole call on the
-        paper's arch) is classified only when ``mechanism`` is True; the result carries the
-        virtual velocities ``row_velocities`` either way, from which :meth:`with_mechanism`
-        classifies it later."""
+        The mechanism is classified only when ``mechanism`` is True; the result carries the
+        virtual velocities ``row_velocities`` either way (:meth:`with_mechanism`)."""
         t0 = time.perf_counter()
         model, f = self.model, self.formulation
         m = f.A_eq.shape[0]
@@ -298,8 +295,8 @@ class LimitSolver:
         else:
             problem = restrained_limit_problem(f, b_fixed, b_live, restraint.G, restraint.capacity)
         rhs_scaled = problem.b[:m]
-        # without iterative refinement first (0.6x the time on a 10,100-block dome, lambda
-        # within 1e-10); an answer that is not clean is solved again with it
+        # without iterative refinement first (cheaper); an answer that is not clean is solved
+        # again with it
         sol = solve_once(problem, self._settings[0])
         retried, spent = "", (0.0, 0.0)
         checked = self._checked(sol, rhs_scaled, b_live, restraint)
@@ -412,18 +409,13 @@ class LimitSolver:
     def _unbounded_proof(self, b_fixed: NDArray[np.float64], b_live: NDArray[np.float64]) -> str:
         """Decide an undecided limit solve as unbounded, independently of Clarabel's certificate.
 
-        Clarabel's certificate of dual infeasibility (a ray ``(dF, dlam)`` of the limit
-        problem) is the last iterate of its homogeneous embedding. On the running-bond wall
-        under a live point load, turned by 88.96 degrees about z (the rotation fills ``A_eq``:
-        3389 non-zeros instead of 2857), its ray residual stalled at 3.7e-9 of ``|x|`` after 7
-        iterations, above Clarabel's full tolerance (1e-9) and below its reduced one, so the
-        answer was ``AlmostDualInfeasible``, which tce rightly does not take as a verdict.
-        The limit is unbounded when both of these hold (each a well-posed, bounded problem):
+        Clarabel's certificate of dual infeasibility can stall between its full and reduced
+        tolerances (``AlmostDualInfeasible``), which is no verdict. The limit is unbounded
+        when both of these hold (each a well-posed, bounded problem):
 
         - a live-load ray: the least-force state carrying the unit live load alone under the
           homogeneous law (:meth:`lateral_ray`'s problem), with equilibrium residual and law
-          violation below ``residual_tol`` (relative to ``W`` and ``W L``; 8e-14 on that wall
-          at every angle);
+          violation below ``residual_tol`` (relative to ``W`` and ``W L``);
         - an admissible state at ``lam = 0``: the phase-1 residual of the fixed loads
           (:func:`tce.core.problem.phase1_problem`) is at most ``feas_tol``.
 
@@ -458,9 +450,6 @@ class LimitSolver:
         law = law_violation(replace(f.law, h=None), F) / f.scaling.force  # the homogeneous law: a direction
         return F, eq, law
 
-    # ------------------------------------------------------------------------------------
-    # Certificate of no finite limit (issue 15): the named problem
-    # :func:`tce.core.problem.lateral_ray_problem`.
     def lateral_ray(
         self, alpha: float | None = None, contacts: NDArray[np.bool_] | None = None, loads: LoadPattern | None = None
     ) -> NDArray[np.float64] | None:
@@ -476,14 +465,10 @@ class LimitSolver:
         When the direct limit is unbounded, such a state exists: Clarabel's certificate of
         dual infeasibility of the max-lambda problem is a direction ``(dF, dlam)`` with
         ``A_eq dF + dlam b_live = 0``, ``dF`` admissible and ``dlam > 0``, and ``dF / dlam``
-        is one. Adding any multiple of it to an admissible state at ``lam`` gives one at any
-        larger ``lam``: the contacts it loads carry the live load without limit. Among all
-        such states this is the one of least total force, which loads few contacts (those
-        that lock), where an interior-point certificate loads all of them.
-
-        The fill's passive restraint (:mod:`tce.core.passive`) has no column here, and needs
-        none: its forces are bounded (``0 <= p <= cap``), so along a ray ``dF / dlam`` their
-        share ``p / lam`` vanishes, and the contacts alone carry the live load.
+        is one: the contacts it loads carry the live load without limit. The least total
+        force loads few contacts (those that lock), where an interior-point certificate loads
+        all of them. The fill's passive restraint (:mod:`tce.core.passive`) has no column:
+        its forces are bounded, so their share vanishes along a ray.
 
         Parameters
         ----------

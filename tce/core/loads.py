@@ -8,27 +8,21 @@ load multiplier ``lam``. A :class:`LoadPattern` declares them:
 - the self-weight of every block (always part of ``b_fixed``);
 - the paper's lateral pattern, ``lam`` times every block's weight horizontally in direction
   ``alpha`` (degrees from +x towards +y) at its centroid, part of ``b_live`` when ``lateral``
-  (by default only when the pattern has no live load of its own: lambda multiplies what the
-  engineer declared live, and the lateral pattern joins a vehicle, point or distributed live
-  load only when asked for with ``lateral = True``; :attr:`LoadPattern.multiplies` says it in
-  words);
-- point loads (:class:`PointLoad`): a force ``f`` (kN, global frame) at a point ``p`` (m) of
-  a free block ``i``, given by block and point or found on the top surface above a plan
-  point (``on_top``);
-- distributed loads (:class:`DistributedLoad`): a pressure (kN/m^2, downwards, per unit plan
-  area) on the exposed top surfaces of the blocks under a plan rectangle.
+  (:class:`LoadPattern`; :attr:`LoadPattern.multiplies` says it in words);
+- point loads (:class:`PointLoad`), distributed loads (:class:`DistributedLoad`) and
+  vehicles (:mod:`tce.core.vehicles`), each fixed (``scaled = False``: part of ``b_fixed``)
+  or live (``scaled = True``, the default: part of ``b_live``);
+- a fill (:mod:`tce.core.fill`): its weight and at-rest pressure are fixed.
 
-Each load is fixed (``scaled = False``: part of ``b_fixed``) or live (``scaled = True``, the
-default: part of ``b_live``). :func:`resolve` turns a pattern into applied point forces on
-one assembly (:class:`AppliedLoads`): a force ``f`` at ``p`` on block ``i`` adds the wrench
+:func:`resolve` turns a pattern into applied point forces on one assembly
+(:class:`AppliedLoads`): a force ``f`` at ``p`` on block ``i`` adds the wrench
 ``(f, (p - c_i) x f)`` about the block's centroid ``c_i``; a distributed load is shared among
 the blocks whose exposed top surfaces lie under its rectangle, each part's resultant at the
 plan centroid of the part. :meth:`AppliedLoads.vectors` projects the wrenches on a model's
 rows: 6 per free block ``(Fx, Fy, Fz, Mx, My, Mz)`` (spatial), or ``(e . F, z . F, m . M)``
 (planar, ``m`` the plane normal and ``e = m x z``). The planar model is exact for a scene
 only when every block's load wrench lies in the plane (no force along ``m``, no moment
-about ``e`` or ``z``, :meth:`AppliedLoads.in_plane`): a force in the plane applied off it
-makes a moment out of the plane.
+about ``e`` or ``z``, :meth:`AppliedLoads.in_plane`).
 
 Loads on support blocks are refused: the equilibrium of a support is not enforced, so such a
 load would be lost without a word. Errors are :class:`LoadError` naming the key of the
@@ -345,7 +339,7 @@ class LoadPattern:
             "point": [p.to_dict() for p in self.point],
             "distributed": [d.to_dict() for d in self.distributed],
         }
-        if self.vehicle:  # absent otherwise: the patterns of earlier versions read the same
+        if self.vehicle:  # absent otherwise: a pattern without vehicles keeps its plain data
             out["vehicle"] = [v.to_dict() for v in self.vehicle]
         if self.fill is not None:
             out["fill"] = self.fill.to_dict()

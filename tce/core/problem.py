@@ -129,11 +129,8 @@ FAER_FROM = 50_000
 def kkt_method(model: Model) -> str:
     """Clarabel's KKT factorisation for a model's problems: ``"faer"`` (supernodal) for a
     model of at least :data:`FAER_FROM` unknowns whose blocks form a mesh (on average at
-    least 1.5 interfaces per free block: domes, vaults, walls), ``"qdldl"`` otherwise.
-
-    Measured on one limit problem each (``tce bench`` machine, CPU time, faer / qdldl):
-    dome of 10,100 blocks (240,001 unknowns) 0.80-0.96, of 2,500 blocks 0.61; an arch of
-    10,000 blocks (a chain, whose factor has no fill) 1.09; below 25,000 unknowns 1.03-1.09.
+    least 1.5 interfaces per free block: domes, vaults, walls), ``"qdldl"`` otherwise (a
+    chain's factor has no fill, so a supernodal method gains nothing on it).
     """
     free = len(model.assembly.free_indices)
     mesh = free > 0 and len(model.interfaces) >= 1.5 * free
@@ -252,8 +249,8 @@ class Formulation:
     def residuals_scaled(self, F: NDArray[np.float64], b_eq: NDArray[np.float64]) -> tuple[float, float]:
         """:meth:`residuals` for the scaled right-hand side ``b_eq = -rhs / row_div`` (the first
         ``m_eq`` entries of :func:`tce_b`, which a solve has already computed)."""
-        # diag(1 / row_div) A_eq F as the scaled operator times F / W (no second copy of the
-        # model's largest operator: 0.33 GB on a 100,000-block dome, docs/scaling.md)
+        # diag(1 / row_div) A_eq F as the scaled operator times F / W: no second copy of the
+        # model's largest operator
         eq = self.A_eq @ (F / self.scaling.force) - b_eq
         return float(np.abs(eq).max(initial=0.0)), self.law_check(F) / self.scaling.force
 
@@ -294,8 +291,8 @@ def tce_problem(f: Formulation, b: NDArray[np.float64], U: NDArray[np.float64]) 
     A = f.constraints
     cones = _cones(("zero", f.A_eq.shape[0] + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
     # the objective's scale is free: a q far from order one (a compliance of 1e-18 with a 1 mm
-    # motion puts |q| near 1e15 once P is normalised, and Clarabel then misreads the scene as
-    # infeasible or unbounded) is brought back to one
+    # motion gives |q| near 1e15), which Clarabel misreads as infeasible or unbounded, is
+    # brought back to one
     q = f.q(U)
     s = q_scale(q)
     return ConicProblem("tce", f.P / s, q / s, A, b, cones)
@@ -403,8 +400,7 @@ def least_violation_problem(
     f: Formulation, rhs: NDArray[np.float64], target: ConeRows, normal_ref: NDArray[np.float64]
 ) -> ConicProblem:
     """The state of least violation of a second law ``target`` among the equilibrium states
-    that meet ``f.law`` (used by :mod:`tce.analysis.nonassoc` to pick, among the optimal
-    states of a fixed-capacity limit problem, one that meets the Coulomb law)::
+    that meet ``f.law`` (:mod:`tce.analysis.nonassoc`)::
 
         min  t  s.t.  A_eq F + rhs = 0,   M F + h in K             (f.law, exactly)
                       T F + g + t e in K_T,  |T_0 F + g_0| <= t    (target, slack t)
@@ -490,18 +486,15 @@ def nearest_least_violation_problem(
 
 
 def nearest_state_problem(f: Formulation, rhs: NDArray[np.float64], normal_ref: NDArray[np.float64]) -> ConicProblem:
-    """The admissible equilibrium state nearest to a reference (used by
-    :mod:`tce.analysis.nonassoc` to pick one state, the same in every frame, among the optimal
-    states of a limit problem)::
+    """The admissible equilibrium state nearest to a reference (:mod:`tce.analysis.nonassoc`)::
 
         min  1/2 sum_k ((fn_k - normal_ref_k)^2 + ||ft_k||^2) / W^2
         s.t. A_eq F + rhs = 0,   M F + h in K   (f.law)
 
-    The objective is strictly convex, so the minimiser is unique; it depends on the contacts'
-    normal forces and the lengths of their tangential forces only, so it does not change when
-    the scene turns or the tangential frames of the interfaces do (a centre of an optimal face
-    reached by an interior point does, to its stopping tolerance). Unknowns ``x = F / W`` (n);
-    rows as :func:`tce_problem`.
+    The objective is strictly convex, so the minimiser is unique; it depends on the normal
+    forces and the lengths of the tangential forces only, so it does not change when the scene
+    or the interfaces' tangential frames turn. Unknowns ``x = F / W`` (n); rows as
+    :func:`tce_problem`.
     """
     law = f.law
     n, dim = f.n, f.model.dim
@@ -511,9 +504,8 @@ def nearest_state_problem(f: Formulation, rhs: NDArray[np.float64], normal_ref: 
     return ConicProblem("nearest-state", sp.identity(n, format="csc"), q, f.constraints, tce_b(f, rhs), cones)
 
 
-# ----------------------------------------------------------------------------------------
-# Certificate of no finite limit (issue 15): the least-force state that carries the live
-# load alone, solved by :meth:`tce.core.limit.LimitSolver.lateral_ray`.
+# Certificate of no finite limit: the least-force state that carries the live load alone,
+# solved by :meth:`tce.core.limit.LimitSolver.lateral_ray`.
 def lateral_ray_problem(f: Formulation, b_live: NDArray[np.float64], allowed: NDArray[np.bool_]) -> ConicProblem:
     """``min sum_k ||F_k||  s.t.  A_eq F + b_live = 0,  M F in K,  F_k = 0 off ``allowed````.
 
@@ -588,12 +580,10 @@ def restrained_tce_problem(
         min  1/2 F' D F - U' B_sup F   s.t.  A_eq F + G p + rhs = 0,  F admissible,  0 <= p <= capacity
 
     (the passive restraint of a fill, :mod:`tce.core.passive`). The forces ``p`` carry no
-    complementary energy: they are reactions of a rigid-plastic fill, which stores none and
-    whose points of contact do not move with the supports (``U``), so they enter the energy
-    neither through a compliance nor through a prescribed motion; they only widen the set of
-    admissible states, as in the limit problem (:func:`restrained_limit_problem`), so the load
-    path's last admissible multiplier and the direct limit describe one problem. Unknowns
-    ``(x, p / W)`` (n + k); rows as :func:`tce_problem`, then :func:`with_bounded_forces`'.
+    complementary energy (a rigid-plastic fill stores none and does not move with the
+    supports); they only widen the admissible set, as in :func:`restrained_limit_problem`.
+    Unknowns ``(x, p / W)`` (n + k); rows as :func:`tce_problem`, then
+    :func:`with_bounded_forces`'.
     """
     return with_bounded_forces(tce_problem(f, b, U), _equilibrium_columns(f, G),
                                np.asarray(capacity, dtype=float) / f.scaling.force)

@@ -3,7 +3,7 @@
 Every answer tce computes, from one conic solve to a whole load path, is a frozen
 dataclass deriving from :class:`Result`: it carries a ``status`` word, ``ok`` (whether the
 numbers in it are an answer), a ``message`` saying what decided, the ``solver`` that ran,
-and two honest times: ``solve_time`` (wall time inside the solver's solve calls) and
+and two times: ``solve_time`` (wall time inside the solver's solve calls) and
 ``wall_time`` (the whole call, from Python). Results hold arrays and plain values, never
 the model or the assembly they came from.
 

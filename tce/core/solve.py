@@ -12,12 +12,8 @@ movements in a semicircular arch*)::
     subject to  A_eq F + b_fixed + lam * b_live = 0
                 fn >= 0 and ||ft|| <= mu fn at every contact  (fn >= 0 only if mu is None)
 
-(``b_fixed = b_dead`` and ``b_live = b_lat(alpha)`` for the default pattern,
-:func:`tce.core.loads.load_vectors` otherwise)
-
 where ``(R_s, M_s) = B_s F`` is the wrench support ``s`` exerts on the structure and ``D``
-the diagonal compliance (zero for rigid contacts): an LP (planar, rigid), a QP, an SOCP
-(spatial with friction) or a QP with cones. The problem is built once per solver
+the diagonal compliance (zero for rigid contacts). The problem is built once per solver
 (:func:`tce.core.problem.tce_problem`); a new ``lam``, load pattern or settlement only updates
 the vectors ``q`` and ``b`` of the warm Clarabel solver (:mod:`tce.core.clarabel_solver`).
 
@@ -42,14 +38,11 @@ feasible, bounded problem is retried: first with a fresh solver equilibrated for
 problem (``rescaled``; the warm solver keeps the scaling of its first problem), then with
 robust settings. The result always says what decided (``retry``).
 
-A fill's passive restraint (:mod:`tce.core.passive`) is ``k`` more unknowns of the same
-problems, ``0 <= p <= capacity`` in the equilibrium rows and without energy
-(:func:`tce.core.problem.with_bounded_forces`: :func:`tce.core.problem.restrained_tce_problem`,
-:func:`tce.core.problem.restrained_phase1_problem`,
-:func:`tce.core.canonical.restrained_canonical_problem`): the warm solvers, the verdicts,
-the retries, the residual check (``G p`` in the equilibrium rows, the bounds in the law's
-violation) and the canonical state are those of the problem without it. Its recession
-directions are the self-stresses (a bounded ``p`` has none).
+A fill's passive restraint (:mod:`tce.core.passive`) adds ``k`` unknowns
+``0 <= p <= capacity`` without energy to the same problems
+(:func:`tce.core.problem.with_bounded_forces`); verdicts, retries, residual checks (``G p``
+in the equilibrium rows, the bounds in the law's violation) and the canonical state are
+otherwise those of the problem without it.
 """
 
 from __future__ import annotations
@@ -354,12 +347,10 @@ class TCESolver:
 
     def _main(self, q: NDArray[np.float64], U: NDArray[np.float64], b: NDArray[np.float64],
               restraint: Restraint | None) -> Solution:
-        """The warm solver for the scaled objective ``q`` (:meth:`tce.core.problem.Formulation.q` of ``U``) and
-        right-hand side ``b`` (:meth:`_bounded` of :func:`tce.core.problem.tce_b`): set up on the
-        first call and for a new restraint, then only its vectors are updated (``b`` alone while
-        ``q`` is unchanged; iterative refinement as ``options.refine``). A scene whose objective
-        is rescaled (:func:`tce.core.problem.q_scale`: an extreme stiffness) gets a solver of its
-        own."""
+        """Solve the TCE problem of the scaled objective ``q`` and right-hand side ``b`` with the
+        warm solver: set up on the first call and for a new restraint, then only its vectors are
+        updated. A scene whose objective is rescaled (:func:`tce.core.problem.q_scale`) gets a
+        solver of its own."""
         rescaled = q_scale(q) != 1.0
         if self._warm is not None and restraint is self._warm_restraint and not rescaled:
             if np.array_equal(q, self._warm_q):
@@ -379,12 +370,11 @@ class TCESolver:
         """Smallest equilibrium residual reachable by admissible forces for the right-hand
         side ``rhs`` (with the restraint's bounded forces when given).
 
-        Solves :func:`tce.core.problem.phase1_problem` (always feasible and bounded; with a
-        restraint, :func:`tce.core.problem.restrained_phase1_problem`; ``r`` at index ``n`` in
-        both). Returns ``(r, solve_time, clarabel status)``; ``r <= feas_tol`` means the load is
-        carried. A residual that is undecided (NaN) or lies within ``PHASE1_BAND`` times
-        ``feas_tol`` is decided again with tight tolerances (:meth:`SolverOptions.settings`);
-        the status then ends with ``tight: ...``."""
+        Solves :func:`tce.core.problem.phase1_problem` (or
+        :func:`tce.core.problem.restrained_phase1_problem`). Returns ``(r, solve_time, clarabel
+        status)``; ``r <= feas_tol`` means the load is carried. A residual that is undecided
+        (NaN) or within ``PHASE1_BAND`` times ``feas_tol`` is decided again with tight
+        tolerances; the status then ends with ``tight: ...``."""
         f = self.formulation
 
         def problem() -> ConicProblem:
@@ -401,8 +391,7 @@ class TCESolver:
         r = float(sol.x[f.n]) if sol.solved else float("nan")
         t, status = sol.solve_time, sol.status
         if not r <= self.options.feas_tol and not r > self.PHASE1_BAND * self.options.feas_tol:
-            # undecided, or too close to feas_tol for the default tolerances: decide again
-            # with tight ones (a fresh solver, so also a fresh equilibration)
+            # a fresh solver, so also a fresh equilibration
             sol = solve_once(problem(), self.options.settings(tight=True, kkt=f.kkt))
             t += sol.solve_time
             if sol.solved:
@@ -466,9 +455,8 @@ class TCESolver:
     def solve_scene(self, lam: float, loads: LoadPattern | float, U: NDArray[np.float64], t0: float | None = None) -> TCEResult:
         """:meth:`solve` for a scene already checked: finite ``lam``, a load pattern (or the
         direction ``alpha`` of the default one) and ``U`` the stacked motions (m, rad) of a
-        scene this model can carry (the hot path of a load path;
-        :class:`tce.core.analysis.Analysis` checks each scene once). The pattern's passive
-        restraint, if any, adds its bounded forces to every problem (module docstring)."""
+        scene this model can carry (:class:`tce.core.analysis.Analysis` checks each scene
+        once)."""
         t0 = time.perf_counter() if t0 is None else t0
         pattern = loads if isinstance(loads, LoadPattern) else as_pattern(loads)
         b_fixed, b_live = self.vectors(pattern)
@@ -510,9 +498,7 @@ class TCESolver:
                 notes.append(f"recession {val:.3g}")
                 if val < -1e-7:
                     status, retry = "unbounded", "recession"
-            # feasible and bounded (or undecided): retry, first with a fresh solver whose
-            # equilibration is computed for this q and b (the warm one keeps the scaling of
-            # its first problem), then with robust settings
+            # feasible and bounded (or undecided): retry (module docstring)
             for name, robust in (("rescaled", False), ("robust settings", True)):
                 if status != "numerical":
                     break
