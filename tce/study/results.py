@@ -504,9 +504,8 @@ def content_digest(ds: xr.Dataset) -> str:
     return h.hexdigest()
 
 
-#: xarray's writer of the scenario files: netCDF-3 (scipy), 6x cheaper than netCDF-4 for a
-#: scenario of the paper's arch (10 against 64 ms CPU) and read by every netCDF tool; the study's
-#: ``results.nc`` stays netCDF-4
+#: xarray's writer of the scenario files: netCDF-3 (scipy), cheaper than netCDF-4 and read by
+#: every netCDF tool; the study's ``results.nc`` stays netCDF-4
 SCENARIO_ENGINE = "scipy"
 
 
@@ -704,9 +703,8 @@ def _stacked(parts: list[xr.Dataset], n_steps: int) -> xr.Dataset | None:
     without ``scenario`` from the first part; None when the parts' other index coordinates
     differ (then only an outer join can stack them).
 
-    The same dataset as :func:`xarray.concat` of the :func:`_pad`-ded parts (tested), at a
-    fraction of its cost: xarray aligned and copied every part, 25 ms a scenario on the paper's
-    arch, the largest serial share of a 300-scenario sweep.
+    The same dataset as :func:`xarray.concat` of the :func:`_pad`-ded parts (tested), without
+    xarray's alignment and copy of every part.
     """
     first = parts[0]
     for name, index in first.indexes.items():
