@@ -53,9 +53,8 @@ def arch_from_joints(
     unit_weight : float
         Unit weight of every block (kN/m^3).
     support_height : float, optional
-        Height of the support blocks below the lower end of their springing joint (m);
-        defaults to the joint length (the arch thickness at the springing). Each support
-        is a prism under its springing joint, as deep as the arch, with a horizontal base.
+        Height of the support blocks (prisms under their springing joints, with a horizontal
+        base) below the lower end of their springing joint (m); default: the joint length.
     meta : dict, optional
         Description of the generator, stored in ``Assembly.meta``.
 
@@ -130,20 +129,17 @@ def semicircular_arch(
     unit_weight : float
         Unit weight (kN/m^3); default 20.
     support_height : float, optional
-        Height of the support boxes (m); default: the thickness (the paper's supports:
-        as wide as the thickness, as deep as the arch, as high as the thickness).
+        Height of the support boxes (m); default: the thickness (the paper's supports).
     joints : {"radial", "vertical"}
-        Direction of the joints between voussoirs (the stereotomy). ``radial`` (default):
-        every joint lies on a radius, at equal angles. ``vertical``: the springing joints
-        stay horizontal (the ring's base on the supports) and the ``voussoirs - 1`` joints
-        between voussoirs are vertical cuts from the intrados to the extrados, their lower
-        ends at equal angles on the intrados (as the radial joints' lower ends), so that
-        ``v01`` and the last voussoir hold the ring beyond the intrados' width, bounded by
-        the extrados arc (drawn as a polygon of chords about ``pi / voussoirs`` apart).
-        Makris and Alexakis (2013, *The effect of stereotomy on the shape of the
-        thrust-line and the minimum thickness of semicircular masonry arches*, Archive of
-        Applied Mechanics 83, 1511-1533) give the minimum thickness ``t/R = 0.1095`` with
-        vertical cuts against Milankovitch's 0.1075 with radial ones (docs/validation.md).
+        The stereotomy. ``radial`` (default): every joint on a radius, at equal angles.
+        ``vertical``: horizontal springing joints and ``voussoirs - 1`` vertical cuts whose
+        lower ends lie at the radial joints' equal angles on the intrados; the end voussoirs
+        reach beyond the intrados' width, bounded by the extrados arc (chords about
+        ``pi / voussoirs`` apart). Makris and Alexakis (2013, *The effect of stereotomy on
+        the shape of the thrust-line and the minimum thickness of semicircular masonry
+        arches*, Archive of Applied Mechanics 83, 1511-1533) give the minimum thickness
+        ``t/R = 0.1095`` with vertical cuts against Milankovitch's 0.1075 with radial ones
+        (docs/validation.md).
 
     Returns
     -------
@@ -182,9 +178,8 @@ def _vertical_joint_arch(ri: float, t: float, depth: float, n: int, unit_weight:
 
     Joint ``k`` (``0 < k < n``) is the vertical segment at ``x_k = ri cos(pi (1 - k / n))``
     from the intrados up to the extrados; joints 0 and ``n`` are the horizontal springing
-    joints. Voussoirs 2 .. n-1 have chord intrados and extrados faces (as the radial ones);
-    the two end voussoirs follow the extrados arc down to the springing line; ``meta`` is
-    the generator's record (:func:`semicircular_arch`).
+    joints. Voussoirs 2 .. n-1 have chord intrados and extrados faces; the two end voussoirs
+    follow the extrados arc down to the springing line.
     """
     if n < 2:
         raise ValueError(f"vertical joints need voussoirs >= 2, got {n}")
@@ -225,8 +220,8 @@ def semicircle_joints(inner_radius: float, outer_radius: float, theta: ArrayLike
     -------
     (k, 2) ndarray, (k, 2) ndarray
         Joint ends on the intrados and on the extrados. Joints at the springings and at the
-        crown are snapped to exactly ``z = 0`` and ``x = 0`` (no round-off of cos and sin),
-        so that mirrored joints are exact mirror images.
+        crown are snapped to exactly ``z = 0`` and ``x = 0``, so that mirrored joints are
+        exact mirror images.
     """
     t = np.asarray(theta, dtype=float)
     c, s = np.cos(t), np.sin(t)

@@ -7,12 +7,11 @@ intrados springings at z = 0. Every span is the segmental ring of
 voussoirs); its voussoirs are named ``s1v01``, ``s1v02``, ... for span 1 (from the left).
 A pier is the prism under the two springing joints it carries, ``pier_width`` wide between
 the intrados springings, its base ``pier_height`` below the springings; an abutment is the
-prism under its springing joint (a skewback), its base at the same level. The supports are
-the blocks whose motion is prescribed (settlement scenarios may move any of them):
-``abutment_left``, ``abutment_right`` and, with ``piers = "free"`` (the default), a
-foundation block ``foundation1`` ... under each pier, the piers ``pier1`` ... being free
-blocks standing on them (a pier may rock or slide: the spans act together); with
-``piers = "fixed"`` the piers themselves are the supports (the spans act alone).
+prism under its springing joint (a skewback), its base at the same level. The supports
+(whose motion a settlement scenario may prescribe) are ``abutment_left``,
+``abutment_right`` and, with ``piers = "free"`` (the default), a foundation block
+``foundation1`` ... under each free pier ``pier1`` ... (a pier may rock or slide: the spans
+act together); with ``piers = "fixed"`` the piers are the supports (the spans act alone).
 """
 
 from __future__ import annotations

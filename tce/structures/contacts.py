@@ -9,24 +9,21 @@ Detection (:func:`detect_interfaces`)
     between ``n_A`` and ``-n_B`` below ``angle_tol`` radians, every vertex of B's face
     within ``tol * L`` of A's face plane, ``L`` the larger of the two blocks' bounding-box
     diagonals) and their overlap, computed with shapely in A's face plane, has an area
-    above ``min_area``. Faces and blocks may be non-convex; a non-convex overlap may give
-    several interfaces for one face pair (one per piece). The overlap polygon is lifted
-    back onto A's face plane, its vertices ordered counter-clockwise about the normal.
-    Holes in an overlap are dropped (the outer loop is kept, with a warning in the log).
-    Candidate block pairs come from a sweep-and-prune of their (slightly padded) bounding
-    boxes, so the cost grows with the number of neighbours, not the square of the number
-    of blocks.
+    above ``min_area``. Faces and blocks may be non-convex; a non-convex overlap gives one
+    interface per piece. The overlap polygon is lifted back onto A's face plane, its
+    vertices counter-clockwise about the normal; holes are dropped (the outer loop is kept,
+    with a warning in the log). Candidate block pairs come from a sweep-and-prune of their
+    (slightly padded) bounding boxes.
 
 Overlap check (:func:`check_overlaps`)
     For every pair of blocks whose bounding boxes overlap by more than the tolerance,
     the *test points* of each block are checked against the other: its vertices and edge
-    midpoints, and, for a convex block, also its centroid and the centroids of its convex
-    faces (all of which lie in the closed block). A test point lying inside the other block
-    deeper than ``tol * L`` from every nearby face plane means the two volumes intersect.
-    Inside-ness is exact for a convex block (its face half-spaces) and uses the
-    generalised winding number otherwise. Not caught: interpenetrations with no test point
-    strictly inside the other block (e.g. two non-convex blocks crossing edge through
-    edge, or two identical non-convex blocks).
+    midpoints, its centroid if convex, and the centroids of its convex faces. A test point
+    inside the other block deeper than ``tol * L`` from every nearby face plane means the
+    two volumes intersect. Inside-ness is exact for a convex block (its face half-spaces)
+    and uses the generalised winding number otherwise. Not caught: interpenetrations with
+    no test point strictly inside the other block (e.g. two non-convex blocks crossing edge
+    through edge, or two identical non-convex blocks).
 
 Lengths in m, areas in m^2.
 """

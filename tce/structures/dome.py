@@ -15,18 +15,15 @@ mid-surface radius, ``t`` the thickness) is cut by
   meridians), at colatitudes ``theta_k`` equally spaced from the crown opening ``theta_0``
   (the ``oculus`` half-angle; 0 for a closed crown) down to the base ``theta = 90 deg``.
 
-Each voussoir takes the 8 points of its corners on the two spheres and is the hexahedron
-they span, with **exactly planar** faces: its two meridian faces lie in meridian planes;
-its two bed faces are planes through the centre (two generators of a cone through its
-apex); its intrados and extrados are isosceles trapezoids (two horizontal chords symmetric
-about the mid-meridian), hence planar. The blocks are inscribed in the shell (their
-vertices lie on the spheres), so the facetted volume tends to the shell's from below as the
-discretisation is refined.
+Each voussoir is the hexahedron spanned by its 8 corners on the two spheres, with **exactly
+planar** faces: meridian faces in meridian planes, bed faces through the centre (two
+generators of a cone through its apex), intrados and extrados isosceles trapezoids. The
+blocks are inscribed in the shell, so the facetted volume tends to the shell's from below
+as the discretisation is refined.
 
 With a closed crown (``oculus = 0``) the top course is made of ``sectors`` wedges that meet
-on the axis: each is a triangular prism whose intrados and extrados are triangles with a
-vertex on the axis, and whose meridian faces are planar quadrilaterals in the meridian
-planes. There is no separate keystone.
+on the axis: triangular prisms whose intrados and extrados are triangles with a vertex on
+the axis (no separate keystone).
 
 Blocks and names
 ----------------
@@ -34,10 +31,10 @@ Support blocks ``s01 .. sS`` (one per sector, so each can move alone) come first
 voussoirs ``c01s01 .. cCsS`` course by course from the base (``c01``) to the crown, sector
 by sector. Each support is the prism under its sector's base joint (a trapezoid in z = 0),
 ``support_height`` deep. Interfaces: support ``s_j`` -> ``c01s_j`` (normal up); course
-``k`` -> course ``k+1`` in each sector (normal up the meridian, away from the base); and
-between neighbouring sectors of a course. Every interface has ``a < b`` (block indices)
-and its normal points from A into B. Supports do not get interfaces between each other
-(they would carry no unknowns anyway, see :mod:`tce.core.model`).
+``k`` -> course ``k+1`` in each sector (normal up the meridian); and between neighbouring
+sectors of a course. Every interface has ``a < b`` (block indices), its normal from A into
+B. Supports have no interfaces between each other (they would carry no unknowns,
+:mod:`tce.core.model`).
 """
 
 from __future__ import annotations
@@ -218,7 +215,7 @@ def radial_settlement(
     Parameters
     ----------
     assembly : Assembly
-        Any assembly with supports (typically :func:`hemispherical_dome`).
+        Any assembly with supports.
     magnitude : float
         Displacement (m) along each support's own horizontal radius: positive outward
         (away from the axis), negative inward.

@@ -7,10 +7,10 @@ Volumes and centroids follow from the divergence theorem (signed tetrahedra on a
 triangulation of every face), which is exact for any closed, consistently oriented
 polyhedron with planar faces.
 
-Everything is computed in batches: :class:`FaceTable` holds the faces of many polyhedra
-flattened into arrays and computes their normals, volumes, centroids and checks in one
-numpy pass; :class:`PolygonTable` does the same for many planar polygons (areas,
-centroids, tributary areas). The functions of one polyhedron or polygon are a batch of one.
+Everything is computed in batches: :class:`FaceTable` (faces of many polyhedra: normals,
+volumes, centroids, checks) and :class:`PolygonTable` (many planar polygons: areas,
+centroids, tributary areas) work on flattened arrays in one numpy pass; the functions of one
+polyhedron or polygon are a batch of one.
 """
 
 from __future__ import annotations

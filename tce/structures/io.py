@@ -33,43 +33,38 @@ compas_assembly and compas_cra)
     ``data.graph.data.node`` maps node keys to ``{"block": {"data": {"vertex": {id: {x, y,
     z}}, "face": {id: [vertex ids]}}}, "is_support": bool}`` (the ``data`` wrappers and the
     ``is_support`` flag are optional; vertices may also be ``[x, y, z]`` lists). Blocks
-    are named after their node keys (``"0"``, ``"1"``, ...) in key order. COMPAS meshes may
-    have non-planar faces (COMPAS itself splits them into triangles for volumes), so by
-    default a non-planar face of a COMPAS block is split into a fan of triangles.
-    Interfaces stored on the edges (``data.graph.data.edge[u][v]["interfaces"]``, as
-    compas_assembly and compas_cra write them: each a polygon ``points`` with a ``frame``
-    whose z axis points from block u into block v) are used as they are, after checks.
-    COMPAS 2 points are ``Point`` objects (``{"dtype": "compas.geometry/Point", "data":
-    [x, y, z]}``), read wherever a point is expected.
+    are named after their node keys (``"0"``, ``"1"``, ...) in key order. A non-planar face
+    of a COMPAS block is split into a fan of triangles by default (COMPAS meshes may have
+    them). Interfaces stored on the edges (``data.graph.data.edge[u][v]["interfaces"]``: a
+    polygon ``points`` with a ``frame`` whose z axis points from block u into block v) are
+    used after checks. COMPAS 2 ``Point`` objects (``{"dtype": "compas.geometry/Point",
+    "data": [x, y, z]}``) are read wherever a point is expected.
 
 compas_dem ``BlockModel`` JSON (``data.elements`` and ``data.graph``)
     Each graph node names an element (``{"element": guid}``): a ``Block`` whose ``geometry``
     is its mesh, with ``is_support`` and an optional ``transformation`` (applied). Contacts
     on the edges (``"contacts"``, ``FrictionContact`` objects) are stored interfaces.
 
-Every value is checked for its type (not its truthiness: ``"support": "no"`` is an error,
-not a support; a face index must be a whole number, a coordinate a JSON number, a name a
-string), and an error names the file and the key (``blocks[1] (top).faces[0][2]``): a tce
-file by the pydantic model :class:`TceAssemblyFile` (its first problem, worded by
-:func:`tce.messages.describe`), a COMPAS file, whose format is free-form (wrappers, nulls
-for defaults, attributes tce does not read), by typed access to the values tce reads.
+Every value is checked for its type, not its truthiness (``"support": "no"`` is an error;
+a face index must be a whole number, a coordinate a JSON number, a name a string), and an
+error names the file and the key (``blocks[1] (top).faces[0][2]``): a tce file through the
+pydantic model :class:`TceAssemblyFile`, a (free-form) COMPAS file through typed access to
+the values tce reads.
 
 Stored interfaces (tce or COMPAS)
-    A file's interfaces are used instead of detection (which remains the fallback when the
-    file stores none). Each is checked: at least three points; planar (every point within
-    ``min(tol, 1e-6) L`` of the polygon's plane, ``L`` the larger size of its two blocks),
-    in the plane of its frame when it has one; and lying on the surface of **both** its
-    blocks (every point within ``interface_tol * L`` of a face of each). The tolerance is
-    loose by default (5e-3): curved contacts stored by COMPAS are approximations of two
-    facetted surfaces meshed differently (the bundled ``curve-3-blocks.json`` is off by up to
-    2.7e-3 L). The normal is oriented from block A (the one of lower index) into block B by
-    the faces it lies on. A failed check raises an error naming the file, the interface
-    (``A|B`` and its position) and what is wrong. Since such contacts may overlap slightly,
-    the overlap check then tolerates a depth of ``interface_tol * L`` too.
+    A file's interfaces are used instead of detection (the fallback when it stores none).
+    Each is checked: at least three points; planar (every point within ``min(tol, 1e-6) L``
+    of the polygon's plane, ``L`` the larger size of its two blocks), in the plane of its
+    frame when it has one; and on the surface of **both** its blocks (every point within
+    ``interface_tol * L`` of a face of each). ``interface_tol`` is loose by default (5e-3)
+    because curved contacts stored by COMPAS approximate two facetted surfaces meshed
+    differently; the overlap check then tolerates a depth of ``interface_tol * L`` too. The
+    normal is oriented from block A (the one of lower index) into block B by the faces it
+    lies on. A failed check names the file, the interface (``A|B``) and what is wrong.
 
 Limits (:class:`InputLimitError`, naming the limit): a file of at most
-:data:`MAX_FILE_BYTES`, JSON nested at most :data:`MAX_DEPTH` deep (checked before decoding,
-so no input makes the decoder recurse without bound), at most :data:`MAX_BLOCKS` blocks,
+:data:`MAX_FILE_BYTES`, JSON nested at most :data:`MAX_DEPTH` deep (checked before decoding),
+at most :data:`MAX_BLOCKS` blocks,
 :data:`MAX_BLOCK_VERTICES` vertices per block and :data:`MAX_VERTICES` in all. The path
 must be a regular file (not a folder, a device or a pipe).
 
@@ -799,10 +794,9 @@ def load_assembly(
     nonplanar : {"error", "triangulate"}, optional
         What to do with a face that is not planar: report it, or split it into triangles
         (for curved surfaces given as quad meshes). Default: ``"triangulate"`` for COMPAS
-        files (COMPAS meshes may have non-planar faces), ``"error"`` otherwise. Facets of
-        two curved surfaces meshed differently are not coplanar: *detecting* their contacts
-        needs a looser ``tol`` and ``angle_tol``, and ``check_overlap=False`` if the
-        facetted blocks interpenetrate; a file that stores its interfaces needs neither.
+        files, ``"error"`` otherwise. *Detecting* the contacts of two curved surfaces meshed
+        differently needs a looser ``tol`` and ``angle_tol`` (and ``check_overlap=False`` if
+        the facets interpenetrate); stored interfaces need neither.
     check_overlap : bool
         Run :func:`tce.structures.contacts.check_overlaps` (at ``max(tol, interface_tol)`` when the
         file's interfaces are used).

@@ -2,10 +2,9 @@
 
 Axes (as for the arch, ``docs/conventions.md``): z is up, the springings lie in the plane
 z = 0, the origin is at the centre of the springing plane. Lengths in m, unit weights in
-kN/m^3. Every block is a polyhedron with exactly planar faces (chord intrados and extrados,
-plane joints), so its volume and centroid are exact; the interfaces are built with the
-blocks (each one the common face of its two blocks), with the normal pointing from block A
-into block B and ``A`` the block of lower index.
+kN/m^3. Every block has exactly planar faces (chord intrados and extrados, plane joints);
+each interface is the common face of its two blocks, built with them, its normal from
+block A (the lower index) into block B.
 
 Barrel vault (:func:`barrel_vault`)
     The semicircular arch of :func:`tce.structures.arch.semicircular_arch` (span along x)
@@ -18,11 +17,10 @@ Barrel vault (:func:`barrel_vault`)
     (the overlap of their sections in the plane between them) and the springing joints.
 
     Supports (``supports=``): ``"walls"`` (default) puts the vault on two support blocks
-    ``left`` and ``right``, each the prism under its springing line over the whole depth: a
-    barrel vault springs from two walls, and a wall settles as one body, so a settlement of
-    ``right`` moves the whole springing line (and the names are those of the arch, so an
-    arch study's settlements apply unchanged). ``"courses"`` gives every course its own
-    pair ``left01, right01 .. leftCC, rightCC``, for settlements that vary along the vault.
+    ``left`` and ``right``, each the prism under its springing line over the whole depth (a
+    wall settles as one body; the names are the arch's, so an arch study's settlements
+    apply unchanged). ``"courses"`` gives every course its own pair ``left01, right01 ..
+    leftCC, rightCC``, for settlements that vary along the vault.
 
 Groin vault (:func:`groin_vault`)
     Two barrel vaults crossing over a rectangular bay of clear spans ``span_x`` and
@@ -34,9 +32,8 @@ Groin vault (:func:`groin_vault`)
     ``|x| <= Ro, |y| <= k Ro`` (``Ro = Ri + t``), is cut by the diagonals into four webs:
     north and south belong to the barrel spanning x, east and west to the one spanning y.
     Each web is an arch of ``voussoirs`` voussoirs (an even number, so that a crown joint
-    lies in the web's mid-plane) whose voussoirs run as strips from the groin to the face
-    of the vault: the groin blocks are cut along the diagonal planes, and the two voussoirs
-    that meet at a groin share a whole face there (the stretch makes their sections match).
+    lies in the web's mid-plane), strips from the groin to the face of the vault, cut along
+    the diagonal planes; the two voussoirs that meet at a groin share a whole face there.
     Blocks ``n01 .. nNN``, ``w01 ..``, ``s01 ..``, ``e01 ..`` (north, west, south, east web),
     each web numbered from its left springing to its right one as seen from the centre of
     the bay. Interfaces: the radial joints within each web, the groin joints, and the
@@ -45,11 +42,9 @@ Groin vault (:func:`groin_vault`)
 
     Supports (``supports=``): ``"corners"`` (default) puts the vault on four corner piers
     ``ne, nw, sw, se``, each the prism under the corner square ``Ri <= |x| <= Ro``,
-    ``k Ri <= |y| <= k Ro``: the vault rests on four piers, each of which can settle alone.
-    ``"springings"`` gives every web's springing its own support, so that the four springing
-    lines (the two of each barrel) can move apart: each corner pier is split along the
-    diagonal into ``ne_n`` (under the north web) and ``ne_e`` (under the east web), and so on
-    (eight supports).
+    ``k Ri <= |y| <= k Ro``. ``"springings"`` splits each corner pier along the diagonal
+    into ``ne_n`` (under the north web), ``ne_e`` (under the east web), and so on (eight
+    supports), so that the four springing lines can move apart.
 """
 
 from __future__ import annotations
@@ -72,9 +67,8 @@ GROIN_SUPPORTS = ("corners", "springings")
 
 
 def _solid(bottom: ArrayLike, top: ArrayLike) -> Polyhedron:
-    """The prism between two loops (see :func:`tce.structures.geometry.prism`), with the
-    vertices that the two loops share merged, so that a loop corner lying on both loops
-    (a strip that ends in an edge) gives a proper vertex instead of a zero-length edge."""
+    """The prism between two loops (:func:`tce.structures.geometry.prism`), with the vertices
+    the two loops share merged (a strip that ends in an edge gets no zero-length edge)."""
     poly = prism(bottom, top)
     v = poly.vertices
     tol = 1e-12 * max(poly.size, 1.0)

@@ -2,8 +2,8 @@
 (``results``). Nothing here draws: the command line (:mod:`tce.cli`) composes running and drawing.
 
 The schema's public names are re-exported here, imported on first use (so that the ``tce``
-program handles Ctrl-C before numpy, pydantic and the rest are imported; the runner, which
-needs xarray and joblib, is imported from :mod:`tce.study.runner`).
+program handles Ctrl-C before numpy and pydantic are imported); the runner is imported from
+:mod:`tce.study.runner`.
 """
 
 from typing import Any

@@ -1,17 +1,14 @@
 """Guards on a study file before and after it is parsed: what it is, how big, how deep, and
 how much work it asks for.
 
-:func:`read_study_text` reads a study file only if it is a regular file (not a folder, a
-device such as ``/dev/zero``, a pipe that would block the reader, or a link to one of these)
-of at most :data:`MAX_STUDY_BYTES`, whose path holds no NUL character. :func:`check_text`
-refuses TOML text nested more than :data:`MAX_TOML_DEPTH` deep before it is parsed
-(arrays, inline tables and dotted keys), :func:`check_tree` the same of the parsed document, and any key or
-text value holding a control character (a NUL in a scenario name or a path would pass the
-schema and then break every file name made from it). :func:`check_work` bounds what a valid
-study asks for before it is expanded: at most :data:`MAX_SCENARIOS` scenarios, at most
-:data:`MAX_SOLVES` solves in the worst case (every scenario's load path to ``lambda_cap``
-plus its drawn states) and at most :data:`MAX_DRAWN_STATES` drawn states (scenarios drawn
-times ``[plots] steps``), each message giving the estimate and the keys that set it.
+:func:`read_study_text` reads only a regular file (not a folder, a device, a pipe, or a link
+to one) of at most :data:`MAX_STUDY_BYTES` whose path holds no NUL. :func:`check_text` and
+:func:`check_tree` refuse nesting deeper than :data:`MAX_TOML_DEPTH` (before and after
+parsing), and :func:`check_tree` any key or text value holding a control character (which
+would break every file name made from it). :func:`check_work` bounds the scenarios
+(:data:`MAX_SCENARIOS`), worst-case solves (:data:`MAX_SOLVES`: every load path to
+``lambda_cap`` plus its drawn states) and drawn states (:data:`MAX_DRAWN_STATES`) before the
+scenarios are expanded, each message giving the estimate and the keys that set it.
 
 Every refusal is a :class:`tce.study.schema.StudyError` naming the file and the key.
 """
@@ -166,10 +163,9 @@ def _control(text: str) -> bool:
 
 def check_work(path: Path, spec: Any, drawn_scenarios: int | None = None) -> None:
     """Refuse a study that asks for more than :data:`MAX_SCENARIOS` scenarios or
-    :data:`MAX_SOLVES` worst-case solves (checked before the scenarios are expanded), or,
-    given the number of scenarios drawn, more than :data:`MAX_DRAWN_STATES` drawn states.
-    ``spec`` is the parsed file (a :class:`tce.study.schema.StudyFile`; not imported here, the
-    schema imports these guards)."""
+    :data:`MAX_SOLVES` worst-case solves, or, given the number of scenarios drawn, more than
+    :data:`MAX_DRAWN_STATES` drawn states. ``spec`` is the parsed
+    :class:`tce.study.schema.StudyFile` (not imported: the schema imports these guards)."""
     cases = len(spec.scenarios)
     alphas = len(spec.loads.alphas)
     sweeps = spec.sweep.items()

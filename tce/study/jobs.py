@@ -1,30 +1,23 @@
 """How many worker processes a run uses: in-process when the work is smaller than starting workers.
 
-A parallel run pays a fork server that imports numpy, scipy, xarray, Clarabel and tce once
-(:mod:`tce.study.runner`), a fork per worker, the analyses each worker builds again
-and the pickling of every scenario and answer: :data:`WORKER_START_S` CPU seconds, whatever
-the study. Most paper studies solve in well under that (the Fig. 8 study's whole solver work
-is about 30 ms), so running them on all cores makes them slower (2.4x on this project's
-machine with spawned workers). :func:`choose_jobs` estimates the study's work from the first
-scenario's analysis (built in the calling process, where an in-process run reuses it), one
-timed solve and the per-scenario cost of recording and writing an answer, and runs
-in-process unless the work saved by ``k`` workers exceeds their start-up. ``--jobs N``
-(``jobs=N``) is never second-guessed.
+Starting workers costs about :data:`WORKER_START_S` CPU seconds (the fork server's imports,
+the forks, the analyses rebuilt in the workers, the pickling), whatever the study.
+:func:`choose_jobs` estimates the study's work from the first scenario's analysis (built in the
+calling process, where an in-process run reuses it) and runs in-process unless the work saved
+by ``k`` workers, ``work (1 - 1/k)``, exceeds their start-up. ``--jobs N`` (``jobs=N``) is
+used as given.
 
-Every time is CPU time of this process (:func:`time.process_time`): on a shared machine the
-wall time of a solve grows with the load (0.18 to 8.3 ms for the same solve), which made a
-busy machine start workers; CPU time does not depend on the other processes.
+All times are CPU seconds of this process (:func:`time.process_time`), so that the choice does
+not depend on the load of a shared machine.
 
 Estimate of the work, CPU seconds::
 
     sum over scenarios (increments + 2) * t_solve + scenarios * SCENARIO_S + (groups - 1) * t_build
 
 with ``increments = lambda_max / step + 1`` from the direct limit of the scenario's direction
-on the first scenario's analysis (``lam_cap / step + 1`` when there is none), ``t_solve`` a warm TCE solve of the first
-scenario, :data:`SCENARIO_S` the recording and writing of one answer and ``t_build`` the
-time to build its analysis (assembly, model). An assembly whose model has more than
-:data:`LARGE_MODEL` unknowns is taken as large work without solving anything (one solve of
-it costs about a worker start).
+on the first scenario's analysis (``lam_cap / step + 1`` when there is none), ``t_solve`` a
+warm TCE solve of the first scenario and ``t_build`` the time to build its analysis. A model of
+more than :data:`LARGE_MODEL` unknowns is taken as large work without solving anything.
 """
 
 from __future__ import annotations
@@ -46,11 +39,9 @@ __all__ = ["LARGE_MODEL", "SCENARIO_S", "WORKER_START_S", "JobsChoice", "choose_
 log = logging.getLogger(__name__)
 
 #: CPU seconds to start the workers: the fork server's imports of tce's stack, the forks and the
-#: analyses the workers build again (a 60-scenario sweep of the paper's arch: 4.27 CPU-s with
-#: --jobs 2 against 3.02 with --jobs 1, every process counted, on this project's machine).
+#: analyses the workers build again.
 WORKER_START_S = 1.5
-#: CPU seconds to record and write one scenario's answer (its dataset and netCDF file), which
-#: the workers share: about 0.02 on this project's machine for the paper's arch.
+#: CPU seconds to record and write one scenario's answer (its dataset and netCDF file).
 SCENARIO_S = 0.02
 #: Unknowns above which a model is taken as large work without a timed solve.
 LARGE_MODEL = 20_000
@@ -74,12 +65,10 @@ class JobsChoice:
 
 
 def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario], Analysis]) -> tuple[float, str]:
-    """Estimated solver work (s) of ``scenarios`` and how it was reckoned (module docstring).
+    """Estimated solver work (CPU s) of ``scenarios`` and how it was reckoned (module docstring).
 
-    Builds the first scenario's analysis with ``analysis_of(scenario)`` (the runner's cached
-    builder) and, for a model of at most :data:`LARGE_MODEL` unknowns, times one warm TCE
-    solve and the direct limit of each direction; scenarios of the other groups (other
-    materials or structures) are reckoned with the first analysis's limits.
+    Scenarios of other groups (other materials or structures) are reckoned as a path anchored
+    on their limit, without building their analyses.
     """
     first = scenarios[0]
     t0 = time.process_time()
@@ -128,8 +117,7 @@ def choose_jobs(
     jobs : int or None
         Workers asked for (``--jobs``): used as given. None: decide.
     analysis_of : callable
-        ``scenario -> Analysis``, the runner's cached builder (an in-process run reuses what
-        the estimate built).
+        ``scenario -> Analysis``, the runner's cached builder.
     backend : str
         ``"dask"`` runs on a cluster: all ``cpus`` workers, no estimate.
     cpus : int, optional

@@ -1,11 +1,11 @@
 """The words of a load path's outcome, as ``docs/conventions.md`` defines them, in one place.
 
-Every figure caption, the interactive view and ``tce show`` say what an outcome means with
-:func:`outcome_words`, so that ``unbounded`` (admissible states exist, but the support motion
-is incompatible with the material: the energy has no minimum) is never called "no admissible
-state" (that is ``infeasible``), and ``no_limit`` (the direct limit is unbounded: the live
-loads are carried at any multiplier) is never confused with ``capped`` (the path stopped at
-a cap below a finite collapse load).
+Figure captions, the interactive view and ``tce show`` word outcomes with
+:func:`outcome_words`: ``unbounded`` (admissible states exist, but the support motion is
+incompatible with the material: the energy has no minimum) is not ``infeasible`` (no
+admissible state), and ``no_limit`` (the direct limit is unbounded: the live loads are
+carried at any multiplier) is not ``capped`` (the path stopped at a cap below a finite
+collapse load).
 """
 
 from __future__ import annotations

@@ -1,12 +1,10 @@
 """Feedback while users wait: a progress bar on a terminal, one-line progress in logs otherwise.
 
-:class:`Progress` counts finished items out of a known total (scenarios of a run, figures,
-hard cases, bench sections, bisection steps). When standard error is a terminal and tce logs
-at info level it draws a tqdm bar there (done / total, rate, ETA, the current item), redrawn
-every second by a heartbeat so that a long item still shows time passing. Otherwise it logs
-(logger ``tce.study.progress``, info) a line when an item finishes, at most one every
-``every`` seconds, and a "still working" line after ``every`` seconds of silence: a log never
-goes quiet for more than a few seconds.
+:class:`Progress` counts finished items out of a known total. When standard error is a
+terminal and tce logs at info level it draws a tqdm bar there (done / total, rate, ETA, the
+current item), redrawn every second by a heartbeat. Otherwise it logs (logger
+``tce.study.progress``, info) a line when an item finishes, at most one every ``every``
+seconds, and a "still working" line after ``every`` seconds of silence.
 
 Typical use (figures, say)::
 

@@ -7,13 +7,12 @@ The study's ``results.nc`` is the concatenation of those files along ``scenario`
 study's order, with the load paths padded to a common number of steps
 (:func:`merge_scenarios`).
 
-Storage rules: every file is written atomically (:func:`tce.files.atomic_write`: a temporary
-file in the same folder, fsync, rename, fsync of the folder), so a reader sees the old file or the
-complete new one, never a part; a write that fails raises :class:`StorageError` naming the
-path and the cause and leaves no temporary behind. A scenario file records the hash of
-its scenario's definition (:attr:`tce.study.Scenario.key`) and of its own content; a
-rerun reuses it only when both match and it holds every variable of
-:data:`SCENARIO_VARS` (:func:`load_finished`). One run at a time writes a study folder
+Storage rules: every file is written atomically (:func:`tce.files.atomic_write`), so a
+reader sees the previous file or the complete new one; a failed write raises
+:class:`StorageError` naming the path and the cause and leaves no temporary behind. A
+scenario file records the hash of its scenario's definition (:attr:`tce.study.Scenario.key`)
+and of its own content; a rerun reuses it only when both match and it holds every variable
+of :data:`SCENARIO_VARS` (:func:`load_finished`). One run at a time writes a study folder
 (:func:`folder_lock`).
 """
 
@@ -504,9 +503,8 @@ def content_digest(ds: xr.Dataset) -> str:
     return h.hexdigest()
 
 
-#: xarray's writer of the scenario files: netCDF-3 (scipy), 6x cheaper than netCDF-4 for a
-#: scenario of the paper's arch (10 against 64 ms CPU) and read by every netCDF tool; the study's
-#: ``results.nc`` stays netCDF-4
+#: xarray's writer of the scenario files: netCDF-3 (scipy), cheaper than netCDF-4 and read by
+#: every netCDF tool; the study's ``results.nc`` stays netCDF-4
 SCENARIO_ENGINE = "scipy"
 
 
@@ -552,10 +550,9 @@ def load_finished(directory: Path, scenarios: Iterable[Scenario]) -> dict[str, x
 def folder_lock(directory: Path) -> Iterator[Path]:
     """Hold ``directory/.tce-run.lock`` while the block runs: one run per study folder.
 
-    The lock is an exclusive :func:`fcntl.flock` on the file, released by the system when
-    its holder ends in any way, so a lock left by a process that died (a stale lock) is
-    simply taken over. The file records the holder's pid, host and start time, for the
-    message of a run that finds it held.
+    The lock is an exclusive :func:`fcntl.flock` on the file, released by the system however
+    its holder ends (a stale lock is taken over). The file records the holder's pid, host and
+    start time for the message of a run that finds it held.
 
     Raises
     ------
@@ -704,9 +701,8 @@ def _stacked(parts: list[xr.Dataset], n_steps: int) -> xr.Dataset | None:
     without ``scenario`` from the first part; None when the parts' other index coordinates
     differ (then only an outer join can stack them).
 
-    The same dataset as :func:`xarray.concat` of the :func:`_pad`-ded parts (tested), at a
-    fraction of its cost: xarray aligned and copied every part, 25 ms a scenario on the paper's
-    arch, the largest serial share of a 300-scenario sweep.
+    The same dataset as :func:`xarray.concat` of the :func:`_pad`-ded parts (tested), without
+    xarray's alignment and copy of every part.
     """
     first = parts[0]
     for name, index in first.indexes.items():

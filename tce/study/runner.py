@@ -4,36 +4,31 @@
 written under ``<out>/<study name>/scenarios/`` that can be trusted
 (:func:`tce.study.results.load_finished`), and solves the rest: in this process with
 ``jobs=1``, in a :class:`concurrent.futures.ProcessPoolExecutor` of ``jobs`` worker processes
-with ``jobs > 1`` (``backend="processes"``, the default; workers are forked from a fork server
-that imported tce once, see :func:`_context`), or on a Dask distributed cluster through
-joblib's ``dask`` backend. Each worker keeps the :class:`tce.analysis.Analysis` of the
-structures and materials it has met, so operators are built once per worker and reused; the
-structures themselves are built once per run (when the study is validated) and sent to each
-worker once, when it starts. The answer of a scenario does not depend on where or in which order it runs.
+with ``jobs > 1`` (``backend="processes"``, the default; see :func:`_context`), or on a Dask
+distributed cluster through joblib's ``dask`` backend. Each worker keeps the
+:class:`tce.analysis.Analysis` of the structures and materials it has met; the structures are
+built once per run and sent to each worker once, when it starts. The answer of a scenario does
+not depend on where or in which order it runs.
 
 Faults (``docs/studies.md``, "Faults and resuming"):
 
 - Each scenario is written, atomically, by the process that solved it, before the
   parent is told it is done; what is finished is on disk whatever happens next.
-- A worker that dies (killed by a signal, e.g. by the out-of-memory killer) breaks the pool
-  (:class:`concurrent.futures.process.BrokenProcessPool`), which fails every scenario then
-  running, without saying which one killed it. The run keeps at most ``jobs + 1`` scenarios
-  in the pool (one queued, so that a worker that ends a scenario finds its next at once), so
-  those are all the suspects: the scenarios not yet given to the pool go on in a new pool,
-  and each suspect is solved again alone (nothing else in the pool). A suspect that breaks the
-  pool alone is the one that kills its worker: it is reported and not retried; a worker death
-  that every suspect survives is a warning: nothing is lost. A results folder that
-  cannot be written stops the dispatch (the running scenarios finish). A lost or failed
-  scenario ends the run with :class:`RunFault` (exit code 3 in the CLI) after every other
-  scenario is kept; ``results.nc`` is not replaced, and a rerun solves only what is missing.
-- Workers start with Ctrl-C ignored (the parent decides: :mod:`tce.signals`). Each holds the
-  read end of a pipe whose only write end is the parent's: when the parent closes it (Ctrl-C,
-  SIGTERM: :class:`KeyboardInterrupt`) or ends (``kill -9`` of ``tce run``), a thread of each
-  worker reads end-of-file and ends its process at once, after the scenario file it may be
-  writing. The parent then removes the temporary files and re-raises.
-- One run at a time per study folder (:func:`tce.study.results.folder_lock`); the folder
-  is created and locked before anything is solved, so an unwritable destination fails
-  with :class:`RunError` before the run.
+- A worker that dies (e.g. by the out-of-memory killer) breaks the pool
+  (:class:`concurrent.futures.process.BrokenProcessPool`), failing every scenario in it
+  without saying which one killed it. The pool holds at most ``jobs + 1`` scenarios (one
+  queued), the suspects: the others go on in a new pool and each suspect is solved again
+  alone. A suspect that breaks the pool alone is reported and not retried; a worker death
+  that every suspect survives is a warning. A results folder that cannot be written stops the
+  dispatch (the running scenarios finish). A lost or failed scenario ends the run with
+  :class:`RunFault` (exit code 3 in the CLI) after every other scenario is kept;
+  ``results.nc`` is not replaced, and a rerun solves only what is missing.
+- Workers start with Ctrl-C ignored (:mod:`tce.signals`). Each holds the read end of a pipe
+  whose only write end is the parent's: when the parent closes it (Ctrl-C, SIGTERM) or ends
+  (``kill -9``), each worker ends at once, after the scenario file it may be writing. The
+  parent then removes the temporary files and re-raises.
+- One run at a time per study folder (:func:`tce.study.results.folder_lock`), created and
+  locked before anything is solved: an unwritable destination raises :class:`RunError` first.
 """
 
 from __future__ import annotations
@@ -176,10 +171,9 @@ def _analysis(sc: Scenario, assembly: Assembly) -> Analysis:
 def _cold(analysis: Analysis) -> Analysis:
     """``analysis`` with its warm TCE solvers dropped (its model operators are kept).
 
-    A warm solver keeps the scaling of the first problem it met, so its answers depend, in
-    the last digits, on the scenarios the process solved before. Starting each scenario
-    cold makes every answer independent of the backend, the number of jobs and resuming.
-    Building a solver costs about a millisecond; the operators are the expensive part.
+    A warm solver keeps the scaling of the first problem it met, so its answers would depend,
+    in the last digits, on the scenarios the process solved before; a cold start makes every
+    answer independent of the backend, the number of jobs and resuming.
     """
     analysis.reset_solvers()
     return analysis
@@ -208,7 +202,7 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
         settlements=sc.settlements,
         step=sc.loads["lambda_step"],
         # no tolerance given: relative to the limit, so the adequacy factor of a live load
-        # does not depend on its size (issue 21)
+        # does not depend on its size
         atol=0.0 if tol is None else tol,
         rtol=DEFAULT_RTOL if tol is None else 0.0,
         lam_cap=sc.loads["lambda_cap"],
@@ -233,10 +227,9 @@ def missing_lambdas(solved: Sequence[float], wanted: Sequence[float], upper: flo
     """The multipliers of ``wanted`` that are not ``solved`` and may be admissible.
 
     A multiplier is missing when no solved one is :func:`same_lambda` as it. Those at or
-    above ``upper`` (the smallest multiplier found inadmissible; NaN: none) are left out:
-    the admissible multipliers of a scene form an interval (its set of admissible
-    ``(lambda, F)`` is convex and holds ``lambda = 0`` or nothing), so they have no
-    admissible state.
+    above ``upper`` (the smallest multiplier found inadmissible; NaN: none) are left out: the
+    admissible multipliers form an interval (the admissible set of ``(lambda, F)`` is convex
+    and holds ``lambda = 0`` or nothing).
     """
     return [
         float(w) for w in wanted
@@ -312,7 +305,7 @@ def _end_on_close(stop: Connection) -> None:
 @contextlib.contextmanager
 def _dask(scheduler: str | None, jobs: int) -> Iterator[None]:
     """joblib's ``dask`` backend on the cluster at ``scheduler`` (or a local one of ``jobs`` workers)."""
-    import joblib  # here: only the Dask backend needs it (every run paid its import: issue 24)
+    import joblib  # here: only the Dask backend needs it
 
     try:
         from distributed import Client, LocalCluster
@@ -393,14 +386,12 @@ def _lost(sc: Scenario) -> str:
 def _context() -> mp.context.BaseContext:
     """How worker processes start: forked from a fork server that has imported tce once
     (``forkserver`` with :mod:`tce.study.runner` preloaded), where the platform has one;
-    spawned (each importing numpy, scipy, xarray, Clarabel and tce again) elsewhere.
+    spawned elsewhere.
 
-    The fork server is started by the first pool of the process and kept for later runs;
-    it ignores Ctrl-C and ends with the process. A forked worker starts in milliseconds
-    instead of a fresh interpreter's 1.5-3 CPU seconds of imports. ``dask.array`` is preloaded
-    too: xarray imports it, where it is installed, when it makes its first Dataset (0.3 CPU
-    seconds per worker); where it is not, the fork server skips it (an ImportError of a
-    preloaded module is ignored)."""
+    The fork server is started by the first pool of the process and kept for later runs; it
+    ignores Ctrl-C and ends with the process. ``dask.array`` is preloaded too, since xarray
+    imports it (where installed) for its first Dataset; where it is not installed, the fork
+    server ignores the ImportError."""
     if "forkserver" not in mp.get_all_start_methods():
         return mp.get_context("spawn")
     ctx = mp.get_context("forkserver")
@@ -568,8 +559,7 @@ def run_study(
         ``plots(ds, folder, jobs) -> list of Path``: draws the results dataset into the
         study's folder (still under its lock) with up to ``jobs`` processes, once ``results.nc``
         is written; the files it returns are :attr:`RunReport.figures`. The command line passes
-        :func:`tce.plot.write_figures` (the runner does not import :mod:`tce.plot`); default:
-        no figures.
+        :func:`tce.plot.write_figures`; default: no figures.
     fresh : bool
         Delete the scenario files of earlier runs first (under the folder's lock).
 
@@ -630,8 +620,7 @@ def run_study(
                 _in_pool(_grouped(todo), study, folder, jobs, tally)
             report.solved = [sc.name for sc in todo if sc.name in tally.outcomes]
             report.faults = tally.faults
-            # each was written atomically (fsync, rename) before it counted as done: merged
-            # from memory, not read back
+            # each was written atomically before it counted as done: merged from memory
             parts.update(tally.datasets)
         report.outcomes = {sc.name: str(parts[sc.name]["outcome"].values[0]) for sc in scenarios if sc.name in parts}
         if report.faults:

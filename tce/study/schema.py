@@ -1,14 +1,13 @@
 """Study files: a TOML description of a structure, its material, its loads and its scenarios.
 
-A study is read and validated as a whole before anything runs (:func:`load_study`): the
-schema (pydantic in strict mode: unknown keys forbidden with a "did you mean", NaN and
-infinities refused, no booleans or quoted numbers where numbers are expected), limits
-(the study name is one plain path component; at most :data:`MAX_INCREMENTS` load
-increments and :data:`MAX_BLOCKS` blocks), then the structure is built once per distinct
-geometry (kept for the run: :meth:`Study.assembly`) and every scenario's support names
-are checked against it; scenario names must be distinct. Every problem is reported as a
-:class:`StudyError` whose message names the file, the key and the fix. The format is
-documented in ``docs/studies.md``.
+A study is validated as a whole before anything runs (:func:`load_study`, format in
+``docs/studies.md``): the schema (pydantic, strict: unknown keys refused with a "did you
+mean", no NaN or infinities, no booleans or quoted numbers for numbers), limits (the study
+name is one plain path component; at most :data:`MAX_INCREMENTS` load increments and
+:data:`MAX_BLOCKS` blocks), then each distinct structure is built once (kept for the run:
+:meth:`Study.assembly`) and every scenario's support names are checked against it;
+scenario names must be distinct. Every problem is a :class:`StudyError` naming the file,
+the key and the fix.
 
 A valid study expands (:meth:`Study.scenarios`) into the cartesian product of its
 settlement cases, its lateral directions (``[loads] alpha``) and its ``[sweep]`` lists,
