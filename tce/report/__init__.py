@@ -155,8 +155,7 @@ def write_report(results: Path, out: Path | None = None, figures: list[Path] | N
     out : Path, optional
         Folder of the report (default: beside ``results``).
     figures : list of Path, optional
-        The figures to embed (``tce run`` passes those it drew); default: the study's
-        ``[plots]`` figures found beside ``results``, the missing ones drawn.
+        The figures to embed (default: :func:`study_figures`).
     pdf : bool
         Print the PDF as well.
     """
