@@ -1,7 +1,7 @@
 """Interactive 3D view of a results dataset: one self-contained HTML file that works offline.
 
-:func:`view_html` returns an HTML page with plotly.js inlined (read from the installed
-``plotly`` package; no network, no CDN) and the figure as data: the blocks (a shaded
+:func:`view_html` returns an HTML page with plotly.js inlined (from the installed ``plotly``
+package; no network) and the figure as data: the blocks (a shaded
 mesh with edges), the interface resultants centred on their pressure points (hover for the
 interface, the force and the torque), the torques about the interface normals (arcs), the
 loads (self-weight and lateral load lambda W at each block centroid, declared loads, live
