@@ -14,9 +14,7 @@ the subpackages follow it:
 ``tce.quality``     developer tools beside the command line: benchmarks, the hard-case suite
 
 The names most scripts need are importable from ``tce`` itself (loaded on first use, listed in
-``__all__`` and by ``dir(tce)``), e.g. ``from tce import semicircular_arch, Analysis, Material,
-load_path``. The command line (``tce run``, ``tce report``, ...) is :mod:`tce.cli`, on the top
-floor: it composes the study runner, the figures and the report.
+``__all__``), e.g. ``from tce import semicircular_arch, Analysis, Material, load_path``.
 """
 
 from __future__ import annotations

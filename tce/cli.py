@@ -1,27 +1,20 @@
 """The ``tce`` command line: run studies, summarise and plot their results.
 
-``tce run STUDY.toml``   validate a study, solve its scenarios in parallel, write
-                         ``<out>/<study>/results.nc`` and its figures (resumes a run).
-``tce show RESULTS.nc``  one line per scenario: limit, outcome, model, cost (and the
-                         critical position of a load-position sweep).
-``tce plot RESULTS.nc``  the figures of a results file (``--scenario S --step 0.1``: one on demand).
-``tce view RESULTS.nc``  the interactive 3D view (one offline HTML file).
-``tce report RESULTS.nc``  the calculation report: one self-contained HTML file and its PDF
-                         (also written by ``tce run`` unless ``--no-report``).
-``tce export RESULTS.nc --vtk``  ParaView files: blocks, vertex forces, resultants per step.
+Commands: ``run`` (a study: ``<out>/<study>/results.nc``, its figures and report; resumes),
+``show``, ``plot``, ``view``, ``report`` and ``export`` (of a results file), ``check`` and
+``bench``.
 
 Exit codes (``tce run``): 0 success; 2 bad input or a run that cannot start (a bad study,
 an unwritable, full or locked results folder: one message on stderr, no traceback,
 nothing solved); 3 a run that ended with a fault (a worker killed, a disk full, a
 scenario that failed: one line each, every finished scenario kept, a rerun resumes); 4
 with ``--strict``, a run whose scenarios did not all end at a limit; 130 interrupted
-(Ctrl-C; finished scenarios are kept), 143 for SIGTERM and 129 for SIGHUP, which stop it
-the same way (:mod:`tce.signals`).
+(Ctrl-C; finished scenarios are kept), 143 for SIGTERM and 129 for SIGHUP (:mod:`tce.signals`).
 
 Every command: 2 for bad input (a missing, foreign or damaged results file, an ``--out``
-that is a file or cannot be written: nothing written); 3 for a storage fault while it writes
-(a disk that fills, one line naming the path); an interrupted command prints one line, no
-traceback; a closed output pipe (``tce show | head``) ends it quietly.
+that cannot be written: nothing written); 3 for a storage fault while it writes (one line
+naming the path); an interrupted command prints one line, no traceback; a closed output
+pipe (``tce show | head``) ends it quietly.
 """
 
 from __future__ import annotations
@@ -208,8 +201,8 @@ RESULTS_VARS = ("lambda_max", "outcome", "status", "lam", "block_centroid")
 
 
 def _open_results(path: Path, needs: Sequence[str] = RESULTS_VARS):
-    """The results dataset at ``path``; a missing, unreadable, foreign (not written by tce) or
-    older file (without a variable of ``needs``) is a :class:`UsageError` saying which."""
+    """The results dataset at ``path``; a missing, unreadable, foreign or older file (without
+    a variable of ``needs``) is a :class:`UsageError` saying which."""
     import xarray as xr
 
     if not path.is_file():
@@ -233,8 +226,8 @@ def _open_results(path: Path, needs: Sequence[str] = RESULTS_VARS):
 
 
 def _out_folder(out: Path, option: str = "--out") -> Path:
-    """``out`` as a folder to write into: created if needed; a file in its way, or a folder
-    that cannot be written, is a :class:`UsageError` (nothing written)."""
+    """``out`` as a folder to write into, created if needed (:class:`UsageError` if it cannot
+    be written)."""
     import os
     import shutil
 
@@ -297,8 +290,7 @@ EXIT_PIPE = 141
 
 
 def _draw(ds, folder: Path, jobs: int) -> list[Path]:
-    """The figures and view of a finished run (the study's ``[plots]``), drawn into its folder
-    once ``results.nc`` is written (:func:`tce.plot.write_figures`)."""
+    """The figures and view of a finished run (:func:`tce.plot.write_figures`)."""
     from . import plot
 
     return plot.write_figures(ds, folder, jobs=jobs)
@@ -409,8 +401,7 @@ def _show_outcomes(ds) -> None:
 
 
 def _show_assessment(ds) -> None:
-    """The assessment of each scenario (``[assessment]``): the live load, where it is worst,
-    the collapse load, the partial factors and the adequacy factor."""
+    """The assessment of each scenario (``[assessment]``), adequacy factor included."""
     print("assessment (adequacy factor: multiplier of the factored live load at collapse under the factored "
           "dead load; >= 1: adequate):")
     for k, name in enumerate(ds["scenario"].values):
@@ -476,8 +467,8 @@ _OPTIONS = {"scenarios": "--scenario", "steps": "--step", "kinds": "--kind"}
 
 
 def _spec(ds, **given):
-    """The plotting spec of ``ds`` with the command line's replacements; a bad one is a usage
-    error naming the option (or the ``[plots]`` key of the study stored in the file)."""
+    """The plotting spec of ``ds`` with the command line's replacements (a bad one: a usage
+    error naming the option or the ``[plots]`` key)."""
     from .plot.data import PlotSpecError, plot_spec
 
     try:
@@ -590,13 +581,8 @@ def _bench(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``tce`` command; returns the exit code.
-
-    Parameters
-    ----------
-    argv : sequence of str, optional
-        Arguments without the program name (default: ``sys.argv[1:]``, the ``tce`` program).
-    """
+    """Entry point of the ``tce`` command: ``argv`` without the program name (default
+    ``sys.argv[1:]``); returns the exit code."""
     before = handle_signals()  # first: Ctrl-C or SIGTERM from here on, imports included, ends in one line
     try:
         args = _parser().parse_args(argv)  # argparse exits with code 2 on a bad command line

@@ -23,10 +23,8 @@ def atomic_write(path: Path | str) -> Iterator[Path]:
     """Write ``path`` whole or not at all.
 
     Yields the temporary path ``.<name>.<pid>.tmp`` beside ``path`` (its folder is created),
-    for the caller to write by any means (``write_text``, a library's writer, another
-    program). When the block ends normally, the temporary file is fsynced, renamed onto
-    ``path`` and the folder fsynced; when it raises, the temporary file is removed and the
-    exception goes on.
+    for the caller to write by any means. When the block ends normally, the file is fsynced,
+    renamed onto ``path`` and the folder fsynced; when it raises, the file is removed.
 
     Raises
     ------

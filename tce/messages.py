@@ -56,9 +56,8 @@ def did_you_mean(word: str, choices: Iterable[str]) -> str:
 
 
 def key(loc: tuple[Any, ...], tags: Iterable[str] = ()) -> str:
-    """The key of a pydantic location as written in the document: ``a.b[2].c``. The labels
-    pydantic inserts for the members of a union (``float``, ``list[float]``, the ``tags`` of
-    a discriminated union) are left out."""
+    """The key of a pydantic location as written in the document: ``a.b[2].c``, without the
+    labels pydantic inserts for union members (``float``, the ``tags`` of a discriminated union)."""
     tags = set(tags)
     parts: list[str] = []
     for item in loc:
@@ -124,16 +123,14 @@ def describe(
     hints : mapping, optional
         Hints that replace those of :data:`HINTS` for some error types.
     tags : mapping, optional
-        The tags of the document's discriminated union and the model of each (a location
-        names the tag of the member it went into).
+        Tag -> model of the document's discriminated union.
     where : callable, optional
         The key of a location (default :func:`key`).
 
     Returns
     -------
     list of str
-        The lines, in the order of the document; a location reported by several members of
-        a union only once.
+        The lines, in document order; a location reported by several union members once.
     """
     tags = dict(tags or {})
     table = {**HINTS, **(hints or {})}

@@ -6,14 +6,12 @@ SIGTERM and SIGHUP raise :class:`Interrupted` (a :class:`KeyboardInterrupt`) in 
 thread, so that every command stops the same way whatever ends it: a run stops its workers,
 keeps every finished scenario and removes its temporary files (:mod:`tce.study.runner`), and
 the program prints one line and exits with ``128 + signal`` (130 for Ctrl-C, 143 for SIGTERM,
-129 for SIGHUP). Later signals are ignored while it stops (SIGKILL still ends it at once; no
-finished scenario is lost, since each is written before its worker reports it). Ctrl-C while
-a command imports numpy and the rest is handled so too; before ``main`` runs (the
-interpreter's start-up and the light import of :mod:`tce.cli`) it is left to Python.
+129 for SIGHUP). Later signals are ignored while it stops (SIGKILL still ends it at once);
+before ``main`` runs, Ctrl-C is left to Python.
 
 :func:`quiet_children` starts processes with Ctrl-C ignored from their first instruction
-(an ignored signal stays ignored across ``exec``, and Python keeps it so), so that a worker
-still importing its modules prints no traceback when Ctrl-C reaches its process group.
+(an ignored signal stays ignored across ``exec``), so that a worker still importing prints
+no traceback when Ctrl-C reaches its process group.
 """
 
 from __future__ import annotations
@@ -44,11 +42,8 @@ def _stop(signum: int, frame: FrameType | None) -> None:
 
 
 def handle_signals() -> dict[int, object]:
-    """SIGINT, SIGTERM and SIGHUP raise :class:`Interrupted` in the main thread (module docstring).
-
-    Returns the dispositions it replaced, for :func:`restore_signals`: a caller that is not the
-    ``tce`` program (a script or a test calling :func:`tce.cli.main`) gets its own back.
-    """
+    """SIGINT, SIGTERM and SIGHUP raise :class:`Interrupted` in the main thread (module
+    docstring); returns the dispositions it replaced, for :func:`restore_signals`."""
     before = {sig: signal.getsignal(sig) for sig in _SIGNALS}
     for sig in _SIGNALS:
         if before[sig] is not signal.SIG_IGN:  # nohup's choice is kept
@@ -71,10 +66,8 @@ def exit_code(exc: KeyboardInterrupt) -> int:
 
 @contextlib.contextmanager
 def quiet_children() -> Iterator[None]:
-    """Within the block, processes started inherit an ignored Ctrl-C (module docstring).
-
-    This process ignores Ctrl-C only while it starts them (a fork and an exec).
-    """
+    """Within the block, processes started inherit an ignored Ctrl-C (module docstring); this
+    process ignores it only while it starts them."""
     if threading.current_thread() is not threading.main_thread():  # only the main thread sets handlers
         yield
         return

@@ -3,10 +3,8 @@
 A load-position sweep (``[sweep] load_x``, ``docs/studies.md``) runs one load path per
 position of its moving live point loads. :func:`influence_line` draws ``lambda_max`` (the
 multiplier of the live load at collapse: for a 1 kN load, the collapse load in kN) against
-the position, one line per group of the other coordinates (e.g. per settlement case), the
-critical position of each marked (:func:`tce.study.positions.critical_positions`); the
-mechanism and the states at the critical positions are the other figures of the study
-(:mod:`tce.plot.output` draws those scenarios by default).
+the position, one line per group of the other coordinates, the critical position of each
+marked (:func:`tce.study.positions.critical_positions`).
 """
 
 from __future__ import annotations
@@ -84,10 +82,9 @@ def influence_line(ds: xr.Dataset) -> Figure:
     -------
     Figure
         One axes: one line per group (gid ``"capacity:<group>"``), its critical position a
-        star (gid ``"critical:<group>"``), tied positions hollow stars (gid
-        ``"tie:<group>"``), positions carried at any multiplier a triangle at the top (gid
-        ``"no_limit:<group>"``). The critical positions are written beside the axes,
-        clear of the data.
+        star (``"critical:<group>"``), tied positions hollow stars (``"tie:<group>"``),
+        positions carried at any multiplier a triangle at the top (``"no_limit:<group>"``);
+        the critical positions written beside the axes.
     """
     search = "scan_x" in ds
     curves = _search_curves(ds) if search else _sweep_curves(ds)
@@ -132,8 +129,7 @@ def influence_line(ds: xr.Dataset) -> Figure:
     ax.set_title("capacity against load position" + (" (direct limit at each position)" if search else " (influence line)"),
                  fontsize=10)
     ax.grid(True, linewidth=0.3, alpha=0.6)
-    # the legend in the right-hand column, under the critical positions (a band under the
-    # axes stayed mostly empty: one or two rows of entries)
+    # the legend in the right-hand column, under the critical positions
     renderer = FigureCanvasAgg(fig).get_renderer()
     below = fig.transFigure.inverted().transform(box.get_window_extent(renderer))[0, 1]
     fig.legend(handles=handles, loc="upper left", bbox_to_anchor=(0.695, below - 0.02), ncols=1, fontsize=8,

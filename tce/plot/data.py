@@ -1,11 +1,9 @@
 """What the figures, the interactive view and the VTK export read from a results dataset.
 
-Everything here takes a results dataset (``docs/results.md``) and returns plain numbers,
-arrays and strings; nothing draws. The geometry of each scenario comes from the attr
-``assembly`` (or ``assembly_<k>`` for the scenarios whose ``geometry`` is k) and
-the drawing choices from the ``[plots]`` table of the study text ``ds.attrs["study"]``
-(:class:`tce.study.schema.PlotsSection`), so a results file copied anywhere redraws the
-same figures.
+Everything here reads a results dataset (``docs/results.md``) and returns plain numbers,
+arrays and strings; nothing draws. The geometry comes from the attr ``assembly`` (or
+``assembly_<k>`` for geometry k) and the drawing choices from the ``[plots]`` table of the
+study text ``ds.attrs["study"]``, so a results file copied anywhere redraws the same figures.
 
 Conventions
 -----------
@@ -87,8 +85,7 @@ def _assembly_from_json(text: str) -> Assembly:
 
 
 def geometry(ds: xr.Dataset, scenario: str | None = None) -> int:
-    """Index of the structure a scenario was solved on (0 for the first scenario's, and for
-    every scenario of a file without a ``geometry`` variable)."""
+    """Index of the structure a scenario was solved on (0 without a ``geometry`` variable)."""
     if scenario is None or "geometry" not in ds:
         return 0
     return int(value(ds, "geometry", scenario))
@@ -96,8 +93,7 @@ def geometry(ds: xr.Dataset, scenario: str | None = None) -> int:
 
 def assembly(ds: xr.Dataset, scenario: str | None = None) -> Assembly:
     """The assembly a scenario was solved on (default: the first scenario's), parsed once
-    per text: the attr ``assembly`` for geometry 0, ``assembly_<k>`` for geometry k
-    (a geometry sweep, ``docs/results.md``)."""
+    per text."""
     k = geometry(ds, scenario)
     key = "assembly" if k == 0 else f"assembly_{k}"
     try:
@@ -109,7 +105,7 @@ def assembly(ds: xr.Dataset, scenario: str | None = None) -> Assembly:
 
 def geometry_groups(ds: xr.Dataset, names: Sequence[str]) -> list[list[str]]:
     """``names`` split into groups solved on the same structure, in order of first appearance
-    (one group unless a geometry sweep is drawn): a figure draws one structure."""
+    (a figure draws one structure)."""
     groups: dict[int, list[str]] = {}
     for s in names:
         groups.setdefault(geometry(ds, s), []).append(s)
@@ -122,8 +118,7 @@ def one_geometry(ds: xr.Dataset, names: Sequence[str]) -> Assembly:
     Raises
     ------
     ValueError
-        They were solved on different structures (a geometry sweep): draw each group of
-        :func:`geometry_groups` apart.
+        They were solved on different structures (draw each of :func:`geometry_groups`).
     """
     groups = geometry_groups(ds, names)
     if len(groups) > 1:
@@ -148,8 +143,7 @@ def value(ds: xr.Dataset, name: str, scenario: str, dims: Sequence[str] | None =
 
 def block_rows(ds: xr.Dataset, name: str, scenario: str, asm: Assembly) -> NDArray[np.float64]:
     """``ds[name]`` (dimensions ``scenario, block, ...``) of one scenario, a row per block of
-    ``asm`` in its order (a geometry sweep stores the blocks of every structure; a block
-    ``ds`` does not hold is a KeyError)."""
+    ``asm`` in its order (KeyError for a block ``ds`` does not hold)."""
     rows = ds[name].sel(scenario=scenario, block=list(asm.names))
     return np.asarray(rows.transpose("block", ...).values, float)
 
@@ -218,8 +212,7 @@ class PlotSpec:
 
 def critical_scenarios(ds: xr.Dataset) -> list[str]:
     """The critical scenario of every group of a load-position sweep, in dataset order (the
-    scenarios the per-scenario figures show by default, :func:`plot_spec`; a group without a
-    finite lambda_max shows its first position)."""
+    first position of a group without a finite lambda_max)."""
     from ..study.positions import critical_positions  # the solvers: imported for a load-position sweep only
 
     chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}
@@ -314,10 +307,9 @@ class State:
 def find_state(ds: xr.Dataset, scenario: str, target: Target) -> State:
     """The step of ``scenario`` at multiplier ``target`` (or at lambda_max for ``"max"``).
 
-    ``"max"`` is the optimal step at ``lambda_max``; without a limit (outcome
-    ``no_limit`` or ``capped``), the last optimal step. A number is the step at that multiplier if it
-    was solved; if that step is not optimal, or the multiplier lies above the smallest one
-    found inadmissible, the state has no step and its note says so.
+    ``"max"`` is the optimal step at ``lambda_max`` (without a limit: the last optimal step).
+    A multiplier that was not solved, whose step is not optimal or that lies above the
+    smallest one found inadmissible gives a state without a step, its note saying why.
     """
     lam = value(ds, "lam", scenario).astype(float)
     status = value(ds, "status", scenario).astype(str)
@@ -365,13 +357,9 @@ def _notes(ds: xr.Dataset, scenario: str, step: int) -> str:
 
 
 def outcome_note(ds: xr.Dataset, scenario: str) -> str:
-    """What a reader must know about a scenario whose outcome is not ``limit`` ("" if it is),
-    in the words of :func:`tce.study.outcomes.outcome_words`.
-
-    A ``no_limit`` or ``unbounded`` outcome carries its explanation (``no_limit_reason``,
-    ``unbounded_reason``) when the dataset has one; ``capped`` names the study's cap and the
-    direct limit.
-    """
+    """What a reader must know about a scenario whose outcome is not ``limit`` ("" if it is):
+    :func:`tce.study.outcomes.outcome_words` with the dataset's ``no_limit_reason`` or
+    ``unbounded_reason``, or the study's cap and the direct limit for ``capped``."""
     outcome = text(ds, "outcome", scenario, "limit")
     reason = text(ds, f"{outcome}_reason", scenario) if outcome in ("no_limit", "unbounded") else ""
     direct = float(value(ds, "lambda_direct", scenario)) if "lambda_direct" in ds else math.nan
@@ -413,9 +401,8 @@ def state_pages(names: Sequence[str], targets: Sequence[object]) -> list[list[tu
 
 
 def mechanism_groups(ds: xr.Dataset, names: Sequence[str]) -> list[list[str]]:
-    """Scenarios of ``names`` grouped by identical collapse mechanism (scenarios without one
-    are left out). The direct limit analysis does not see settlements, so all the
-    scenarios of one structure, material and direction share theirs."""
+    """Scenarios of ``names`` grouped by identical collapse mechanism (those without one left
+    out; the direct limit does not see settlements)."""
     mech = []
     for s in names:
         if "mechanism" not in ds:
@@ -480,11 +467,10 @@ def _positive(v: NDArray[np.float64]) -> NDArray[np.float64]:
 def structure_frame(asm: Assembly) -> StructureFrame:
     """The frame of :class:`StructureFrame` for an assembly.
 
-    Support centroids on one horizontal line (principal direction of their plan
-    positions, second singular value below 1e-6 of the first) give a ``line``: the span is
-    that line, oriented with its largest component positive; each support's ``H`` points
-    away from the free blocks' centroid along it. Three or more supports off a line give
-    ``radial`` directions from that centroid. One support gives ``single``: the span is the
+    ``line``: support centroids on one horizontal line (second singular value of their plan
+    positions below 1e-6 of the first); the span is that line, its largest component
+    positive, each ``H`` pointing away from the free blocks' centroid. ``radial``: three or
+    more supports off a line, directions from that centroid. ``single``: the span is the
     principal horizontal axis of the free blocks' centroids (x when they have none).
     """
     cen = asm.centroids
@@ -558,11 +544,9 @@ def support_forces(ds: xr.Dataset, scenario: str, frame: StructureFrame) -> dict
 def chain_interfaces(asm: Assembly) -> list[int] | None:
     """Interfaces along the structure's single line of blocks, from one end to the other.
 
-    A structure is a single line of blocks (an arch, a column) when its blocks and
-    interfaces form a path: every block touches at most two others and the graph is
-    connected without a cycle. Returns the interface indices in order from the first
-    support (or from the path's first end), or None when it is not a line (a wall, a
-    dome): no line of thrust exists there.
+    A line of blocks (an arch, a column) is a connected path without cycle: every block
+    touches at most two others. Returns the interface indices from the first support (or
+    the path's first end), or None when it is not a line (no line of thrust exists).
     """
     n = len(asm.blocks)
     adj: dict[int, list[tuple[int, int]]] = {k: [] for k in range(n)}
@@ -590,9 +574,8 @@ def hinge_segments(ds: xr.Dataset, scenario: str, asm: Assembly) -> NDArray[np.f
     """Hinge lines of the collapse mechanism, clipped to their interfaces, ``(n, 2, 3)`` (m).
 
     A hinging interface (``interface_mode == "hinge"``) turns about the line through its
-    ``hinge_point`` along the relative rotation of its blocks, ``w_B - w_A`` (from
-    ``mechanism``); the segment is that line's chord through the interface polygon.
-    Interfaces whose relative rotation vanishes are skipped.
+    ``hinge_point`` along ``w_B - w_A`` (``mechanism``), clipped to the interface polygon;
+    one whose relative rotation vanishes is skipped.
     """
     if "interface_mode" not in ds or "mechanism" not in ds:
         return np.empty((0, 2, 3))
@@ -646,11 +629,7 @@ def _chord(poly: NDArray[np.float64], normal: NDArray[np.float64], p0: NDArray[n
 def group_identical(curves: Sequence[tuple[NDArray, NDArray]], atol: float) -> list[list[int]]:
     """Groups of curves ``(x, y)`` that coincide: same x, y within ``atol`` everywhere.
 
-    Returns
-    -------
-    list of list of int
-        Indices into ``curves``, each group in input order, groups ordered by their first
-        member.
+    Returns indices into ``curves``, each group and the groups in input order.
     """
     groups: list[list[int]] = []
     for i, (x, y) in enumerate(curves):

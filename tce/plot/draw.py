@@ -1,10 +1,9 @@
 """Drawing primitives: blocks, arrows, torque arcs and hinges on plain 2D matplotlib axes.
 
 3D scenes are drawn as orthographic projections onto flat axes (:class:`Camera`), not
-with ``mplot3d``: one collection of shaded polygons per panel, sorted far to near, with
-back faces culled, and forces on top. This draws a panel in a few milliseconds where a 3D
-axes takes hundreds, and makes an elevation (``Camera.elevation()``: screen = (x, z)) and
-a plan (screen = (x, y)) exact drawings in metres with true axes.
+with ``mplot3d`` (far slower): one collection of shaded polygons per panel, sorted far to
+near, back faces culled, forces on top. An elevation (screen = (x, z)) and a plan
+(screen = (x, y)) are exact drawings in metres with true axes.
 """
 
 from __future__ import annotations
@@ -76,9 +75,8 @@ class Camera:
 
     @classmethod
     def for_assembly(cls, asm: Assembly, across: bool = False) -> Camera:
-        """An axonometric camera: lower for long structures (arches, walls) than for domes;
-        for a long structure turned towards its span when ``across`` (forces or motions
-        across its plane are to be seen)."""
+        """An axonometric camera, lower for long structures than for domes; turned towards the
+        span when ``across`` (forces or motions across the plane to be seen)."""
         ext = np.ptp(np.vstack([b.shape.vertices for b in asm.blocks]), axis=0)
         if ext[0] > 2.5 * max(ext[1], 1e-12):
             return cls(20.0, -38.0) if across else cls(18.0, -62.0)
@@ -94,10 +92,8 @@ def nice(x: float) -> float:
 
 @dataclass(frozen=True)
 class BlockArt:
-    """The blocks of an assembly as seen by a camera: shaded polygons sorted far to near.
-
-    Built once (:meth:`of`) and drawn in as many panels as needed (:meth:`draw`).
-    """
+    """The blocks of an assembly as seen by a camera: shaded polygons sorted far to near,
+    built once (:meth:`of`) and drawn in any number of panels (:meth:`draw`)."""
 
     polygons: list[NDArray[np.float64]]
     facecolors: list

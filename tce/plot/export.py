@@ -3,10 +3,9 @@
 :func:`export_vtk` writes, under ``<out>/``:
 
 ``blocks.vtu``
-    The blocks as triangles (every face fan-triangulated); cell data ``block`` (index in
-    the dataset's ``block`` order) and ``support`` (1 for supports). A geometry sweep adds
-    ``blocks_<k>.vtu`` for the scenarios solved on structure k (``geometry`` in
-    ``docs/results.md``): each scenario's collection shows its own blocks.
+    The blocks as triangles (faces fan-triangulated); cell data ``block`` (index in the
+    dataset's ``block`` order) and ``support`` (1 for supports). A geometry sweep adds
+    ``blocks_<k>.vtu`` for structure k.
 ``<scenario>/forces_<k>.vtu``
     Step ``k`` (an optimal step, in lambda order): every interface vertex as a VTK vertex
     with point data ``force`` (kN, on block B, global frame) and ``fn`` (its component
@@ -19,9 +18,8 @@
     The blocks with point data ``displacement``: the collapse mechanism at lambda_max
     (unit amplitude, m; "Warp By Vector" shows it), when the scenario has one.
 ``<scenario>.pvd``
-    A ParaView collection of the scenario's steps with ``timestep`` = lambda (parts: the
-    vertex forces, the resultants and the blocks), so that ParaView's time slider walks the
-    load path.
+    A ParaView collection of the scenario's steps (vertex forces, resultants, its blocks)
+    with ``timestep`` = lambda: the time slider walks the load path.
 
 Units as in the dataset (m, kN, kN m). ``<scenario>`` is the scenario name made safe for
 a file name.
@@ -80,16 +78,13 @@ def export_vtk(ds: xr.Dataset, out: Path | str, names: Sequence[str] | None = No
     Parameters
     ----------
     ds : xarray.Dataset
-        Results dataset with ``vertex_force`` and ``vertex_point`` (``docs/results.md``).
+        Results dataset with ``vertex_force`` and ``vertex_point``.
     out : path
         Folder (created).
     names : sequence of str, optional
         Scenarios to export (default: all).
 
-    Returns
-    -------
-    list of pathlib.Path
-        Every file written.
+    Returns the files written.
 
     Raises
     ------

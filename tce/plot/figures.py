@@ -2,42 +2,16 @@
 
 Every function takes a results dataset (``docs/results.md``) and returns a
 :class:`matplotlib.figure.Figure` built without pyplot, with a fixed layout computed from
-its content (no constrained layout), so that legends are never clipped and the cost of a
-figure does not depend on a layout solver. The geometry comes from the ``assembly``
-attr; which states and scenarios are drawn from the arguments (see :mod:`tce.plot.output`
-for the study's ``[plots]`` table).
+its content (no constrained layout), so that legends are never clipped. The geometry comes
+from the ``assembly`` attr; which states and scenarios are drawn from the arguments (see
+:mod:`tce.plot.output` for the study's ``[plots]`` table).
 
-Figures
--------
-:func:`thrust_curves`
-    Forces on the supports against lambda (the paper's Fig. 8): ``H`` along the span,
-    ``S`` across it and the moment ``M`` about it when a scenario leaves the plane, ``V``
-    vertical, each with its sign in the axis label (:mod:`tce.plot.data`). Colour: one
-    swept parameter (or the settlement case); line style: the settlement case; marker:
-    the support; one row of panels per value of the other swept parameters when there
-    are more than :data:`FACET_AT` scenarios. Coincident curves are drawn once and named
-    together under the panel title.
-:func:`states_figure`
-    The interface resultants (arrows centred on their pressure points, one scale per
-    figure stated in the legend), torques about the normals (arcs), the line of thrust
-    (structures that are one line of blocks) and, at lambda_max, the hinges; one panel per
-    scenario and drawn state (Figs. 3-7, 9, 10). Planar scenarios are drawn in elevation,
-    spatial ones in an axonometric projection. At most :data:`MAX_ARROWS` arrows per panel,
-    the largest.
-:func:`thrust_lines`
-    One elevation per drawn state with the line of thrust of every scenario (Figs. 3b, 7).
-:func:`base_figure`
-    The support interfaces seen along their normals with the pressure points of every
-    scenario (Fig. 9: the base pressure points on the edge about which the arch rocks).
-:func:`mechanism_view`
-    The collapse mechanism of the scenarios that share it, exaggerated, with its hinge
-    lines.
-:func:`summary_figure`
-    lambda_max against each swept parameter, one row per settlement case (cases with the
-    same answers share a row).
-
-A state whose optimum is not unique (the canonical state is drawn, :mod:`tce.core.canonical`) or a scenario whose
-outcome is not ``limit`` carries a note on every figure that draws it.
+:func:`thrust_curves` (Fig. 8), :func:`states_figure` (Figs. 3-7, 9, 10), :func:`thrust_lines`
+(Figs. 3b, 7), :func:`base_figure` (Fig. 9), :func:`transversal_figure` (Figs. 5-6),
+:func:`mechanism_view` and :func:`summary_figure`. Support forces carry their sign in the axis
+label (:mod:`tce.plot.data`); coincident curves are drawn once and named together. A state
+whose optimum is not unique (the canonical state is drawn, :mod:`tce.core.canonical`) or a
+scenario whose outcome is not ``limit`` carries a note on every figure that draws it.
 """
 
 from __future__ import annotations
@@ -144,7 +118,7 @@ class _Grid:
 
 def _legend_rows(labels: Sequence[str], width: float) -> tuple[int, int]:
     """``(ncols, nrows)`` of a legend of ``labels`` that fits ``width`` inches at :data:`FONT`
-    (every column as wide as the longest line of any label: a safe bound)."""
+    (every column as wide as the longest label line)."""
     longest = max((len(line) for s in labels for line in s.split("\n")), default=1)
     entry = 0.55 + 0.062 * longest
     ncols = max(1, min(len(labels), int((width - 0.3) // entry)))
@@ -246,9 +220,8 @@ def _palette(n: int) -> list[str]:
 
 # ---------------------------------------------------------------------------- thrust curves
 def _facets(ds: xr.Dataset, names: Sequence[str], styles: _Styles, by_scenario: bool) -> list[tuple[str, list[str]]]:
-    """Rows of the thrust curves: ``(title, scenarios)``. One row per scenario when the
-    supports are told apart by colour (``by_scenario``); else one row, unless there are
-    more than :data:`FACET_AT` scenarios and other swept parameters to split them by."""
+    """Rows ``(title, scenarios)`` of the thrust curves: one per scenario when ``by_scenario``,
+    else one, or one per value of the other swept parameters beyond :data:`FACET_AT` scenarios."""
     if by_scenario:
         return [(s, [s]) for s in names]
     others = [p for p in swept_parameters(ds, names) if p != styles.colour_by]
@@ -262,10 +235,8 @@ def _facets(ds: xr.Dataset, names: Sequence[str], styles: _Styles, by_scenario: 
 
 
 def _coincide(groups: Sequence[Sequence[tuple[str, str]]], one_scenario: bool) -> str:
-    """Panel note naming coincident (scenario, support) curves: ``a, b (left, right); ...``.
-
-    Groups with the same scenarios at different supports are named once with all their
-    supports; within one scenario, only the supports are named."""
+    """Panel note naming coincident (scenario, support) curves: ``a, b (left, right); ...``
+    (groups of the same scenarios merged; within one scenario, only the supports named)."""
     if one_scenario:
         return "; ".join(", ".join(sup for _, sup in g) for g in groups)
     merged: dict[tuple[str, ...], list[str]] = {}
@@ -294,13 +265,11 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
     -------
     Figure
         Panels ``H``, ``V`` (and ``S``, ``M`` when a scenario is spatial; ``M`` not for
-        radial supports; four panels in two rows). With up to two supports: colour and line
-        style per scenario (:class:`_Styles`), marker per support, scenarios faceted beyond
-        :data:`FACET_AT`; with more supports: one row per scenario, colour and marker per
-        support. Each drawn curve is a line with gid
-        ``"reaction:<component>:<scenario>:<support>"`` (the first of its coincident
-        curves, which the panel title names); lambda_max lines have the gid
-        ``"lambda_max"``.
+        radial supports). Up to two supports: colour and line style per scenario
+        (:class:`_Styles`), marker per support, faceted beyond :data:`FACET_AT` scenarios;
+        more supports: one row per scenario, colour and marker per support. Curves have the
+        gid ``"reaction:<component>:<scenario>:<support>"`` (the first of coincident ones),
+        lambda_max lines ``"lambda_max"``.
     """
     names = list(names or scenarios(ds))
     asm = assembly(ds, names[0] if names else None)  # the frame of the span: the same for every geometry
@@ -398,9 +367,8 @@ def _study(ds: xr.Dataset) -> str:
 # ---------------------------------------------------------------------------- small multiples
 class _Sheet:
     """Panels of one drawing on a single equal-aspect axes (no ticks), panel ``(r, c)``
-    shifted by :meth:`offset`: one axes however many panels, which keeps a grid of
-    drawings fast. Below the panels: a scale bar and, for an axonometric camera, the
-    global axes.
+    shifted by :meth:`offset` (one axes however many panels keeps a grid fast); below them a
+    scale bar and, for an axonometric camera, the global axes.
 
     Parameters
     ----------
@@ -576,8 +544,8 @@ def _state_panel(ax: Axes, off: NDArray, ds: xr.Dataset, asm: Assembly, art: dra
 
 
 def _thinned(asm: Assembly, camera: draw.Camera) -> bool:
-    """Whether a state panel draws only the resultants on the near half of the structure
-    (more than :data:`LARGE_AT` interfaces seen in an axonometric view: a dome, a vault)."""
+    """Whether a panel draws only the near half's resultants (more than :data:`LARGE_AT`
+    interfaces in an axonometric view)."""
     return len(asm.interfaces) > LARGE_AT and not camera.flat
 
 
@@ -632,10 +600,8 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
     ----------
     ds : xarray.Dataset
     panels : sequence of (scenario, target)
-        One panel each (target: a multiplier or ``"max"``, see :func:`tce.plot.data.find_state`),
-        laid out by :func:`tce.plot.data.state_pages`: a column per scenario and a row per target when
-        the page has several of both, the targets side by side for one scenario, the
-        scenarios in two columns for one target.
+        One panel each (target: a multiplier or ``"max"``, :func:`tce.plot.data.find_state`),
+        laid out as by :func:`tce.plot.data.state_pages`.
     title : str
 
     Returns
@@ -861,16 +827,12 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
     """The collapse mechanism shared by ``names``: blocks displaced (exaggerated) over their
     original outlines, hinge lines marked.
 
-    ``drawn`` are the scenarios the figures draw (default: every scenario of ``ds``); the title
-    says "every scenario drawn" when ``names`` are all of them, else names them. It does not
-    depend on which scenarios ``ds`` holds: a worker of ``tce plot --jobs`` receives only those
-    a figure reads (``tce.plot.output._subset``).
+    The title says "every scenario drawn" when ``names`` are all of ``drawn`` (default: every
+    scenario of ``ds``; passed because a worker receives only the scenarios a figure reads).
 
     A vertex ``p`` of a block with centroid ``c`` and velocities ``(v, w)`` moves to
     ``p + s (v + w x (p - c))``; ``s`` makes the largest vertex displacement
-    :data:`MECHANISM_FRACTION` of the assembly size and the title states it. Planar
-    scenarios are drawn in elevation, spatial ones in an axonometric view turned towards
-    the span when the blocks move across it.
+    :data:`MECHANISM_FRACTION` of the assembly size and the title states it.
 
     Returns
     -------
@@ -958,19 +920,10 @@ def transversal_offsets(ds: xr.Dataset, st: State, asm: Assembly, chain: Sequenc
 def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object]) -> Figure:
     """The transversal (out-of-plane) shift of the pressure points along a line of blocks (Figs. 5-6).
 
-    Top: one row per drawn state, every joint seen along its normal, to scale and side by
-    side from the first support (screen: across the joint in the plane of the structure,
-    and across the depth), with the pressure point of the state and the middle of the
-    depth dashed. Bottom: ``y/(d/2)`` of every state against the joint (``±1``: the faces
-    of the structure), its extreme value in the legend.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-    names : sequence of str
-        Scenarios drawn.
-    targets : sequence
-        Multipliers drawn (``"max"`` for the limit), as in :func:`states_figure`.
+    Top: one row per drawn state (``targets``: multipliers or ``"max"``), every joint seen
+    along its normal (:func:`transversal_offsets`), to scale and side by side from the first
+    support, with the pressure point and the middle of the depth dashed. Bottom: ``y/(d/2)``
+    against the joint (``±1``: the faces), its extreme value in the legend.
 
     Returns
     -------
@@ -1057,12 +1010,10 @@ def summary_figure(ds: xr.Dataset) -> Figure:
     """lambda_max against each swept parameter, one row per settlement case.
 
     In the panel of parameter ``p``, one line per combination of the other swept
-    parameters; lines with the same values are drawn once and named together, and so are
-    settlement cases with the same answers everywhere (one row). A categorical parameter
-    (:data:`CATEGORICAL`: the load direction ``alpha``) is drawn as points, never joined.
-    The axis starts at 0, so that a difference reads against the value and solver noise
-    (1e-12) draws flat. Scenarios whose outcome is not ``limit`` are markers at the foot
-    of the panel in their curve's colour, one marker shape per outcome, named in the legend.
+    parameters; identical lines, and settlement cases with identical answers, are drawn once
+    and named together. A :data:`CATEGORICAL` parameter is drawn as points. The axis starts
+    at 0, so that solver noise (1e-12) draws flat. Scenarios whose outcome is not ``limit``
+    are markers at the foot of the panel, one shape per outcome.
 
     Raises
     ------

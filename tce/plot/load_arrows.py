@@ -1,11 +1,9 @@
 """Arrows of the declared point and distributed loads of a scenario (``load_point``,
 ``load_force``, ``load_scaled`` of a results dataset, ``docs/results.md``).
 
-Each arrow ends at its point of application (it pushes on the block). On a 3D view with
-interface resultants, an arrow has the resultants' scale (``1 kN = s m``) and the force of
-the drawn step: a scaled (live) load times the step's lambda, a fixed load as it is. On a
-line of thrust, where no force scale is drawn, every arrow has the same length and only
-shows where and in which direction a load acts.
+Each arrow ends at its point of application (it pushes on the block). On a 3D view an
+arrow has the resultants' scale (``1 kN = s m``) and the force of the drawn step (a live
+load times lambda); on a line of thrust, without a force scale, every arrow has one length.
 """
 
 from __future__ import annotations

@@ -6,7 +6,6 @@ scenario against the swept value, one line per settlement case and direction. Wh
 material's flow is non-associative (``lambda_nonassoc`` in the dataset) the bracket is
 shaded between the associative value (upper) and the non-associative estimate (lower);
 scenarios whose scheme did not converge are marked and left out of the lower line.
-Like :mod:`tce.plot.figures`, it reads the dataset only and builds figures without pyplot.
 """
 
 from __future__ import annotations

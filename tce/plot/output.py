@@ -6,28 +6,22 @@
 when there are many (:data:`PARALLEL_AT`). Files (``<tag>`` appended to each stem when
 given):
 
-``capacity.png``        lambda_max against the position of a moving load (``capacity``; load-position
-                        sweeps; :mod:`tce.plot.capacity`)
-``thrust.png``          forces on the supports against lambda (kind ``thrust``)
-``states.png``          drawn states, ``states_2.png`` ... for further pages (``states``)
-``thrust_lines.png``    lines of thrust per drawn state (``thrust_lines``; one line of blocks only)
-``transversal.png``     the pressure points across the depth of every joint (``transversal``; one line
-                        of blocks with a drawn spatial scenario: Figs. 5-6)
-``base.png``            pressure points on the support interfaces (``base``)
+``capacity.png``        load-position sweeps (:mod:`tce.plot.capacity`)
+``thrust.png``          forces on the supports against lambda
+``states.png``          drawn states, ``states_2.png`` ... for further pages
+``thrust_lines.png``    lines of thrust (one line of blocks only)
+``transversal.png``     pressure points across the depth (one line of blocks, a spatial scenario)
+``base.png``            pressure points on the support interfaces
+``mechanism.png``       collapse mechanism, ``mechanism_2.png`` ... for other mechanisms
+``summary.png``         lambda_max against the swept parameters (sweeps only)
+``bracket.png``         non-associative bracket (:mod:`tce.plot.materials`)
+``view.html``           the interactive 3D view (:mod:`tce.plot.view`)
+``settlement.png``      ``[settlement_path]`` only (:mod:`tce.plot.settlement`), and
+``settlement_shapes.png``
 
-(a geometry sweep: the figures that draw blocks draw each structure apart, ``thrust_lines_2.png``,
-``base_2.png`` ... for the scenarios of the second structure, and so on)
-``mechanism.png``       collapse mechanism, ``mechanism_2.png`` ... for other mechanisms (``mechanism``)
-``summary.png``         lambda_max against the swept parameters (``summary``; sweeps only)
-``bracket.png``         lambda_max against a swept material parameter with the non-associative
-                        bracket (``bracket``; non-associative materials; :mod:`tce.plot.materials`)
-``view.html``           the interactive 3D view (``view``; :mod:`tce.plot.view`)
-``settlement.png``      thrust and lambda_max against the settlement magnitude (``settlement``;
-                        ``[settlement_path]`` only; :mod:`tce.plot.settlement`)
-``settlement_shapes.png`` deformed shapes with hinges along the settlement path (``settlement_shapes``)
-
-The number of figures does not grow with the number of scenarios beyond those the
-``[plots]`` table draws: a large sweep gets ``summary.png`` and what its table names.
+Each stem is its kind. A geometry sweep draws each structure apart in the figures that draw
+blocks (``base_2.png`` ... for the second structure). The number of figures does not grow
+with the number of scenarios beyond those the ``[plots]`` table draws.
 """
 
 from __future__ import annotations
@@ -157,8 +151,8 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
 
 
 def builder(kind: str) -> Callable:
-    """The function drawing figures of ``kind``, its module imported on first use (the
-    load-position and settlement figures' modules import the solvers)."""
+    """The function drawing figures of ``kind``, its module imported on first use (some
+    import the solvers)."""
     if kind == "capacity":
         from .capacity import influence_line
 
@@ -183,8 +177,7 @@ def builder(kind: str) -> Callable:
 
 
 def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
-    """Draw one task and write its file whole or not at all (:func:`tce.files.atomic_write`:
-    a failed or interrupted write leaves neither the file nor its temporary).
+    """Draw one task and write its file whole or not at all (:func:`tce.files.atomic_write`).
 
     Raises
     ------
@@ -221,14 +214,13 @@ def write_figures(
     Parameters
     ----------
     ds : xarray.Dataset
-        Results dataset (``docs/results.md``).
     outdir : path
         Created if missing.
     spec : PlotSpec, optional
     jobs : int
-        Worker processes for the drawing (joblib, used from :data:`PARALLEL_AT` files on).
+        Worker processes (joblib, used from :data:`PARALLEL_AT` files on).
     tag : str
-        Appended to every file stem (figures drawn on demand).
+        Appended to every file stem.
 
     Returns
     -------

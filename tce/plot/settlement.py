@@ -1,16 +1,11 @@
 """Figures of the finite-settlement path (``[settlement_path]``, ``docs/settlements.md``).
 
 :func:`settlement_curves`
-    The thrust (horizontal reaction of each support, along the structure's plane) and
-    lambda_max of the deformed structure against the settlement magnitude, one colour per
-    scenario; the capacity of each scenario a dotted vertical line, each snap (a hinge
-    moving to a neighbouring joint) a cross. The settlement analogue of the paper's Fig. 8.
+    Thrust and lambda_max of the deformed structure against the settlement magnitude, one
+    colour per scenario; the capacity a dotted vertical line, each snap (a hinge moving to a
+    neighbouring joint) a cross. The settlement analogue of the paper's Fig. 8.
 :func:`settlement_shapes`
-    The deformed structure at the start, at half the capacity and at the capacity, one
-    panel per scenario, in elevation, drawn at true scale (no exaggeration), hinges as dots.
-
-Both are drawn by default for studies with ``[settlement_path]`` (:mod:`tce.plot.output`,
-kinds ``settlement`` and ``settlement_shapes``).
+    The deformed structure at 0, half the capacity and the capacity, true scale.
 """
 
 from __future__ import annotations
@@ -67,11 +62,10 @@ def _motion(ds: xr.Dataset, name: str) -> np.ndarray:
 def _thrust_against_motion(ds: xr.Dataset, name: str, reac: np.ndarray) -> np.ndarray:
     """``-sum_s R_s . u_s / n`` over the ``n`` supports that translate (``u_s`` the unit
     direction of support ``s``'s translation, ``R_s`` its force on the structure, kN): the
-    mean force each moving support exerts against its own motion. For a dome whose ring
-    spreads radially it is the mean radial thrust per support. Unlike a single support's
-    reaction, which a rigid structure leaves statically indeterminate among the supports
-    of a 3D structure, this sum is unique when the moving supports move by equal amounts
-    (a dome's uniform radial spread): it is then the work the TCE minimises per unit motion."""
+    mean force each moving support exerts against its own motion (a dome's mean radial
+    thrust). Unlike a single support's reaction, statically indeterminate in a rigid 3D
+    structure, it is unique when the supports move by equal amounts: it is then the work the
+    TCE minimises per unit motion."""
     u = _motion(ds, name)
     moving = max(int((np.linalg.norm(u, axis=1) > 0).sum()), 1)
     return -np.einsum("ksj,sj->k", reac[:, :, :3], u) / moving
@@ -83,7 +77,6 @@ def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
     Parameters
     ----------
     ds : xarray.Dataset
-        Results with the ``settlement_*`` variables.
     names : list of str, optional
         Scenarios drawn (default :func:`settled_scenarios`).
 
@@ -189,11 +182,10 @@ def _section(asm) -> tuple[np.ndarray, np.ndarray]:
 def settlement_shapes(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
     """The deformed structure at magnitudes 0, capacity / 2 and capacity (true scale).
 
-    Blocks are drawn as the outline of their vertices in the plane of the structure (the
-    planar assemblies the path follows are prisms of convex sections); the hinges of the
-    drawn configuration are dots (gid ``"hinge:<scenario>:<k>"``). A spatial structure is
-    drawn in the vertical section through its first support (:func:`_section`): for a dome,
-    the two opposite lunes of that sector, in the meridian plane.
+    One panel per scenario, in elevation: blocks as the outline of their vertices in the
+    plane of the structure (prisms of convex sections), hinges as dots (gid
+    ``"hinge:<scenario>:<k>"``). A spatial structure is drawn in the vertical section
+    through its first support (:func:`_section`; for a dome, two opposite lunes).
     """
     names = list(names or settled_scenarios(ds))
     asm = assembly(ds)

@@ -2,12 +2,9 @@
 
 A run solves the multipliers of its ``[plots] steps`` with each scenario
 (:func:`tce.study.runner.with_drawn_states`). A state asked for later (``tce plot
---step 0.1``, or a ``[plots]`` table changed after the scenarios were solved) is solved
-here, never interpolated: the analysis is rebuilt from the dataset (the ``assembly`` attr,
-or the study's ``[structure]`` for a geometry sweep; the material, direction and support
-motions of the scenario from the study text in the ``study`` attr) and the TCE is solved
-at that multiplier. The new steps are merged into a copy of the dataset, each scenario's
-steps sorted by lambda as in ``docs/results.md``; the file on disk is not changed.
+--step 0.1``, a changed ``[plots]`` table) is solved here, never interpolated: the analysis
+is rebuilt from the dataset (the ``assembly`` attr and the study text in the ``study``
+attr) and the new steps are merged into a copy of the dataset; the file is not changed.
 """
 
 from __future__ import annotations
@@ -48,9 +45,8 @@ def missing_states(ds: xr.Dataset, names: Sequence[str], lams: Sequence[float]) 
 
 
 def _study(ds: xr.Dataset) -> Study:
-    """The study stored in ``ds``, with the stored assembly standing for its structure (a
-    block file's relative path would not resolve from here; a geometry sweep's other
-    structures are rebuilt from their generators)."""
+    """The study stored in ``ds``, the stored assembly standing for its structure (a block
+    file's relative path would not resolve from here)."""
     text = str(ds.attrs.get("study", ""))
     if not text:
         raise ValueError("the dataset holds no study text ('study' attr): states cannot be solved again")
@@ -64,19 +60,11 @@ def _study(ds: xr.Dataset) -> Study:
 def solve_states(ds: xr.Dataset, todo: Mapping[str, Sequence[float]]) -> xr.Dataset:
     """``ds`` with the states ``todo`` (scenario -> multipliers) solved and merged in.
 
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        A results dataset with its ``study``, ``assembly`` attrs.
-    todo : mapping
-        Scenario name -> load multipliers to solve (see :func:`missing_states`).
-
     Returns
     -------
     xarray.Dataset
         A copy with longer ``step`` (padded as in ``merge_scenarios``), each scenario's
-        steps sorted by lambda. The states keep their honest status (a multiplier found
-        inadmissible is stored ``infeasible``).
+        steps sorted by lambda; a multiplier found inadmissible is stored ``infeasible``.
 
     Raises
     ------

@@ -1,16 +1,14 @@
 """Interactive 3D view of a results dataset: one self-contained HTML file that works offline.
 
-:func:`view_html` returns an HTML page with plotly.js inlined (read from the installed
-``plotly`` package; no network, no CDN) and the figure as data: the blocks (a shaded
+:func:`view_html` returns an HTML page with plotly.js inlined (from the installed ``plotly``
+package; no network) and the figure as data: the blocks (a shaded
 mesh with edges), the interface resultants centred on their pressure points (hover for the
 interface, the force and the torque), the torques about the interface normals (arcs), the
-loads (self-weight and the lateral load lambda W at each block centroid, and the declared
-point and distributed loads, live ones times lambda), and the
-collapse mechanism (displaced edges and hinge lines, shown with its check box). A
-scenario selector and a slider over the solved (optimal) steps of the scenario choose the
-state; the caption gives lambda, the status and what a reader must know (non-unique
-state, outcome other than ``limit``). All forces share one arrow scale (stated on the
-page), as in the static figures. Arrow heads are wire cones (four short lines).
+loads (self-weight and lateral load lambda W at each block centroid, declared loads, live
+ones times lambda) and the collapse mechanism (displaced edges and hinge lines). A scenario
+selector and a slider over the optimal steps choose the state; the caption gives lambda,
+the status and the notes (non-unique state, outcome other than ``limit``). All forces share
+one arrow scale, stated on the page.
 """
 
 from __future__ import annotations
@@ -43,8 +41,7 @@ DIGITS = 5  # coordinates rounded to 10 micrometres in the page
 
 @lru_cache(maxsize=1)
 def plotly_js() -> bytes:
-    """The minified plotly.js shipped inside the installed ``plotly`` Python package (UTF-8
-    bytes, read once per process).
+    """The minified plotly.js of the installed ``plotly`` package (UTF-8 bytes, read once).
 
     Raises
     ------
@@ -204,11 +201,8 @@ def _structure(asm: Assembly, force: float) -> dict:
 
 
 def view_data(ds: xr.Dataset, names: Sequence[str] | None = None) -> dict:
-    """The data of the page (what the browser draws), as plain JSON-able values.
-
-    ``structures`` holds the blocks of each structure the scenarios were solved on (one,
-    unless a geometry sweep is drawn); each scenario's ``structure`` indexes it, and the
-    page shows a scenario on its own blocks."""
+    """The data of the page, as plain JSON-able values: ``structures`` holds the blocks of each
+    structure the scenarios were solved on, which each scenario's ``structure`` indexes."""
     names = list(names or scenarios(ds))
     asm0 = assembly(ds, names[0] if names else None)
     force, torque = _scales(ds, names, asm0.size)
@@ -342,15 +336,13 @@ def view_html(ds: xr.Dataset, names: Sequence[str] | None = None) -> bytes:
     Parameters
     ----------
     ds : xarray.Dataset
-        Results dataset (``docs/results.md``).
     names : sequence of str, optional
 
     Returns
     -------
     bytes
-        A self-contained page (plotly.js inlined, data as JSON), UTF-8, a few MB. Built as
-        bytes around plotly.js as read: a text page would copy its 4.8 million characters twice
-        (plotly.js is not ASCII, so each takes two bytes until written), 12 ms of Fig. 9's view.
+        A self-contained page (plotly.js inlined, data as JSON), UTF-8, a few MB; built as
+        bytes around plotly.js as read, since a text page would copy it twice.
     """
     data = json.dumps(view_data(ds, names), separators=(",", ":"), allow_nan=False).replace("</", "<\\/")
     title = html.escape(str(ds.attrs.get("study_name", "")) or "tce results")

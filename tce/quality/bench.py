@@ -4,31 +4,27 @@
 :func:`report`:
 
 ``solve``
-    One TCE solve of the paper's arch (:func:`tce.structures.arch.semicircular_arch`, 16
-    blocks, the right support spreading 1 mm, ``lam`` cycling over :data:`LAMS`) for each model
-    (3D SOCP, planar LP) and each contact law (Coulomb friction 0.8, Heyman's joints that do
-    not slide, compliant joints): the direct Clarabel path (:class:`tce.core.solve.TCESolver`)
-    at its default and at a loose tolerance, and cvxpy re-solving a parametrised problem
-    (:class:`tce.core.cvx.CvxTCE`) with each installed solver. ``error``: the largest
-    in-plane support reaction ``(Fx, Fz, My)`` against the same problem solved at tolerance
-    1e-12, over the total weight (the out-of-plane components carry a free self-stress in 3D).
+    One TCE solve of the paper's arch (16 blocks, the right support spreading 1 mm, ``lam``
+    cycling over :data:`LAMS`) for each model (3D SOCP, planar LP) and contact law
+    (:data:`LAWS`): :class:`tce.core.solve.TCESolver` at its default and a loose tolerance,
+    and :class:`tce.core.cvx.CvxTCE` with each installed solver. ``error``: the largest
+    in-plane support reaction ``(Fx, Fz, My)`` against tolerance 1e-12, over the total weight
+    (the out-of-plane components carry a free self-stress in 3D).
 ``limit``
-    The direct lambda_max (:class:`tce.core.limit.LimitSolver`) of the same arch, each model
-    and law, in plane (``alpha = 0``) and out of plane (90), against tolerance 1e-12; and the
-    friction pyramids of ``k`` sides (:func:`tce.core.pyramid.pyramid_lambda_max`) that
-    bracket the cone's lambda_max where sliding governs (friction 0.5, ``alpha = 45``).
+    :class:`tce.core.limit.LimitSolver` on the same arch, each model and law, at ``alpha`` 0
+    and 90, against tolerance 1e-12; and the friction pyramids of ``k`` sides
+    (:func:`tce.core.pyramid.pyramid_lambda_max`) that bracket the cone's lambda_max where
+    sliding governs (friction 0.5, ``alpha = 45``).
 ``load_path``
-    The load path (:func:`tce.analysis.loadpath.load_path`, step 0.02) to each bisection
-    tolerance, narrowed by the direct bracket (the default) and by plain bisection: solves,
-    time and the error of its lambda_max against the direct limit at tolerance 1e-12.
+    :func:`tce.analysis.loadpath.load_path` (step 0.02) to each bisection tolerance, with the
+    direct bracket and with plain bisection: solves, time, error of lambda_max against the
+    direct limit at tolerance 1e-12.
 ``scaling``
-    Arches and domes of about 100, 1,000 and 10,000 blocks, each in a fresh process: the time
-    to build them (generation, checks, model) and of one direct lambda_max, the peak resident
-    memory, and the fitted growth of the solve time with the number of blocks.
+    Arches and domes of about 100, 1,000 and 10,000 blocks, each in a fresh process: build
+    and solve times, peak resident memory, fitted growth of the solve time.
 
-Times are medians of repeated calls after one warm-up (wall clock, seconds in the table,
-milliseconds in the report). Development benchmarks (whole runs, the solver's overhead over
-raw Clarabel, canonical states) are scripts in the repository's ``benchmarks/`` folder.
+Times are medians of repeated calls after one warm-up (wall clock; s in the table, ms in the
+report).
 """
 
 from __future__ import annotations
@@ -220,12 +216,10 @@ def scaling_case(structure: str, size: int, friction: float = FRICTION) -> dict[
     Parameters
     ----------
     structure : {"arch", "dome"}
-        A semicircular arch of ``size`` voussoirs (lambda_max out of plane, ``alpha = 90``) or a
-        hemispherical dome of ``size`` sectors and ``size`` courses (``alpha = 0``).
+        A semicircular arch of ``size`` voussoirs (``alpha = 90``) or a hemispherical dome of
+        ``size`` sectors and courses (``alpha = 0``).
     size : int
-        See ``structure``.
     friction : float
-        Friction coefficient of every joint.
 
     Returns
     -------
@@ -302,7 +296,7 @@ def run_bench(quick: bool = False, sections: Sequence[str] | None = None) -> pd.
     Parameters
     ----------
     quick : bool
-        Fewer repeats and the smallest sizes (well under a minute).
+        Fewer repeats and the smallest sizes.
     sections : sequence of str, optional
         Names of :data:`SECTIONS` (default: all).
 

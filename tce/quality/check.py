@@ -21,7 +21,6 @@ def run_checks(cases: Sequence[HardCase] = CASES, select: str | None = None) -> 
     Parameters
     ----------
     cases : sequence of HardCase
-        Default: every case of :data:`tce.quality.hard.CASES`.
     select : str, optional
         Run only the cases whose name contains this text (case-insensitive).
 
@@ -30,9 +29,8 @@ def run_checks(cases: Sequence[HardCase] = CASES, select: str | None = None) -> 
     pandas.DataFrame
         One row per case: ``case``, ``expected`` and ``status`` (statuses joined by ``|``),
         ``residual`` (largest over the optimal solves), ``retry`` (what decided when
-        Clarabel's first answer was not clean: phase-1, recession, a rescaled or robust
-        retry; empty if nothing), ``solves``, ``time_s`` (wall time, s), ``ok`` and
-        ``errors``.
+        Clarabel's first answer was not clean; empty if nothing), ``solves``, ``time_s``
+        (wall time, s), ``ok`` and ``errors``.
     """
     rows = []
     chosen = [case for case in cases if not select or select.lower() in case.name.lower()]

@@ -1,11 +1,9 @@
 """Hard cases for the solver, as data: used by ``tests/hard`` and by ``tce check``.
 
-Each :class:`HardCase` has a name, a runner that makes one or more solves and checks the
-invariants of the case (identical dimensionless answers across units, monotone thrust, ...),
-the status(es) every solve may end with, and the bound on the residuals of ``optimal``
-answers (relative equilibrium residual and contact-law violation, see
-:class:`tce.core.solve.TCEResult`). :func:`run_case` runs one and never raises: an exception is
-reported as a failure.
+Each :class:`HardCase` runs one or more solves, checks the case's invariants (identical
+dimensionless answers across units, monotone thrust, ...) and bounds the residuals of its
+``optimal`` answers (:class:`tce.core.solve.TCEResult`). :func:`run_case` never raises: an
+exception is reported as a failure.
 
 Reference scene: the paper's semicircular arch (inner radius 1 m, thickness 0.2 m, depth
 0.25 m, 14 voussoirs, 20 kN/m^3); settlements are applied to the right support; thrust ``H``
@@ -63,9 +61,9 @@ class HardCase:
     ----------
     name : str
     run : callable
-        ``() -> Outcome``: makes the solves and checks the case's invariants.
+        ``() -> Outcome``.
     expected : tuple of str
-        Statuses every solve of the case may end with.
+        Statuses every solve may end with.
     residual_bound : float
         Bound on ``max(eq_residual, cone_residual)`` of every ``optimal`` solve.
     """
@@ -84,18 +82,16 @@ class CaseRun:
     ----------
     case : HardCase
     statuses : tuple of str
-        Distinct statuses of the solves, in order of appearance ("error" on an exception).
+        Distinct statuses, in order of appearance ("error" on an exception).
     residual : float
         Largest residual over the ``optimal`` solves (NaN if none).
     retries : tuple of str
-        Distinct non-empty ``TCEResult.retry`` values (what decided when Clarabel's first
-        answer was not clean).
+        Distinct non-empty ``TCEResult.retry`` values.
     n_solves : int
     time : float
         Wall time of the case (s).
     errors : tuple of str
-        Wrong statuses, residuals above the bound, broken invariants, exceptions, or no solve
-        at all.
+        Wrong statuses, residuals above the bound, broken invariants, exceptions, no solve.
     """
 
     case: HardCase
@@ -148,8 +144,8 @@ def _right(u: Sequence[float]) -> dict[str, list[float]]:
 
 
 def _thrust(r: TCEResult) -> float:
-    """Thrust H / W: the +x component of the right support's reaction on the arch (the last
-    support of an arch) over the weight the supports carry (the sum of their vertical reactions)."""
+    """Thrust H / W: the +x reaction of the right (last) support on the arch over the sum of
+    the supports' vertical reactions."""
     w = r.support_wrenches
     return float(w[-1, 0] / w[:, 2].sum())
 
@@ -355,10 +351,10 @@ SLIVER = 1e-6  # area of the sliver interface relative to the base interface
 def sliver_assembly(ratio: float = SLIVER) -> Assembly:
     """A 1 m cube on a base slab, pushed (+x) against a wall through a sliver interface.
 
-    The wall is a support plate touching the cube's +x face along a strip ``ratio`` m high,
-    whose area is ``ratio`` times that of the 1 m^2 base interface. Under a lateral load
-    along +x the wall holds the cube against sliding; it rocks about its base edge at x = 1
-    for lam = 1 (the wall's thrust acts at the base and adds nothing to the restoring moment).
+    The wall is a support plate touching the cube's +x face along a strip ``ratio`` m high
+    (``ratio`` times the base's area). Under a lateral load along +x the wall holds the cube
+    against sliding; it rocks about its base edge at x = 1 for lam = 1 (the wall's thrust,
+    at the base, adds no restoring moment).
     """
     base = Block("base", box([-0.5, 0.0, -0.5], [1.5, 1.0, 0.0]), 20.0, support=True)
     cube = Block("cube", box([0.0, 0.0, 0.0], [1.0, 1.0, 1.0]), 20.0)

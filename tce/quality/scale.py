@@ -5,8 +5,7 @@ its direct lambda_max (3D SOCP, mu = 0.8, alpha = 0) the way :class:`tce.core.li
 does first (no iterative refinement, the model's KKT method), recording after each stage the
 process's resident memory and its peak so far (Linux ``/proc/self/status``: ``VmRSS``,
 ``VmHWM``) and the CPU time the stage took. Run it in a fresh process (``python -m
-tce.quality.scale N``) so that the peak is this model's; on a
-shared machine under an address-space limit (``prlimit --as=...``).
+tce.quality.scale N``) so that the peak is this model's.
 
 The generators refuse more than :data:`tce.structures.params.MAX_BLOCKS` blocks; ``max_blocks``
 raises that limit in this process only (a 100,172-block dome is ``n = 316``).

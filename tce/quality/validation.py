@@ -1,11 +1,10 @@
 """The validation atlas: tce against published values, case by case (``tce check --validation``).
 
 Each :class:`ValidationCase` names its source, the published value and where it is printed,
-computes tce's value at a coarse discretisation fast enough for the command and the suite
-(a few seconds a case), and states the tolerance and why. The convergence of each case with the
-discretisation (the fine runs) is drawn by ``docs/make_validation_figures.py`` and tabulated in
-``docs/validation.md``; ``tests/validation/literature/`` checks every case, and the fine values
-against independent computations where one exists.
+computes tce's value at a coarse discretisation (a few seconds a case), and states the
+tolerance and why. The convergence with the discretisation is in ``docs/validation.md``
+(drawn by ``docs/make_validation_figures.py``); ``tests/validation/literature/`` checks
+every case.
 
 Sources:
 
@@ -76,18 +75,14 @@ class ValidationCase:
     ----------
     name : str
         Short key (``tce check --validation --select`` matches it).
-    source : str
-        Short citation (the module docstring gives the full ones).
-    where : str
-        Table or figure the value is printed in.
+    source, where : str
+        Short citation (the module docstring gives the full ones); table or figure.
     quantity : str
         What is compared, with its symbol.
     published : float
-        The value as printed.
     compute : callable
-        ``() -> float``: tce's value at the discretisation ``discretisation``.
+        ``() -> float``: tce's value for the model ``discretisation`` describes.
     discretisation : str
-        The model tce solves for ``compute``.
     tolerance : float
         Largest accepted ``|tce - published|`` (absolute).
     why : str
@@ -139,11 +134,9 @@ def friction_bound(t: float, n: int = VOUSSOIRS, lo: float = 0.2, hi: float = 0.
 
 def crown_thrust(t: float, n: int = VOUSSOIRS, mu: float | None = None) -> float:
     """Horizontal thrust of the arch of thickness ratio ``t`` on its left support, made
-    dimensionless as CR2020's ``h = H / (gamma d R t)`` (their self-weight per radian).
-
-    Near the minimum thickness the admissible thrusts close on one value, which this reads
-    from any admissible state (a NaN if none).
-    """
+    dimensionless as CR2020's ``h = H / (gamma d R t)`` (their self-weight per radian), read
+    from any admissible state (near the minimum thickness the thrusts close on one value;
+    NaN if none)."""
     r = Analysis(_arch(t, n), Material(friction=mu)).solve(0.0)
     if r.status != "optimal":
         return math.nan
@@ -178,8 +171,7 @@ def stress_block_column(strips: int = 40, fc: float = 40.0) -> float:
     The closed form (rigid-plastic stress block, docs/materials.md): the compressed zone is
     ``x = W / (fc d)`` at the toe and the resultant at ``x / 2`` from it, so moments about that
     point under the lateral load ``lam W`` at the centroid (height ``h / 2``) give
-    ``lam = (b - W / (fc d)) / h``. With strips each strip's resultant stays at its centre, so
-    the model reaches it exactly when ``x`` is a whole number of strips.
+    ``lam = (b - W / (fc d)) / h``, reached exactly when ``x`` is a whole number of strips.
     """
     return Analysis(block_on_strips(strips), Material(compressive_strength=fc)).limit(0.0).lambda_max
 
@@ -193,24 +185,11 @@ def _stress_block_closed_form(b: float = 0.4, d: float = 0.3, h: float = 1.0, fc
 def arch_in_strips(assembly: Assembly, strips: int) -> Assembly:
     """The same blocks with every interface cut into ``strips`` equal strips across the joint.
 
-    Each interface of an arch spanning x (depth along y) is a quadrilateral whose two edges
-    normal to y run from the intrados to the extrados; both are cut into ``strips`` equal
-    parts and joined across the depth, so a compressive strength bounds each strip's force and
-    the joint approaches the rigid-plastic stress block as the strips are refined (the single
-    block of :func:`block_on_strips` reaches it exactly).
-
-    Parameters
-    ----------
-    assembly : Assembly
-        Blocks and quadrilateral interfaces (an arch of :func:`semicircular_arch`).
-    strips : int
-        Strips per interface (>= 1).
-
-    Returns
-    -------
-    Assembly
-        The same blocks; ``strips`` interfaces in place of each, with its normal and stiffness;
-        ``meta["strips"]`` records the number.
+    Each quadrilateral interface of an arch spanning x (depth along y) has its two edges
+    normal to y (intrados to extrados) cut into ``strips`` equal parts, joined across the
+    depth; a compressive strength then bounds each strip's force, and the joint approaches
+    the rigid-plastic stress block as the strips are refined. Each strip keeps its
+    interface's normal and stiffness; ``meta["strips"]`` records the number.
 
     Raises
     ------
@@ -247,11 +226,9 @@ def dome_min_ratio(sectors: int = DOME_SECTORS, courses: int = DOME_COURSES, tol
     """``t/R`` of the thinnest hemispherical dome (mid-surface radius ``R = 1`` m, closed crown,
     ``sectors`` x ``courses`` voussoirs, Heyman's material) that stands under self-weight.
 
-    The meridian cuts do not change the value (every voussoir is the image of one meridian
-    section stretched across its sector, so the equations of a lune per radian do not depend on
-    the sector's angle); the courses do: a voussoir's intrados and extrados are chords, so the
-    courses' sections and weights, and with them the least thickness, converge on the
-    spherical shell's as the courses are refined (docs/validation.md).
+    The sectors do not change the value (a lune's equations per radian do not depend on its
+    angle); the courses do: a voussoir's intrados and extrados are chords, so the value
+    converges on the spherical shell's as the courses are refined (docs/validation.md).
     """
     return minimum_thickness(
         lambda t: hemispherical_dome(1.0, t, sectors, courses, unit_weight=UNIT_WEIGHT),
@@ -346,12 +323,10 @@ GCA_VOUSSOIRS = 27
 
 def nonassoc_min_ratio(mu: float, n: int = GCA_VOUSSOIRS, check: float = 1e-3) -> float:
     """Least ``t/R`` of the ``n``-voussoir arch (friction ``mu``) for joints that slide
-    without opening: the least thickness at which an admissible state exists (:func:`min_ratio`),
-    confirmed as the non-associative one when, at ``t/R (1 + check)``, the non-associative
-    scheme (:func:`tce.analysis.nonassoc.nonassociative_limit`, in-plane lateral pattern)
-    converges to ``lambda_nonassoc = lambda_assoc > 0``: a non-dilatant collapse state exists
-    at every load up to the associative one, so the arch stands there for either flow rule,
-    and below ``t/R`` nothing stands for either. NaN when the check fails."""
+    without dilatancy: :func:`min_ratio`, confirmed when, at ``t/R (1 + check)``,
+    :func:`tce.analysis.nonassoc.nonassociative_limit` (in-plane lateral pattern) converges to
+    ``lambda_nonassoc = lambda_assoc > 0`` (the arch then stands for either flow rule, and
+    below ``t/R`` for neither). NaN when the check fails."""
     ratio = min_ratio(n, mu=mu, tol=1e-7)
     t = ratio * (1.0 + check)
     r = nonassociative_limit(Analysis(_arch(t, n), Material(friction=mu, flow="non-associative")), 0.0)
@@ -458,14 +433,9 @@ COLUMNS = ["case", "source", "where", "quantity", "published", "tce", "differenc
 
 
 def run_validation(cases: Sequence[ValidationCase] = CASES, select: str | None = None) -> pd.DataFrame:
-    """Compute every case (or those whose name contains ``select``) and tabulate them.
-
-    Returns
-    -------
-    pandas.DataFrame
-        One row per case: the columns of :data:`COLUMNS`; ``difference`` is ``tce - published``
-        and ``ok`` whether ``|difference| <= tolerance`` (a NaN is never ok).
-    """
+    """One row per case (or those whose name contains ``select``), columns :data:`COLUMNS`:
+    ``difference`` is ``tce - published``, ``ok`` whether ``|difference| <= tolerance`` (a NaN
+    is never ok)."""
     rows = []
     for case in cases:
         if select and select.lower() not in case.name.lower():

@@ -6,16 +6,15 @@ M. Buzzetti, N. Pingaro, L. C. M. da Silva and G. Milani; public repository
 with associative Mohr-Coulomb joints collapses, by upper- and lower-bound linear programs.
 Its automated solver test (``LACT3_SolverTest.m``, ``testwall``) checks that both bounds
 vanish for its sample wall (``sample/wall.dxf``) at a tilt of 16.73 deg with a friction angle of
-26 deg and no cohesion. The paper the README asks to cite ("A computerized tool for the
-kinematic limit analysis of 2D masonry structures failing on a tilting table") was not found,
-so the value is the code's own, not a published one.
+26 deg and no cohesion: the code's own value (the paper its README asks to cite, "A
+computerized tool for the kinematic limit analysis of 2D masonry structures failing on a
+tilting table", was not found).
 
-:func:`lact3_wall` describes that sample wall (it is not copied from the file: the layout
-below was read from it and rebuilt; the 182 blocks coincide with the file's). A table tilted
-by ``theta`` loads every block with ``W sin(theta)`` along the table and ``W cos(theta)``
-across it; without cohesion the rigid-block problem is homogeneous in the loads, so the wall
-collapses when the lateral multiplier of its weights, tce's ``lambda``, reaches
-``tan(theta)`` (:func:`tilt_angle`).
+:func:`lact3_wall` rebuilds that wall (its 182 blocks coincide with the file's). A table
+tilted by ``theta`` loads every block with ``W sin(theta)`` along the table and
+``W cos(theta)`` across it; without cohesion the problem is homogeneous in the loads, so the
+wall collapses when tce's lateral multiplier ``lambda`` reaches ``tan(theta)``
+(:func:`tilt_angle`).
 """
 
 from __future__ import annotations
@@ -103,11 +102,9 @@ def lact3_wall(unit_weight: float = 25.0, depth: float = 1.0) -> Assembly:
 
 
 def tilted(assembly: Assembly, degrees: float) -> Assembly:
-    """``assembly`` on a table tilted by ``degrees`` about the y axis: every vertex, interface
-    point and normal rotated, positive lowering the +x end (so that gravity pulls towards +x
-    along the table, as LACT3 tilts its table). The blocks, their weights and the interfaces
-    are the same; the lateral multiplier at which the upright assembly collapses is
-    ``tan`` of the tilt at which this one does (:func:`tilt_angle`)."""
+    """``assembly`` on a table tilted by ``degrees`` about the y axis (vertices, interface
+    points and normals rotated), positive lowering the +x end so that gravity pulls towards
+    +x along the table, as LACT3 tilts its table."""
     t = math.radians(degrees)
     q = np.array([[math.cos(t), 0.0, math.sin(t)], [0.0, 1.0, 0.0], [-math.sin(t), 0.0, math.cos(t)]])
     blocks = tuple(replace(b, shape=Polyhedron(b.shape.vertices @ q.T, b.shape.faces)) for b in assembly.blocks)

@@ -1,11 +1,9 @@
 """The calculation report of a study: one self-contained HTML file and a PDF printed from it.
 
-:func:`write_report` reads a results file, gathers what the report says
-(:func:`tce.report.content.report_content`), embeds the structure drawing and every figure of
-the study as ``data:`` URIs (nothing is fetched: the page opens offline) and renders the
-jinja2 template ``templates/report.html.j2``. The PDF is printed from that page by headless
-Chromium (:func:`print_pdf`); without a Chromium the HTML is written and the PDF is skipped,
-with the reason.
+:func:`write_report` gathers what the report says (:func:`tce.report.content.report_content`),
+embeds the structure drawing and the study's figures as ``data:`` URIs (the page opens
+offline) and renders ``templates/report.html.j2``. Headless Chromium prints the PDF
+(:func:`print_pdf`); without one the PDF is skipped, with the reason.
 """
 
 from __future__ import annotations
@@ -155,8 +153,7 @@ def write_report(results: Path, out: Path | None = None, figures: list[Path] | N
     out : Path, optional
         Folder of the report (default: beside ``results``).
     figures : list of Path, optional
-        The figures to embed (``tce run`` passes those it drew); default: the study's
-        ``[plots]`` figures found beside ``results``, the missing ones drawn.
+        The figures to embed (default: :func:`study_figures`).
     pdf : bool
         Print the PDF as well.
     """

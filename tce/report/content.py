@@ -126,9 +126,8 @@ def _material(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
 
 
 def lambda_multiplies(ds: xr.Dataset) -> list[str]:
-    """What lambda multiplies (``lambda_multiplies``, :attr:`tce.core.loads.LoadPattern.multiplies`):
-    one line when every scenario has the same loads, else ``scenario: ...`` per scenario;
-    empty for results that do not record it."""
+    """What lambda multiplies (:attr:`tce.core.loads.LoadPattern.multiplies`): one line when
+    every scenario has the same loads, else ``scenario: ...`` per scenario; empty if not recorded."""
     if "lambda_multiplies" not in ds:
         return []
     words = [str(w) for w in ds["lambda_multiplies"].values]
@@ -329,8 +328,6 @@ def report_content(ds: xr.Dataset, results: Path) -> Content:
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A study's results (``docs/results.md``).
     results : Path
         The file ``ds`` was read from (its digest and name go into the provenance).
     """
