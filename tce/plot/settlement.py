@@ -17,6 +17,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Polygon
+from scipy.spatial.transform import Rotation
 
 from ..core.model import EZ, find_plane
 from .data import assembly
@@ -211,12 +212,7 @@ def settlement_shapes(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
                     continue
                 u, r = disp[k, b, :3], disp[k, b, 3:]
                 c = blk.shape.centroid
-                v = blk.shape.vertices - c
-                angle = float(np.linalg.norm(r))
-                if angle > 0:
-                    axis = r / angle
-                    v = v * np.cos(angle) + np.cross(axis, v) * np.sin(angle) + np.outer(v @ axis, axis) * (1 - np.cos(angle))
-                p = c + u + v
+                p = c + u + Rotation.from_rotvec(r).apply(blk.shape.vertices - c)
                 xy = _outline(np.column_stack([p @ e, p[:, 2]]))
                 ax.add_patch(Polygon(xy, closed=True, fc=shade, ec="0.25", lw=0.4, alpha=0.9 if j == len(chosen) - 1 else 0.6))
             pts = hp[k][np.isfinite(hp[k, :, 0]) & (drawn[asm.interface_table.a] | drawn[asm.interface_table.b])]
@@ -233,6 +229,6 @@ def settlement_shapes(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
         Line2D([], [], marker="o", ls="", color="#cb181d", label="hinges at the capacity"),
         Line2D([], [], marker="o", ls="", color="0.4", label="hinges before"),
     ]
-    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
+    fig.legend(handles=handles, loc="lower center", ncol=3 if len(names) > 1 else 2, fontsize=8, frameon=False)
     fig.suptitle("Deformed shapes along the settlement path (true scale)", fontsize=10)
     return fig
