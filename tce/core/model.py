@@ -304,12 +304,6 @@ class Model:
         k = np.array([normal_stiffness] + [shear_stiffness] * (self.dim - 1))
         return (1.0 / (area[:, None] * k[None, :])).ravel()
 
-    def is_planar_load(self, alpha: float, settlements: dict[str, np.ndarray] | None = None, tol: float = 1e-12) -> bool:
-        """Whether a lateral direction and support motions lie in this model's plane."""
-        if self.plane is None:
-            return True
-        return scene_in_plane(self.plane, alpha, settlements, tol)
-
 
 def scene_in_plane(plane: Plane, alpha: float, settlements: dict[str, np.ndarray] | None, tol: float = 1e-12) -> bool:
     """True when the lateral direction ``alpha`` and every support motion lie in ``plane``

@@ -39,7 +39,6 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 from shapely.geometry import Polygon
-from shapely.geometry.polygon import orient
 
 from .assembly import Assembly, AssemblyError, Block, Interface
 from .geometry import FaceTable, _ring, frames_from_normals
