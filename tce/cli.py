@@ -107,7 +107,9 @@ def _parser() -> argparse.ArgumentParser:
         help="exit with code 4 unless every scenario ends at a limit (for scripted pipelines)",
     )
     run.add_argument("--no-plots", action="store_true", help="write the results only (no figures, no report)")
-    run.add_argument("--no-report", action="store_true", help="no calculation report (report.html, report.pdf)")
+    run.add_argument("--no-report", action="store_true", help="no calculation report (report.html)")
+    run.add_argument("--pdf", action="store_true",
+                     help="also print the report as report.pdf (headless Chromium; 'tce report' prints it later)")
 
     show = sub.add_parser("show", help="summarise a results file", description="One line per scenario of RESULTS.nc.")
     show.add_argument("results", type=Path, metavar="RESULTS.nc")
@@ -349,7 +351,7 @@ def _run(args: argparse.Namespace) -> int:
     tally = ", ".join(f"{n} {o}" for o, n in counts.items() if n)
     print(f"{report.results}: {len(report.outcomes)} scenarios ({what}): {tally}; {len(report.figures)} figures")
     if not (args.no_plots or args.no_report):
-        _report_lines(_write_report(report.results, figures=report.figures))
+        _report_lines(_write_report(report.results, figures=report.figures, pdf=args.pdf))
     odd = {name: o for name, o in report.outcomes.items() if o != "limit"}
     for name, outcome in odd.items():
         print(f"  {outcome}: {name}")
@@ -549,7 +551,14 @@ def _write_report(results: Path, out: Path | None = None, figures: list[Path] | 
 
 
 def _report_lines(files) -> None:
-    print(f"report: {files.html}" + (f", {files.pdf}" if files.pdf else f" (PDF skipped: {files.skipped})"))
+    from .report import NO_PDF_ASKED
+
+    if files.pdf:
+        print(f"report: {files.html}, {files.pdf}")
+    elif files.skipped == NO_PDF_ASKED:
+        print(f"report: {files.html} (the PDF: tce run --pdf, or tce report {files.html.parent / 'results.nc'})")
+    else:
+        print(f"report: {files.html} (PDF skipped: {files.skipped})")
 
 
 def _report(args: argparse.Namespace) -> int:

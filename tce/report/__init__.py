@@ -9,10 +9,12 @@ offline) and renders ``templates/report.html.j2``. Headless Chromium prints the 
 from __future__ import annotations
 
 import base64
+import contextlib
 import io
 import logging
 import os
 import shutil
+import signal
 import subprocess
 import tempfile
 from dataclasses import dataclass
@@ -22,7 +24,7 @@ import xarray as xr
 
 from ..files import atomic_write
 
-__all__ = ["ReportFiles", "find_browser", "print_pdf", "report_html", "write_report"]
+__all__ = ["NO_PDF_ASKED", "ReportFiles", "find_browser", "print_pdf", "report_html", "write_report"]
 
 log = logging.getLogger(__name__)
 
@@ -48,6 +50,8 @@ CAPTIONS = {
 CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync", "--no-pdf-header-footer")
 PRINT_TIMEOUT = 180.0  # s
+#: the reason :class:`ReportFiles` gives for a PDF that was not asked for
+NO_PDF_ASKED = "not asked for"
 
 
 @dataclass(frozen=True)
@@ -126,7 +130,10 @@ def find_browser() -> str | None:
 
 def print_pdf(html: Path, pdf: Path, browser: str | None = None) -> str:
     """Print ``html`` to ``pdf`` with headless Chromium (atomically); return "" on success or
-    the reason it was skipped (no browser, the browser failed or timed out)."""
+    the reason it was skipped (no browser, the browser failed or timed out).
+
+    Chromium runs in a session of its own, and every process of that session (its helpers,
+    which may outlive the main one) is ended before this returns."""
     browser = browser or find_browser()
     if browser is None:
         return "no chromium found (apt-get install chromium, or set TCE_CHROMIUM)"
@@ -134,9 +141,15 @@ def print_pdf(html: Path, pdf: Path, browser: str | None = None) -> str:
         with atomic_write(pdf) as tmp, tempfile.TemporaryDirectory(prefix="tce-chromium-") as profile:
             cmd = [browser, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", f"--print-to-pdf={tmp}",
                    html.resolve().as_uri()]
-            done = subprocess.run(cmd, capture_output=True, text=True, timeout=PRINT_TIMEOUT, check=False)
-            if done.returncode != 0 or not tmp.is_file() or tmp.stat().st_size == 0:
-                raise ChildProcessError(f"exit {done.returncode}: {done.stderr.strip()[-300:]}")
+            with subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                                  start_new_session=True) as chromium:
+                try:
+                    _, err = chromium.communicate(timeout=PRINT_TIMEOUT)
+                finally:
+                    with contextlib.suppress(ProcessLookupError, PermissionError):
+                        os.killpg(chromium.pid, signal.SIGKILL)
+            if chromium.returncode != 0 or not tmp.is_file() or tmp.stat().st_size == 0:
+                raise ChildProcessError(f"exit {chromium.returncode}: {err.strip()[-300:]}")
     except (OSError, subprocess.TimeoutExpired) as exc:  # ChildProcessError is an OSError
         return f"chromium failed: {exc}"
     return ""
@@ -169,7 +182,7 @@ def write_report(results: Path, out: Path | None = None, figures: list[Path] | N
     with atomic_write(html) as tmp:
         tmp.write_text(page, encoding="utf-8")
     if not pdf:
-        return ReportFiles(html, None, "not asked for")
+        return ReportFiles(html, None, NO_PDF_ASKED)
     why = print_pdf(html, out / "report.pdf")
     if why:
         log.warning("report PDF skipped: %s; the HTML report is %s", why, html)

@@ -89,7 +89,7 @@ class _Text(HTMLParser):
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory) -> dict[str, object]:
-    """``tce run`` of the small study (figures, report and PDF) and its ``tce show`` output."""
+    """``tce run --pdf`` of the small study (figures, report and PDF) and its ``tce show`` output."""
     import contextlib
     import io
 
@@ -98,7 +98,7 @@ def run(tmp_path_factory) -> dict[str, object]:
     study.write_text(STUDY, encoding="utf-8")
     out = io.StringIO()
     with contextlib.redirect_stdout(out):
-        assert main(["-q", "run", str(study), "--out", str(tmp / "out"), "--jobs", "1"]) == 0
+        assert main(["-q", "run", str(study), "--out", str(tmp / "out"), "--jobs", "1", "--pdf"]) == 0
     folder = tmp / "out" / "rep"
     show = io.StringIO()
     with contextlib.redirect_stdout(show):
@@ -119,6 +119,23 @@ def test_run_writes_the_report(run) -> None:
     assert f"report: {folder / 'report.html'}" in run["run"]
     if BROWSER is not None:
         assert (folder / "report.pdf").is_file()
+
+
+def test_a_plain_run_writes_no_pdf_and_says_how(tmp_path: Path, capsys, monkeypatch) -> None:
+    """The PDF is printed on request only (``--pdf``, or ``tce report``): a plain run never
+    starts Chromium."""
+    import tce.report
+
+    def no_browser(*args, **kwargs):
+        raise AssertionError("a run without --pdf started Chromium")
+
+    monkeypatch.setattr(tce.report, "print_pdf", no_browser)
+    study = tmp_path / "rep.toml"
+    study.write_text(STUDY, encoding="utf-8")
+    assert main(["-q", "run", str(study), "--out", str(tmp_path / "out"), "--jobs", "1"]) == 0
+    folder = tmp_path / "out" / "rep"
+    assert (folder / "report.html").is_file() and not (folder / "report.pdf").exists()
+    assert f"(the PDF: tce run --pdf, or tce report {folder / 'results.nc'})" in capsys.readouterr().out
 
 
 NUMBER = r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.])"
