@@ -147,6 +147,19 @@ def _wrap(note: str, width_in: float) -> str:
     return "\n".join(textwrap.wrap(note, max(20, int(width_in * 17)))) if note else ""
 
 
+def _notes_figure(title: str, notes: Sequence[str], width: float = 7.0) -> Figure:
+    """A figure of words only: ``title`` and one wrapped paragraph per note (why nothing is drawn)."""
+    paras = [_wrap(n, width - 0.6) for n in notes]
+    height = 0.8 + sum(0.16 * (p.count("\n") + 1) + 0.12 for p in paras)
+    fig = Figure(figsize=(width, height))
+    fig.suptitle(title, fontsize=FONT + 2, y=1 - 0.12 / height)
+    y = height - 0.6
+    for p in paras:
+        fig.text(0.3 / width, y / height, p, ha="left", va="top", fontsize=FONT, color=NOTE_COLOUR)
+        y -= 0.16 * (p.count("\n") + 1) + 0.12
+    return fig
+
+
 def _min_span(ax: Axes, values: NDArray[np.float64]) -> None:
     """Limits that make a constant look constant: at least 5 % of the largest magnitude."""
     v = values[np.isfinite(values)]
@@ -931,6 +944,9 @@ def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[o
         Pressure points in the joint rows (gid ``"transversal:<scenario>:<lambda>"``) and
         the curves of the bottom panel (gid ``"shift:<scenario>:<lambda>"``).
 
+        When no drawn state has a solved step (every step unbounded, infeasible or
+        numerical), a figure of words only: each state's note.
+
     Raises
     ------
     ValueError
@@ -943,9 +959,11 @@ def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[o
     if chain is None or frame.kind == "radial":
         raise ValueError("the transversal shift needs one line of blocks on supports along a line")
     across = next(iter(frame.across.values()))
-    states = [st for st in (find_state(ds, s, t) for s in names for t in targets) if st.step is not None]
-    if not states:
-        raise ValueError("no drawn state has a solved step")
+    asked = [find_state(ds, s, t) for s in names for t in targets]
+    states = [st for st in asked if st.step is not None]
+    if not states:  # every step unbounded, infeasible or numerical: say so
+        return _notes_figure(f"{_study(ds)}: transversal shift of the pressure points: no state drawn",
+                             [f"{st.scenario}: {st.label}: {st.note}" for st in asked])
     drawn = [(st, *transversal_offsets(ds, st, asm, chain, across)) for st in states]
     pitch = 1.6 * max(float(np.ptp(o[:, 0])) for o in drawn[0][1])
     depth = max(float(np.ptp(o[:, 1])) for o in drawn[0][1])
