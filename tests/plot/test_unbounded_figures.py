@@ -1,0 +1,87 @@
+"""Figures, ``tce show`` and the report of scenarios whose every step is unbounded.
+
+The paper: problem (9) with a transversal support motion "in the space Sym+ is unbounded"
+for a Heyman material (no friction limit). Such a study must run to the end (exit 0) and
+every figure kind that applies must say in words why it draws no state, not raise
+(issue 37 item 7: the transversal figure raised "no drawn state has a solved step").
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+from tce.cli import main
+from tce.plot.data import plot_spec
+from tce.plot.output import figure_tasks, render
+from tce.study.names import PLOT_KINDS
+
+STUDY = """
+[study]
+name = "heyman_transversal"
+
+[structure]
+type = "semicircular_arch"
+voussoirs = 6
+
+[material]
+
+[loads]
+alpha = 0.0
+lambda_step = 0.1
+tolerance = 1e-3
+
+[sweep]
+thickness = [0.2, 0.25]
+
+[scenarios.transversal]
+right = [0.0, 0.001, 0.0, 0.0, 0.0, 0.0]
+
+[plots]
+steps = [0.0, "max"]
+kinds = {kinds}
+"""
+
+
+@pytest.fixture(scope="module")
+def ran(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, Path]:
+    """The study run through the command line, every figure kind asked for."""
+    tmp = tmp_path_factory.mktemp("unbounded")
+    study = tmp / "heyman.toml"
+    study.write_text(STUDY.format(kinds="[" + ", ".join(f'"{k}"' for k in PLOT_KINDS) + "]"))
+    out = tmp / "out"
+    rc = main(["run", str(study), "--out", str(out), "--jobs", "1"])
+    return rc, out / "heyman_transversal"
+
+
+def test_run_show_report_of_an_unbounded_study(ran: tuple[int, Path], capsys: pytest.CaptureFixture) -> None:
+    rc, folder = ran
+    assert rc == 0
+    ds = xr.load_dataset(folder / "results.nc")
+    assert set(ds["outcome"].values) == {"unbounded"}
+    for name in ("states.png", "transversal.png", "thrust.png", "summary.png", "view.html"):
+        assert (folder / name).stat().st_size > 0, name
+    capsys.readouterr()
+    assert main(["show", str(folder / "results.nc")]) == 0
+    assert "unbounded" in capsys.readouterr().out
+    assert main(["report", str(folder / "results.nc")]) == 0
+    assert "unbounded" in (folder / "report.html").read_text()
+
+
+@pytest.mark.parametrize("kind", PLOT_KINDS)
+def test_every_figure_kind_tolerates_unbounded_steps(ran: tuple[int, Path], kind: str, tmp_path: Path) -> None:
+    """Each kind that applies to the study draws (none raises); the transversal figure says why
+    it has no state."""
+    _, folder = ran
+    ds = xr.load_dataset(folder / "results.nc")
+    spec = plot_spec(ds, kinds=[kind])
+    for task in figure_tasks(ds, spec):
+        assert render(ds, task, tmp_path).stat().st_size > 0
+    if kind == "transversal":
+        from tce.plot.figures import transversal_figure
+
+        fig = transversal_figure(ds, ["transversal/thickness=0.2"], [0.0])
+        words = " ".join(" ".join(t.get_text() for t in fig.texts).split())
+        assert "no state of finite energy" in words
