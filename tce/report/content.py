@@ -174,7 +174,8 @@ def _method(ds: xr.Dataset, material: dict, toml: dict) -> tuple[list[str], list
             "[2] J. Heyman, The stone skeleton, International Journal of Solids and Structures 2 (1966) 249-279."]
     text = [
         "The structure is a set of rigid blocks in unilateral contact (masonry as Heyman idealised it [2]); contact "
-        "forces act at the vertices of the interfaces (normal force ≥ 0 unless a tensile strength is given; friction cone ||f_t|| ≤ μ f_n + c A). "
+        "forces act at the vertices of the interfaces (normal force ≥ 0 unless a tensile strength is given; "
+        "friction cone ||f_t|| ≤ μ f_n + c A). "
         "Every free block is in equilibrium under self-weight, the fixed loads and λ times the live loads; support "
         "blocks may move (six components about their centroid) [1].",
         "Among all admissible force states the one minimising the Total Complementary Energy is the answer: a linear "
