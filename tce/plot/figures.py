@@ -1098,7 +1098,7 @@ def summary_figure(ds: xr.Dataset) -> Figure:
                                     gid=f"no_limit:{p}:{g}")
             for o, mark in bad.items():
                 ax.plot([], [], linestyle="none", marker=mark, markersize=6, color="#555555",
-                        label=f"{o}: no λmax (at the foot; the curve's colour)")
+                        label=f"{o}: no λmax\n(at the foot; the curve's colour)")
             finite = [v for v in lmax.values() if math.isfinite(v)]  # from 0: differences read against the value
             ax.set_ylim(0.0, 1.15 * max(finite) if finite and max(finite) > 0 else 1.0)
             if categorical:
