@@ -786,7 +786,12 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
     if "max" in targets:
         handles.append(Line2D([], [], color=HINGE_COLOUR, linewidth=3, alpha=0.5, label="hinge line at λmax"))
     width = 0.7 + cols * w + (cols - 1) * 0.7 + 0.2
-    grid = _Grid(rows, cols, w, w, left=0.7, wspace=0.7, hspace=0.8, top=0.7, bottom=0.45,
+    # a scenario none of whose drawn states has a solved step: why, under the legend
+    asked = {s: [find_state(ds, s, t) for t in targets] for s in names}
+    notes = [_wrap(f"{s}: no pressure point drawn: {sts[0].note}", width - 0.4)
+             for s, sts in asked.items() if all(st.step is None for st in sts)]
+    lines = sum(n.count("\n") + 1 for n in notes)
+    grid = _Grid(rows, cols, w, w, left=0.7, wspace=0.7, hspace=0.8, top=0.7, bottom=0.45 + 0.14 * lines,
                  below=_legend_height([x.get_label() for x in handles], width))
     itf_names = [str(x) for x in ds["interface"].values]
     for n, k in enumerate(itfs):
@@ -805,8 +810,7 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
                         ax.plot(xy[:, 0], xy[:, 1], color=HINGE_COLOUR, linewidth=3, alpha=0.5, zorder=1,
                                 gid="hinge", solid_capstyle="butt")
         for s in names:
-            for j, t in enumerate(targets):
-                st = find_state(ds, s, t)
+            for j, st in enumerate(asked[s]):
                 if st.step is None:
                     continue
                 p = value(ds, "pressure_point", s, ["step", "interface", "xyz"])[st.step, k]
@@ -831,7 +835,10 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
     what = ", ".join("λmax" if t == "max" else f"λ = {t:g}" for t in targets)
     grid.fig.suptitle(f"{_study(ds)}: pressure points on the support interfaces at {what}", fontsize=FONT + 1.5,
                       y=1 - 0.15 / grid.height)
-    _bottom_legend(grid, handles)
+    _bottom_legend(grid, handles, y=0.04 + 0.14 * lines)
+    if notes:
+        grid.fig.text(0.2 / grid.width, (0.04 + 0.14 * lines) / grid.height, "\n".join(notes), ha="left", va="top",
+                      fontsize=FONT - 0.5, color=NOTE_COLOUR, gid="no_state")
     return grid.fig
 
 

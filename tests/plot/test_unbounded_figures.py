@@ -15,7 +15,7 @@ import xarray as xr
 
 from tce.cli import main
 from tce.plot.capacity import influence_line
-from tce.plot.figures import transversal_figure
+from tce.plot.figures import base_figure, transversal_figure
 from tce.plot.data import plot_spec
 from tce.plot.output import figure_tasks, render
 from tce.study.names import PLOT_KINDS
@@ -79,18 +79,20 @@ def test_run_show_report_of_an_unbounded_study(ran: tuple[int, Path], capsys: py
 
 @pytest.mark.parametrize("kind", PLOT_KINDS)
 def test_every_figure_kind_tolerates_unbounded_steps(ran: tuple[int, Path], kind: str, tmp_path: Path) -> None:
-    """Each kind that applies to the study draws (none raises); the transversal and capacity
-    figures say why they have no state. (bracket, settlement and settlement_shapes do not apply:
-    a Heyman material has no friction to sweep and no settlement path follows a motion out of
-    the arch's plane.)"""
+    """Each kind that applies to the study draws (none raises); the transversal, capacity and
+    base figures say why they have no state. (bracket, settlement and settlement_shapes do not
+    apply: a Heyman material has no friction to sweep and no settlement path follows a motion
+    out of the arch's plane.)"""
     _, folder = ran
     ds = xr.load_dataset(folder / "results.nc")
     spec = plot_spec(ds, kinds=[kind])
     for task in figure_tasks(ds, spec):
         assert render(ds, task, tmp_path).stat().st_size > 0
-    if kind in ("transversal", "capacity"):  # the figures that drew nothing (or raised) on main say why
-        fig = (transversal_figure(ds, [str(ds["scenario"].values[0])], [0.0]) if kind == "transversal"
-               else influence_line(ds))
+    first = [str(ds["scenario"].values[0])]
+    says = {"transversal": lambda: transversal_figure(ds, first, [0.0]), "base": lambda: base_figure(ds, first, [0.0]),
+            "capacity": lambda: influence_line(ds)}
+    if kind in says:  # the figures that drew nothing without a word (or raised) on main say why
+        fig = says[kind]()
         texts = fig.texts + [t for ax in fig.axes for t in ax.texts]
         words = " ".join(" ".join(t.get_text() for t in texts).split())
         assert "unbounded: " in words and "no state of finite energy" in words
