@@ -25,7 +25,7 @@ import xarray as xr
 
 from .. import __version__
 from ..core.material import Material
-from ..plot.data import assembly, geometry_groups, scenarios
+from ..plot.data import assembly, geometry_groups, outcome_note, scenarios
 from ..study.positions import critical_positions
 from ..study.names import LAMBDA_TOL, same_lambda
 from ..study.schema import GEOMETRY_SWEEPS
@@ -329,12 +329,9 @@ def _moves_support(ds: xr.Dataset, toml: dict, i: int) -> bool:
 def _warnings(ds: xr.Dataset, toml: dict) -> list[str]:
     out = []
     for i, name in enumerate(ds["scenario"].values):
-        outcome = str(ds["outcome"].values[i])
-        reason = str(ds["no_limit_reason"].values[i]) if "no_limit_reason" in ds else ""
-        if outcome == "no_limit":
-            out.append(f"{name}: capped: no limit found up to the cap of the load path{f' ({reason})' if reason else ''}.")
-        elif outcome != "limit":
-            out.append(f"{name}: outcome {outcome}: no λmax is reported for it.")
+        note = outcome_note(ds, str(name))  # what the outcome means (docs/conventions.md), "" for limit
+        if note:
+            out.append(f"{name}: {note}.")
         if "unique" in ds:
             flat = np.asarray(ds["unique"].values[i], dtype=float)
             status = ds["status"].values[i].astype(str)
