@@ -28,7 +28,8 @@ from ..plot.data import assembly, geometry_groups, scenarios
 from ..study.positions import critical_positions
 from ..study.schema import GEOMETRY_SWEEPS
 
-__all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "report_content", "settlement_rows", "settlement_units"]
+__all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "report_content", "settlement_rows",
+           "settlement_units"]
 
 #: the columns of ``tce show`` (:func:`tce.cli._show`), in its order, with the report's headings
 SHOW_COLUMNS = {
@@ -319,7 +320,8 @@ def settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
     configuration);
     ``hinges`` (the joints that start rotating, close again or snap, in order, with the
     magnitude); ``lateral`` (lambda_max of the lateral pattern on the deformed structure at the
-    capacity's step; ``–`` where not computed or no capacity). Empty without ``[settlement_path]``.
+    capacity's step; ``–`` without a capacity, where not computed (``lambda = false``) or where
+    its linear program did not end optimal). Empty without ``[settlement_path]``.
     """
     if "settlement_capacity" not in ds:
         return []
@@ -334,8 +336,8 @@ def settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
         lateral = "–"
         if "settlement_lambda_max" in ds and math.isfinite(capacity):
             at = np.flatnonzero(mags == capacity)
-            if at.size:
-                lateral = fmt(float(ds["settlement_lambda_max"].values[k][at[-1]]))
+            there = float(ds["settlement_lambda_max"].values[k][at[-1]]) if at.size else math.nan
+            lateral = fmt(there) if math.isfinite(there) else lateral
         rows.append({
             "scenario": str(name), "capacity": fmt(capacity), "upper": fmt(float(ds["settlement_upper"].values[k])),
             "outcome": str(ds["settlement_outcome"].values[k]), "snaps": str(snaps),

@@ -72,9 +72,12 @@ class JobsChoice:
 
 
 def settlement_increments(sc: Scenario) -> float:
-    """Increments of the settlement path of ``sc`` up to its ``s_max`` (0 without ``[settlement_path]``)."""
+    """Increments of the settlement path of ``sc`` up to its ``s_max`` (0 without ``[settlement_path]``
+    or when ``sc`` moves no support: nothing to follow)."""
     opts = sc.settlement_path
-    return 0.0 if opts is None else opts["s_max"] / opts["increment"]
+    if opts is None or not any(any(u != 0 for u in v) for v in sc.settlements.values()):
+        return 0.0
+    return opts["s_max"] / opts["increment"]
 
 
 def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario], Analysis]) -> tuple[float, str]:

@@ -124,6 +124,7 @@ def test_the_estimate_counts_the_settlement_path():
     analysis_of = lambda sc: _runner_analysis(sc, study.assembly(sc.structure))  # noqa: E731
     assert [jobs_module.settlement_increments(sc) for sc in with_path] == pytest.approx([1000, 1000])
     assert [jobs_module.settlement_increments(sc) for sc in without] == [0, 0]
+    assert jobs_module.settlement_increments(dataclasses.replace(with_path[0], settlements={})) == 0  # no_motion
     work_with, how = estimate_work(with_path, analysis_of)
     work_without, how_without = estimate_work(without, analysis_of)
     assert "2000 settlement increments" in how and "settlement" not in how_without
