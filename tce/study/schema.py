@@ -25,11 +25,11 @@ import itertools
 import json
 import math
 import tomllib
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
-from typing import Annotated, Any, Literal, get_args
+from typing import Annotated, Any, ClassVar, Literal, Union, get_args
 
 from pydantic import (
     BaseModel,
@@ -49,8 +49,12 @@ from ..core.loads import LoadError, LoadPattern, resolve
 from ..core.material import Material
 from ..core.fill import DISPERSION_2_TO_1
 from ..core.vehicles import STANDARD, standard_vehicle
+from ..structures.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
 from ..structures.assembly import Assembly
-from ..structures.io import MAX_BLOCKS, InputLimitError
+from ..structures.bridge import arch_bridge
+from ..structures.dome import hemispherical_dome
+from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
+from ..structures.vault import barrel_vault, groin_vault
 from . import guards
 from .guards import StudyError
 from .names import PLOT_KINDS
@@ -69,7 +73,6 @@ __all__ = [
     "parse_study",
 ]
 
-COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
 #: swept parameters that change the structure (the others change material or settlement)
 GEOMETRY_SWEEPS = ("inner_radius", "thickness", "depth", "radius")
 #: swept parameters of the material
@@ -110,7 +113,17 @@ class StudySection(_Strict):
         return v
 
 
-class ArchStructure(_Strict):
+class _Generated(_Strict):
+    """A ``[structure]`` section built by a generator of :mod:`tce.structures` (``builder``)."""
+
+    builder: ClassVar[Callable[..., Assembly]]
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        return type(self).builder(**self.model_dump(exclude={"type"}))
+
+
+class ArchStructure(_Generated):
     """``[structure] type = "semicircular_arch"``: :func:`tce.structures.arch.semicircular_arch`."""
 
     type: Literal["semicircular_arch"]
@@ -122,14 +135,10 @@ class ArchStructure(_Strict):
     support_height: Positive | None = None
     joints: Literal["radial", "vertical"] = "radial"
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.arch import semicircular_arch
-
-        return semicircular_arch(**self.model_dump(exclude={"type"}))
+    builder = semicircular_arch
 
 
-class PointedArchStructure(_Strict):
+class PointedArchStructure(_Generated):
     """``[structure] type = "pointed_arch"``: :func:`tce.structures.arch.pointed_arch`."""
 
     type: Literal["pointed_arch"]
@@ -142,14 +151,10 @@ class PointedArchStructure(_Strict):
     unit_weight: Positive = 20.0
     pier_height: Positive | None = None
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.arch import pointed_arch
-
-        return pointed_arch(**self.model_dump(exclude={"type"}))
+    builder = pointed_arch
 
 
-class SegmentalArchStructure(_Strict):
+class SegmentalArchStructure(_Generated):
     """``[structure] type = "segmental_arch"``: :func:`tce.structures.arch.segmental_arch`."""
 
     type: Literal["segmental_arch"]
@@ -161,14 +166,10 @@ class SegmentalArchStructure(_Strict):
     unit_weight: Positive = 20.0
     pier_height: Positive | None = None
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.arch import segmental_arch
-
-        return segmental_arch(**self.model_dump(exclude={"type"}))
+    builder = segmental_arch
 
 
-class ArchOnPiersStructure(_Strict):
+class ArchOnPiersStructure(_Generated):
     """``[structure] type = "arch_on_piers"``: :func:`tce.structures.arch.semicircular_arch_on_piers`."""
 
     type: Literal["arch_on_piers"]
@@ -179,14 +180,10 @@ class ArchOnPiersStructure(_Strict):
     pier_height: Positive = 1.0
     unit_weight: Positive = 20.0
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.arch import semicircular_arch_on_piers
-
-        return semicircular_arch_on_piers(**self.model_dump(exclude={"type"}))
+    builder = semicircular_arch_on_piers
 
 
-class ArchBridgeStructure(_Strict):
+class ArchBridgeStructure(_Generated):
     """``[structure] type = "arch_bridge"``: :func:`tce.structures.bridge.arch_bridge`."""
 
     type: Literal["arch_bridge"]
@@ -201,14 +198,10 @@ class ArchBridgeStructure(_Strict):
     pier_height: Positive = 3.0
     piers: Literal["free", "fixed"] = "free"
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.bridge import arch_bridge
-
-        return arch_bridge(**self.model_dump(exclude={"type"}))
+    builder = arch_bridge
 
 
-class BarrelVaultStructure(_Strict):
+class BarrelVaultStructure(_Generated):
     """``[structure] type = "barrel_vault"``: :func:`tce.structures.vault.barrel_vault`."""
 
     type: Literal["barrel_vault"]
@@ -222,14 +215,10 @@ class BarrelVaultStructure(_Strict):
     support_height: Positive | None = None
     supports: Literal["walls", "courses"] = "walls"
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.vault import barrel_vault
-
-        return barrel_vault(**self.model_dump(exclude={"type"}))
+    builder = barrel_vault
 
 
-class GroinVaultStructure(_Strict):
+class GroinVaultStructure(_Generated):
     """``[structure] type = "groin_vault"``: :func:`tce.structures.vault.groin_vault`."""
 
     type: Literal["groin_vault"]
@@ -241,14 +230,10 @@ class GroinVaultStructure(_Strict):
     support_height: Positive | None = None
     supports: Literal["corners", "springings"] = "corners"
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.vault import groin_vault
-
-        return groin_vault(**self.model_dump(exclude={"type"}))
+    builder = groin_vault
 
 
-class DomeStructure(_Strict):
+class DomeStructure(_Generated):
     """``[structure] type = "dome"``: :func:`tce.structures.dome.hemispherical_dome`."""
 
     type: Literal["dome"]
@@ -260,11 +245,7 @@ class DomeStructure(_Strict):
     unit_weight: Positive = 20.0
     support_height: Positive | None = None
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.dome import hemispherical_dome
-
-        return hemispherical_dome(**self.model_dump(exclude={"type"}))
+    builder = hemispherical_dome
 
 
 class FileStructure(_Strict):
@@ -281,8 +262,6 @@ class FileStructure(_Strict):
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
-        from ..structures.io import load_assembly
-
         return load_assembly(self.path, supports=self.supports, unit_weight=self.unit_weight)
 
 
@@ -298,19 +277,10 @@ _STRUCTURES = (
     ArchBridgeStructure,
 )
 #: the ``[structure] type`` values, in the order docs/studies.md lists them
-STRUCTURE_TYPES = tuple(cls.model_fields["type"].annotation.__args__[0] for cls in _STRUCTURES)
-Structure = Annotated[
-    ArchStructure
-    | PointedArchStructure
-    | SegmentalArchStructure
-    | ArchOnPiersStructure
-    | BarrelVaultStructure
-    | GroinVaultStructure
-    | DomeStructure
-    | FileStructure
-    | ArchBridgeStructure,
-    Field(discriminator="type"),
-]
+STRUCTURE_TYPES = tuple(get_args(cls.model_fields["type"].annotation)[0] for cls in _STRUCTURES)
+#: ``[structure] type`` -> its section
+_SECTIONS: dict[str, type[BaseModel]] = dict(zip(STRUCTURE_TYPES, _STRUCTURES, strict=True))
+Structure = Annotated[Union[_STRUCTURES], Field(discriminator="type")]  # noqa: UP007 (a union of a tuple)
 
 
 class MaterialSection(_Strict):
@@ -866,11 +836,6 @@ _HINTS = {
     "union_tag_not_found": "add type = \"semicircular_arch\" (or another structure type)",
 }
 
-#: ``[structure] type`` -> its section (from the ``Structure`` union)
-_STRUCTURES: dict[str, type[BaseModel]] = {
-    get_args(cls.model_fields["type"].annotation)[0]: cls for cls in get_args(get_args(Structure)[0])
-}
-
 
 def parse_study(text: str, path: Path | str = "<study>") -> Study:
     """Validate study TOML ``text`` (see :func:`load_study`; ``path`` is for messages)."""
@@ -889,7 +854,7 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
     try:
         spec = StudyFile.model_validate(data)
     except ValidationError as exc:
-        raise StudyError("\n".join(describe(path, exc, StudyFile, "docs/studies.md", _HINTS, _STRUCTURES))) from None
+        raise StudyError("\n".join(describe(path, exc, StudyFile, "docs/studies.md", _HINTS, _SECTIONS))) from None
     guards.check_work(path, spec)
     if isinstance(spec.structure, FileStructure):
         where = (path.parent / spec.structure.path).resolve()
