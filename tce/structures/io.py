@@ -418,10 +418,7 @@ def read_tce_json(path: str | Path, data: Mapping | None = None) -> RawAssembly:
         blocks.append(RawBlock(name, vertices, [list(f) for f in b.faces], b.support, b.unit_weight))
     interfaces = None
     if doc.interfaces is not None:
-        interfaces = [
-            dict(a=it.a, b=it.b, points=it.points, normal=it.normal, label=f"interfaces[{k}]", stiffness=it.stiffness)
-            for k, it in enumerate(doc.interfaces)
-        ]
+        interfaces = [it.model_dump() | {"label": f"interfaces[{k}]"} for k, it in enumerate(doc.interfaces)]
     return RawAssembly(
         blocks, interfaces, doc.unit_weight, _LENGTH[doc.units.length], _FORCE[doc.units.force], dict(doc.meta)
     )
