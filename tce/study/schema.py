@@ -574,7 +574,7 @@ class SettlementPathSection(_Strict):
     magnitude, the geometry updated as the blocks move, to the settlement capacity
     (:func:`tce.analysis.settlement_path.settlement_path`, ``docs/settlements.md``)."""
 
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True, strict=True, populate_by_name=True)
+    model_config = ConfigDict(populate_by_name=True)  # merged with _Strict's
 
     increment: Positive = 0.001
     s_max: Positive = 1.0
