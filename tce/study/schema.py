@@ -114,9 +114,11 @@ class StudySection(_Strict):
 
 
 class _Generated(_Strict):
-    """A ``[structure]`` section built by a generator of :mod:`tce.structures` (``builder``)."""
+    """A ``[structure]`` section built by a generator of :mod:`tce.structures` (``builder``);
+    every generator takes the unit weight (kN/m^3)."""
 
     builder: ClassVar[Callable[..., Assembly]]
+    unit_weight: Positive = 20.0
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
@@ -131,7 +133,6 @@ class ArchStructure(_Generated):
     thickness: Positive = 0.2
     depth: Positive = 0.25
     voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
-    unit_weight: Positive = 20.0
     support_height: Positive | None = None
     joints: Literal["radial", "vertical"] = "radial"
 
@@ -148,7 +149,6 @@ class PointedArchStructure(_Generated):
     thickness: Positive = 0.2
     depth: Positive = 0.25
     voussoirs: Annotated[int, Field(ge=2)] = 14
-    unit_weight: Positive = 20.0
     pier_height: Positive | None = None
 
     builder = pointed_arch
@@ -163,7 +163,6 @@ class SegmentalArchStructure(_Generated):
     thickness: Positive = 0.2
     depth: Positive = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 12
-    unit_weight: Positive = 20.0
     pier_height: Positive | None = None
 
     builder = segmental_arch
@@ -178,7 +177,6 @@ class ArchOnPiersStructure(_Generated):
     depth: Positive = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 14
     pier_height: Positive = 1.0
-    unit_weight: Positive = 20.0
 
     builder = semicircular_arch_on_piers
 
@@ -193,7 +191,6 @@ class ArchBridgeStructure(_Generated):
     thickness: Positive = 0.4
     depth: Positive = 3.0
     voussoirs: Annotated[int, Field(ge=1)] = 12
-    unit_weight: Positive = 20.0
     pier_width: Positive = 1.0
     pier_height: Positive = 3.0
     piers: Literal["free", "fixed"] = "free"
@@ -211,7 +208,6 @@ class BarrelVaultStructure(_Generated):
     voussoirs: Annotated[int, Field(ge=1)] = 12
     courses: Annotated[int, Field(ge=1)] = 6
     bond: Literal["stack", "running"] = "stack"
-    unit_weight: Positive = 20.0
     support_height: Positive | None = None
     supports: Literal["walls", "courses"] = "walls"
 
@@ -226,7 +222,6 @@ class GroinVaultStructure(_Generated):
     span_y: Positive | None = None
     thickness: Positive = 0.2
     voussoirs: Annotated[int, Field(ge=2, multiple_of=2)] = 8
-    unit_weight: Positive = 20.0
     support_height: Positive | None = None
     supports: Literal["corners", "springings"] = "corners"
 
@@ -242,7 +237,6 @@ class DomeStructure(_Generated):
     sectors: Annotated[int, Field(ge=3)] = 16
     courses: Annotated[int, Field(ge=1)] = 8
     oculus: Annotated[float, Field(ge=0, lt=90)] = 0.0
-    unit_weight: Positive = 20.0
     support_height: Positive | None = None
 
     builder = hemispherical_dome
@@ -399,9 +393,10 @@ class LoadsSection(_Strict):
         """The directions as a list."""
         return [float(a) for a in (self.alpha if isinstance(self.alpha, list) else [self.alpha])]
 
-    def pattern(self, alpha: float) -> LoadPattern:
-        """The load pattern in direction ``alpha`` (raises :class:`tce.core.loads.LoadError`)."""
-        return LoadPattern(
+    def pattern(self, alpha: float, load_x: float | None = None) -> LoadPattern:
+        """The load pattern in direction ``alpha``, moved to ``load_x`` (m) when given (a
+        ``[sweep] load_x`` value); raises :class:`tce.core.loads.LoadError`."""
+        pattern = LoadPattern(
             alpha=alpha,
             lateral=self.lateral,
             point=[p.model_dump(exclude_none=True) for p in self.point],
@@ -409,6 +404,7 @@ class LoadsSection(_Strict):
             vehicle=[v.declaration() for v in self.vehicle],
             fill=None if self.fill is None else self.fill.model_dump(),
         )
+        return pattern if load_x is None else pattern.moved(load_x)
 
     def path_settings(self) -> dict[str, Any]:
         """``lambda_step``, ``tolerance``, ``lambda_cap``: how the load path runs (None: anchored
@@ -786,7 +782,7 @@ class Study:
                     settlement=case,
                     settlements={s: [scale * u for u in vec] for s, vec in motions.items()},
                     alpha=p["alpha"],
-                    pattern=_pattern(spec.loads, p).to_dict(),
+                    pattern=spec.loads.pattern(p["alpha"], p.get("load_x")).to_dict(),
                     params=p,
                     structure=structure,
                     material=_with(spec.material.model_dump(), p, MATERIAL_SWEEPS),
@@ -802,12 +798,6 @@ class Study:
         return self._digests[key]
 
 
-def _pattern(section: LoadsSection, params: dict[str, float]) -> LoadPattern:
-    """The load pattern of a scenario: direction ``alpha``, moved to ``load_x`` when swept."""
-    pattern = section.pattern(params["alpha"])
-    return pattern.moved(params["load_x"]) if "load_x" in params else pattern
-
-
 def _fmt(value: float) -> str:
     """Exact label of a swept value: the shortest text that reads back as the same float
     (``0.8000001`` stays ``0.8000001``), without a trailing ``.0``."""
@@ -817,9 +807,7 @@ def _fmt(value: float) -> str:
 
 def _with(section: dict[str, Any], params: dict[str, float], keys: tuple[str, ...]) -> dict[str, Any]:
     """``section`` with the swept values of ``keys`` applied."""
-    out = dict(section)
-    out.update({k: params[k] for k in keys if k in params})
-    return out
+    return section | {k: params[k] for k in keys if k in params}
 
 
 # ---------------------------------------------------------------------------- reading
