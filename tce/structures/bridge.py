@@ -101,9 +101,12 @@ def arch_bridge(
         names.append(name)
         support.append(is_support)
 
+    def skewback(a: np.ndarray, e: np.ndarray) -> np.ndarray:
+        """Section of the abutment under the joint from ``a`` (intrados) to ``e`` (extrados)."""
+        return np.array([a, e, [e[0], base], [a[0], base]])
+
     width = len(str(n)) if n >= 10 else 2
-    first = ji[0] + [centres[0], 0.0], je[0] + [centres[0], 0.0]
-    add(np.array([first[0], first[1], [first[1][0], base], [first[0][0], base]]), "abutment_left", True)
+    add(skewback(ji[0] + [centres[0], 0.0], je[0] + [centres[0], 0.0]), "abutment_left", True)
     joints = []  # (intrados, extrados) of every joint, left to right, and its two blocks
     for s, cx in enumerate(centres):
         off = np.array([cx, 0.0])
@@ -117,15 +120,14 @@ def arch_bridge(
             nxt = ji + [centres[s + 1], 0.0], je + [centres[s + 1], 0.0]
             add(np.array([a[-1], e[-1], nxt[1][0], nxt[0][0], [nxt[0][0][0], base], [a[-1][0], base]]), f"pier{s + 1}",
                 piers == "fixed")
-    last = ji[-1] + [centres[-1], 0.0], je[-1] + [centres[-1], 0.0]
-    add(np.array([last[0], last[1], [last[1][0], base], [last[0][0], base]]), "abutment_right", True)
+    add(skewback(ji[-1] + [centres[-1], 0.0], je[-1] + [centres[-1], 0.0]), "abutment_right", True)
 
-    feet = []  # (pier, foundation) of every free pier
+    feet = []  # (pier, foundation, x0, x1) of every free pier, its base from x0 to x1
     if piers == "free":
         for k, name in enumerate(list(names)):
             if name.startswith("pier"):
                 x0, x1 = loops[k][0, 0], loops[k][3, 0]
-                feet.append((k, len(names)))
+                feet.append((k, len(names), x0, x1))
                 add(np.array([[x0, base], [x1, base], [x1, base - pier_width], [x0, base - pier_width]]),
                     f"foundation{name[4:]}", True)
     shapes = []
@@ -143,8 +145,7 @@ def arch_bridge(
         if normal @ (shapes[left + 1].centroid - shapes[left].centroid) < 0:
             normal = -normal
         interfaces.append(Interface(left, left + 1, pts, normal))
-    for pier, foot in feet:
-        x0, x1 = loops[pier][0, 0], loops[pier][3, 0]
+    for pier, foot, x0, x1 in feet:
         pts = np.array([[x0, -d, base], [x1, -d, base], [x1, d, base], [x0, d, base]])
         interfaces.append(Interface(pier, foot, pts, np.array([0.0, 0.0, -1.0])))
     meta = dict(generator="arch_bridge", spans=n_spans, span=float(span), rise=float(rise), thickness=float(thickness),
