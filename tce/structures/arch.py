@@ -152,15 +152,8 @@ def semicircular_arch(
     if joints not in JOINTS:
         raise ValueError(f"joints must be one of {', '.join(JOINTS)}, got {joints!r}")
     height = thickness if support_height is None else support_height
-    meta = dict(
-        generator="semicircular_arch",
-        inner_radius=float(inner_radius),
-        thickness=float(thickness),
-        depth=float(depth),
-        voussoirs=n,
-        unit_weight=float(unit_weight),
-        support_height=float(height),
-    )
+    meta = dict(generator="semicircular_arch", inner_radius=float(inner_radius), thickness=float(thickness),
+                depth=float(depth), voussoirs=n, unit_weight=float(unit_weight), support_height=float(height))
     if joints == "vertical":
         return _vertical_joint_arch(float(inner_radius), float(thickness), float(depth), n, float(unit_weight),
                                     float(height), {**meta, "joints": "vertical"})
@@ -321,18 +314,8 @@ def pointed_arch(
         ji[-1] = [0.0, f]
         je[-1] = [0.0, math.sqrt((R + t) ** 2 - e**2)]
     h = t if pier_height is None else pier_height
-    meta = dict(
-        generator="pointed_arch",
-        span=s,
-        rise=f,
-        centre_offset=e,
-        radius=R,
-        thickness=t,
-        depth=float(depth),
-        voussoirs=n,
-        unit_weight=float(unit_weight),
-        pier_height=float(h),
-    )
+    meta = dict(generator="pointed_arch", span=s, rise=f, centre_offset=e, radius=R, thickness=t, depth=float(depth),
+                voussoirs=n, unit_weight=float(unit_weight), pier_height=float(h))
     return arch_from_joints(_mirror_joints(ji, n), _mirror_joints(je, n), depth, unit_weight, h, meta)
 
 
@@ -391,17 +374,8 @@ def segmental_arch(
     je = np.column_stack([(R + t) * c, zc + (R + t) * sn])
     ji[0], ji[-1] = [-s / 2.0, 0.0], [s / 2.0, 0.0]
     h = t if pier_height is None else pier_height
-    meta = dict(
-        generator="segmental_arch",
-        span=s,
-        rise=f,
-        radius=R,
-        thickness=t,
-        depth=float(depth),
-        voussoirs=n,
-        unit_weight=float(unit_weight),
-        pier_height=float(h),
-    )
+    meta = dict(generator="segmental_arch", span=s, rise=f, radius=R, thickness=t, depth=float(depth), voussoirs=n,
+                unit_weight=float(unit_weight), pier_height=float(h))
     return arch_from_joints(ji, je, depth, unit_weight, h, meta)
 
 

@@ -21,7 +21,7 @@ import numpy as np
 from .arch import _at_depth, segmental_arch
 from .assembly import Assembly, Block, Interface
 from .geometry import prisms
-from .params import check_blocks, check_positive, check_whole
+from .params import check_blocks, check_choice, check_positive, check_whole
 
 __all__ = ["arch_bridge"]
 
@@ -79,8 +79,7 @@ def arch_bridge(
     n_spans = check_whole(spans, "spans")
     check_blocks(n_spans * (check_whole(voussoirs, "voussoirs") + 2) + 1,
                  f"spans x (voussoirs + 2) + 1 = {n_spans} x ({voussoirs} + 2) + 1")
-    if piers not in ("free", "fixed"):
-        raise ValueError(f"piers must be 'free' or 'fixed', got {piers!r}")
+    check_choice(piers, "piers", ("free", "fixed"))
     ring = segmental_arch(span, rise, thickness, depth, voussoirs, unit_weight)
     n = ring.meta["voussoirs"]
     # joint ends (x, z) of one ring, centred on x = 0, from its interfaces' front vertices

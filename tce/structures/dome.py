@@ -188,18 +188,9 @@ def hemispherical_dome(
     normal[flip] *= -1.0
     interfaces = [Interface(int(a[i]), int(b[i]), pts[i], normal[i]) for i in range(len(a))]
 
-    meta = dict(
-        generator="hemispherical_dome",
-        radius=R,
-        thickness=t,
-        inner_radius=ri,
-        outer_radius=ro,
-        sectors=sectors,
-        courses=courses,
-        oculus=float(oculus),
-        unit_weight=float(unit_weight),
-        support_height=float(h),
-    )
+    meta = dict(generator="hemispherical_dome", radius=R, thickness=t, inner_radius=ri, outer_radius=ro,
+                sectors=sectors, courses=courses, oculus=float(oculus), unit_weight=float(unit_weight),
+                support_height=float(h))
     return Assembly(tuple(blocks), tuple(interfaces), meta)
 
 
@@ -212,8 +203,6 @@ def radial_settlement(
 
     Parameters
     ----------
-    assembly : Assembly
-        Any assembly with supports.
     magnitude : float
         Displacement (m) along each support's own horizontal radius: positive outward
         (away from the axis), negative inward.

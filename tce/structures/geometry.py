@@ -571,10 +571,6 @@ def oriented_polyhedra(vertices: ArrayLike, faces: Sequence[Sequence[int]]) -> l
     faces : sequence of sequences of int
         Their common face list, oriented the same way (all outwards or all inwards) for
         each polyhedron: a polyhedron whose volume comes out negative gets it reversed.
-
-    Returns
-    -------
-    list of Polyhedron
     """
     v = np.asarray(vertices, dtype=float)
     if v.ndim != 3 or v.shape[2] != 3:
@@ -594,10 +590,6 @@ def prisms(bottom: ArrayLike, top: ArrayLike) -> list[Polyhedron]:
         ``n`` pairs of loops (m); ``bottom[p, i]`` is joined to ``top[p, i]`` by a side face.
         The loops may run either way: each prism's faces are oriented outwards from the
         sign of its volume.
-
-    Returns
-    -------
-    list of Polyhedron
     """
     b, t = np.asarray(bottom, float), np.asarray(top, float)
     if b.ndim != 3 or b.shape != t.shape or b.shape[2] != 3:
