@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .arch import _at_depth, segmental_arch
+from .arch import _at_depth, _joints, segmental_arch
 from .assembly import Assembly, Block, Interface
 from .geometry import prisms
 from .params import check_blocks, check_choice, check_positive, check_whole
@@ -106,15 +106,13 @@ def arch_bridge(
 
     width = len(str(n)) if n >= 10 else 2
     add(skewback(ji[0] + [centres[0], 0.0], je[0] + [centres[0], 0.0]), "abutment_left", True)
-    joints = []  # (intrados, extrados) of every joint, left to right, and its two blocks
+    joints = []  # (intrados, extrados) of every joint, left to right: joint k joins blocks k and k + 1
     for s, cx in enumerate(centres):
         off = np.array([cx, 0.0])
         a, e = ji + off, je + off
-        start = len(names) - 1  # the support on the left of this span
         for k in range(n):
             add(np.array([a[k], a[k + 1], e[k + 1], e[k]]), f"s{s + 1}v{k + 1:0{width}d}", False)
-        for k in range(n + 1):
-            joints.append((a[k], e[k], start + k))
+        joints += zip(a, e)
         if s < n_spans - 1:
             nxt = ji + [centres[s + 1], 0.0], je + [centres[s + 1], 0.0]
             add(np.array([a[-1], e[-1], nxt[1][0], nxt[0][0], [nxt[0][0][0], base], [a[-1][0], base]]), f"pier{s + 1}",
@@ -135,15 +133,8 @@ def arch_bridge(
         back[:, 1] = d
         shapes.extend(prisms(loop[None], back[None]))
     blocks = tuple(Block(name, shape, float(unit_weight), sup) for name, shape, sup in zip(names, shapes, support))
-    interfaces = []
-    for a, e, left in joints:
-        pts = np.array([_at_depth(a[None], -d)[0], _at_depth(e[None], -d)[0], _at_depth(e[None], d)[0], _at_depth(a[None], d)[0]])
-        t = e - a
-        normal = np.array([t[1], 0.0, -t[0]])
-        normal /= np.linalg.norm(normal)
-        if normal @ (shapes[left + 1].centroid - shapes[left].centroid) < 0:
-            normal = -normal
-        interfaces.append(Interface(left, left + 1, pts, normal))
+    centroids = np.array([shape.centroid for shape in shapes])
+    interfaces = _joints(np.array([a for a, _ in joints]), np.array([e for _, e in joints]), d, centroids)
     for pier, foot, x0, x1 in feet:
         pts = np.array([[x0, -d, base], [x1, -d, base], [x1, d, base], [x0, d, base]])
         interfaces.append(Interface(pier, foot, pts, np.array([0.0, 0.0, -1.0])))
