@@ -20,7 +20,7 @@ import numpy as np
 
 from .arch import _at_depth, _joints, segmental_arch
 from .assembly import Assembly, Block, Interface
-from .geometry import prisms
+from .geometry import prism
 from .params import check_blocks, check_choice, check_positive, check_whole
 
 __all__ = ["arch_bridge"]
@@ -96,7 +96,7 @@ def arch_bridge(
     loops, names, support = [], [], []
 
     def add(loop: np.ndarray, name: str, is_support: bool) -> None:
-        loops.append(_at_depth(loop, -d))
+        loops.append(loop)
         names.append(name)
         support.append(is_support)
 
@@ -127,11 +127,7 @@ def arch_bridge(
                 feet.append((k, len(names), x0, x1))
                 add(np.array([[x0, base], [x1, base], [x1, base - pier_width], [x0, base - pier_width]]),
                     f"foundation{name[4:]}", True)
-    shapes = []
-    for loop in loops:
-        back = loop.copy()
-        back[:, 1] = d
-        shapes.extend(prisms(loop[None], back[None]))
+    shapes = [prism(_at_depth(loop, -d), _at_depth(loop, d)) for loop in loops]
     blocks = tuple(Block(name, shape, float(unit_weight), sup) for name, shape, sup in zip(names, shapes, support))
     centroids = np.array([shape.centroid for shape in shapes])
     interfaces = _joints(np.array([a for a, _ in joints]), np.array([e for _, e in joints]), d, centroids)
