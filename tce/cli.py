@@ -349,6 +349,8 @@ def _run(args: argparse.Namespace) -> int:
     counts.update({o: n for o, n in Counter(report.outcomes.values()).items() if o not in counts})
     what = f"{len(report.solved)} solved" + (f", {len(report.reused)} reused" if report.reused else "")
     tally = ", ".join(f"{n} {o}" for o, n in counts.items() if n)
+    if study.spec.settlement_path is not None:
+        tally += f"; settlement path: {_settlement_tally(report.results)}"
     print(f"{report.results}: {len(report.outcomes)} scenarios ({what}): {tally}; {len(report.figures)} figures")
     if not (args.no_plots or args.no_report):
         _report_lines(_write_report(report.results, figures=report.figures, pdf=args.pdf))
@@ -356,6 +358,15 @@ def _run(args: argparse.Namespace) -> int:
     for name, outcome in odd.items():
         print(f"  {outcome}: {name}")
     return EXIT_STRICT if args.strict and odd else 0
+
+
+def _settlement_tally(results: Path) -> str:
+    """How the settlement paths of the run's ``results`` ended: ``2 collapse, 1 no_motion``."""
+    import xarray as xr
+
+    with xr.open_dataset(results) as ds:
+        outcomes = Counter(map(str, ds["settlement_outcome"].values))
+    return ", ".join(f"{n} {o}" for o, n in outcomes.items())
 
 
 def _show(args: argparse.Namespace) -> int:
@@ -374,6 +385,8 @@ def _show(args: argparse.Namespace) -> int:
         _show_notes(ds)
     if "adequacy_factor" in ds:
         _show_assessment(ds)
+    if "settlement_capacity" in ds:
+        _show_settlement(ds)
     return 0
 
 
@@ -423,6 +436,18 @@ def _show_assessment(ds) -> None:
         else:
             verdict = f"no adequacy factor ({status})"
         print(f"  {name}: {what}{where}: {collapse} (unfactored); partial factors dead {gd:g}, live {gl:g}: {verdict}")
+
+
+def _show_settlement(ds) -> None:
+    """The settlement path's answer per scenario (``[settlement_path]``,
+    :func:`tce.report.content.settlement_rows`)."""
+    from .report.content import settlement_rows, settlement_units
+
+    print(f"settlement path (capacity: largest magnitude found standing, {settlement_units(ds)}; "
+          "lateral: lambda_max of the lateral pattern on the deformed structure at the capacity):")
+    for r in settlement_rows(ds):
+        print(f"  {r['scenario']}: {r['outcome']}: capacity {r['capacity']} (first not standing {r['upper']}), "
+              f"{r['snaps']} snap(s), lateral {r['lateral']}; hinges {r['hinges']}")
 
 
 def _show_search(ds) -> None:

@@ -114,21 +114,6 @@ def _linprog(c: NDArray[np.float64], **kwargs: object) -> tuple[str, OptimizeRes
     return _LP_STATUS.get(res.status, "numerical"), res
 
 
-def _rotation_matrices(w: ArrayLike) -> NDArray[np.float64]:
-    """Rotation matrices ``(n, 3, 3)`` of rotation vectors ``w`` ``(n, 3)`` (rad, right-handed
-    about the vector's direction)."""
-    from scipy.spatial.transform import Rotation  # imported on first use
-
-    return Rotation.from_rotvec(np.asarray(w, dtype=float).reshape(-1, 3)).as_matrix()
-
-
-def _rotation_vectors(R: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Rotation vectors ``(n, 3)`` (rad, angles up to pi) of rotation matrices ``(n, 3, 3)``."""
-    from scipy.spatial.transform import Rotation  # imported on first use
-
-    return Rotation.from_matrix(np.asarray(R, dtype=float).reshape(-1, 3, 3)).as_rotvec()
-
-
 @dataclass(frozen=True)
 class _Planar:
     """Kinematics in a vertical plane: coordinates ``(x, z)`` (``x`` along ``plane.e``), one
@@ -189,8 +174,20 @@ class _Spatial:
         """``(w x r) . d = w . (r x d)``: the coefficients ``r x d`` ``(n, 3)``."""
         return np.cross(r, d)
 
-    rotation = staticmethod(_rotation_matrices)
-    angles = staticmethod(_rotation_vectors)
+    @staticmethod
+    def rotation(w: ArrayLike) -> NDArray[np.float64]:
+        """Rotation matrices ``(n, 3, 3)`` of rotation vectors ``w`` ``(n, 3)`` (rad, right-handed
+        about the vector's direction)."""
+        from scipy.spatial.transform import Rotation  # imported on first use
+
+        return Rotation.from_rotvec(np.asarray(w, dtype=float).reshape(-1, 3)).as_matrix()
+
+    @staticmethod
+    def angles(R: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Rotation vectors ``(n, 3)`` (rad, angles up to pi) of rotation matrices ``(n, 3, 3)``."""
+        from scipy.spatial.transform import Rotation  # imported on first use
+
+        return Rotation.from_matrix(np.asarray(R, dtype=float).reshape(-1, 3, 3)).as_rotvec()
 
     @staticmethod
     def tangents(n: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -316,6 +313,11 @@ class _Config:
         c[blocks] += dq[:, : sc.dim]
         R[blocks] = sc.kin.rotation(dq[:, sc.dim :]) @ R[blocks]
         return _Config(self.s, c, R)
+
+
+def _per_interface(sc: _Scene, mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """Whether any contact point of each interface is in ``mask`` (one per contact point)."""
+    return np.bincount(sc.ci, weights=mask.astype(float), minlength=len(sc.ia)) > 0
 
 
 def _contacts(sc: _Scene, cf: _Config) -> tuple[NDArray, NDArray, NDArray]:
@@ -498,7 +500,7 @@ def _snap(
     b = _weights(sc)
     bounds = (-1.0, 1.0)  # scaled velocities (:func:`_operators`)
     start = cf
-    ajar = np.bincount(sc.ci, weights=(~closed).astype(float), minlength=len(sc.ia)) > 0
+    ajar = _per_interface(sc, ~closed)
     rel = sc.kin.angles(cf.R[sc.ib[ajar]] @ np.swapaxes(cf.R[sc.ia[ajar]], -1, -2))
     reach = max(limit, 2.0 * float(np.linalg.norm(rel, axis=-1).max(initial=0.0)))
     everything = np.ones(closed.shape, dtype=bool)
@@ -670,7 +672,7 @@ class SettlementPathResult(Result):
         """``assembly`` with its blocks at the placement of step ``index`` (the interfaces as
         in the reference: for drawing)."""
         disp = self.displacements()[index]
-        R = _rotation_matrices(disp[:, 3:])
+        R = _Spatial.rotation(disp[:, 3:])
         blocks = []
         for k, blk in enumerate(assembly.blocks):
             c = blk.shape.centroid
@@ -697,8 +699,6 @@ def settlement_path(
 
     Parameters
     ----------
-    assembly : Assembly
-        Any assembly of rigid blocks.
     settlements : dict
         ``{support: [ux, uy, uz, rx, ry, rz]}`` (m, rad) about each support's centroid (in
         the plane of a planar assembly): the motion of unit magnitude (module docstring).
@@ -730,10 +730,6 @@ def settlement_path(
         ``"auto"`` follows a planar assembly in its plane and any other in space;
         ``"spatial"`` follows every assembly in space (the same path: a check of the
         spatial kinematics on a planar structure).
-
-    Returns
-    -------
-    SettlementPathResult
     """
     t0 = time.perf_counter()
     if not (math.isfinite(increment) and increment > 0):
@@ -753,10 +749,6 @@ def settlement_path(
         nonlocal n_solves
         n_solves += 1
         return _solve(sc, cf, closed)
-
-    def per_interface(mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
-        """Whether any contact point of each interface is in ``mask``."""
-        return np.bincount(sc.ci, weights=mask.astype(float), minlength=ni) > 0
 
     nb = len(sc.weights)
     cf = _Config(0.0, sc.c0.copy(), np.broadcast_to(np.eye(sc.dim), (nb, sc.dim, sc.dim)).copy())
@@ -823,10 +815,10 @@ def settlement_path(
             status, message = "numerical", f"interpenetration {-gap.min():.3g} m at s = {trial.s:.6g} with the shortest step"
             break
         now = gap <= gtol
-        lost = np.flatnonzero(per_interface(closed) & ~per_interface(now)).tolist()  # in this increment
+        lost = np.flatnonzero(_per_interface(sc, closed) & ~_per_interface(sc, now)).tolist()  # in this increment
         new = solve(trial, now)
         if new.status == "optimal":
-            for k in np.flatnonzero(per_interface(now & ~closed)):
+            for k in np.flatnonzero(_per_interface(sc, now & ~closed)):
                 sequence.append((trial.s, int(k), "closed"))
             record(trial, now, new)
             if upper == upper and trial.s >= upper:
@@ -855,7 +847,7 @@ def settlement_path(
             status = "contact_lost" if lost_at_upper else "collapse"
             message = f"no admissible state at s = {upper:.6g}: {upper_msg}"
             break
-        for k in np.flatnonzero(per_interface(fallen[1] & ~upper_state[1])):
+        for k in np.flatnonzero(_per_interface(sc, fallen[1] & ~upper_state[1])):
             sequence.append((fallen[0].s, int(k), "snap"))
         snaps.append(fallen[0].s)
         record(*fallen)

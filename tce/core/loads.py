@@ -70,6 +70,19 @@ log = logging.getLogger(__name__)
 PLANE_TOL = 1e-9
 
 
+def _check_bool(value: object, key: str) -> None:
+    """Refuse anything but True or False for the switch ``key``."""
+    if not isinstance(value, bool):
+        raise LoadError(key, f"not true or false ({value!r})", "write true or false")
+
+
+def _check_keys(cls: type, data: Mapping[str, Any]) -> None:
+    """Refuse a key of ``data`` that is not a field of the dataclass ``cls``."""
+    unknown = sorted(set(data) - set(cls.__dataclass_fields__))
+    if unknown:
+        raise LoadError(unknown[0], "unknown key", f"use the keys {list(cls.__dataclass_fields__)}")
+
+
 def _range(value: ArrayLike, key: str) -> tuple[float, float]:
     """A plan range ``[lo, hi]`` with ``lo < hi`` (m)."""
     lo, hi = _vector(value, 2, key, "m, [from, to]")
@@ -122,8 +135,7 @@ class PointLoad:
             object.__setattr__(self, "at", _vector(self.at, 3, "at", "m"))
         if self.on_top is not None:
             object.__setattr__(self, "on_top", _vector(self.on_top, 2, "on_top", "m, plan point [x, y]"))
-        if not isinstance(self.scaled, bool):
-            raise LoadError("scaled", f"not true or false ({self.scaled!r})", "write true or false")
+        _check_bool(self.scaled, "scaled")
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data, the keys of a ``[[loads.point]]`` table (absent keys left out)."""
@@ -164,8 +176,7 @@ class DistributedLoad:
         if p == 0.0:
             raise LoadError("pressure", "a zero pressure", "give a non-zero pressure (kN/m^2, downwards)")
         object.__setattr__(self, "pressure", p)
-        if not isinstance(self.scaled, bool):
-            raise LoadError("scaled", f"not true or false ({self.scaled!r})", "write true or false")
+        _check_bool(self.scaled, "scaled")
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data, the keys of a ``[[loads.distributed]]`` table."""
@@ -184,9 +195,7 @@ def _items(cls: type, values: Sequence[Any], key: str) -> tuple[Any, ...]:
             if isinstance(v, cls):
                 out.append(v)
             elif isinstance(v, Mapping):
-                unknown = sorted(set(v) - set(cls.__dataclass_fields__))
-                if unknown:
-                    raise LoadError(unknown[0], "unknown key", f"use the keys {list(cls.__dataclass_fields__)}")
+                _check_keys(cls, v)
                 out.append(cls(**v))
             else:
                 raise LoadError("", f"not a {cls.__name__} ({v!r})", f"give a {cls.__name__} or a table of its keys")
@@ -244,8 +253,8 @@ class LoadPattern:
 
         (alpha,) = _vector([self.alpha], 1, "alpha", "degrees")
         object.__setattr__(self, "alpha", alpha)
-        if self.lateral is not None and not isinstance(self.lateral, bool):
-            raise LoadError("lateral", f"not true or false ({self.lateral!r})", "write true or false")
+        if self.lateral is not None:
+            _check_bool(self.lateral, "lateral")
         object.__setattr__(self, "point", _items(PointLoad, self.point, "point"))
         object.__setattr__(self, "distributed", _items(DistributedLoad, self.distributed, "distributed"))
         object.__setattr__(self, "vehicle", _items(Vehicle, self.vehicle, "vehicle"))
@@ -354,9 +363,7 @@ class LoadPattern:
         LoadError
             An unknown key or a load that cannot be declared.
         """
-        unknown = sorted(set(data) - set(cls.__dataclass_fields__))
-        if unknown:
-            raise LoadError(unknown[0], "unknown key", f"use the keys {list(cls.__dataclass_fields__)}")
+        _check_keys(cls, data)
         return cls(**data)
 
 
@@ -568,46 +575,38 @@ def resolve(pattern: LoadPattern, assembly: Assembly) -> AppliedLoads:
         lands on the deck (:class:`tce.core.vehicles.OffDeck`).
     """
     blocks, points, forces, scaled, sources = [], [], [], [], []
+
+    def add(block: int, point: ArrayLike, force: ArrayLike, live: bool, source: str) -> None:
+        blocks.append(block)
+        points.append(point)
+        forces.append(force)
+        scaled.append(live)
+        sources.append(source)
+
     for k, load in enumerate(pattern.point):
         try:
             i, p = _point(assembly, load)
         except LoadError as exc:
             raise exc.within(f"point[{k}]") from None
-        blocks.append(i)
-        points.append(p)
-        forces.append(load.force)
-        scaled.append(load.scaled)
-        sources.append(f"point[{k}]")
+        add(i, p, load.force, load.scaled, f"point[{k}]")
     for k, load in enumerate(pattern.distributed):
         try:
             parts = _distributed(assembly, load)
         except LoadError as exc:
             raise exc.within(f"distributed[{k}]") from None
         for i, p, area in parts:
-            blocks.append(i)
-            points.append(p)
-            forces.append((0.0, 0.0, -load.pressure * area))
-            scaled.append(load.scaled)
-            sources.append(f"distributed[{k}]")
+            add(i, p, (0.0, 0.0, -load.pressure * area), load.scaled, f"distributed[{k}]")
     notes: list[str] = []
     if pattern.fill is not None:
         for k, (i, p, f) in enumerate(fill_forces(assembly, pattern.fill)):
-            blocks.append(i)
-            points.append(p)
-            forces.append(f)
-            scaled.append(False)
-            sources.append(f"fill[{k}]")
+            add(i, p, f, False, f"fill[{k}]")
     if pattern.vehicle:
         for k, vehicle in enumerate(pattern.vehicle):
             wheels, dropped = wheel_loads(vehicle, assembly, f"vehicle[{k}]", pattern.fill)
             notes += dropped
             for wheel in wheels:
                 for i, p, fz in wheel.parts:
-                    blocks.append(i)
-                    points.append(p)
-                    forces.append((0.0, 0.0, fz))
-                    scaled.append(vehicle.scaled)
-                    sources.append(wheel.source)
+                    add(i, p, (0.0, 0.0, fz), vehicle.scaled, wheel.source)
         for note in notes:
             log.debug("%s", note)
     return AppliedLoads(

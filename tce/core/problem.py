@@ -54,7 +54,7 @@ from functools import cached_property, partial
 
 import numpy as np
 import scipy.sparse as sp
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from .conic import ConeRows, LawCheck, Scaling, cone_rows, law_violation
 from .material import Material
@@ -96,8 +96,6 @@ class ConicProblem:
     ----------
     name : str
         What the problem is (``"tce"``, ``"phase-1"``, ``"recession"``, ``"limit"``).
-    P, q, A, b, cones
-        The data.
     """
 
     name: str
@@ -207,6 +205,13 @@ class Formulation:
         return sp.vstack([self.A_eq, -self.law.M]).tocsc()
 
     @cached_property
+    def cones(self) -> tuple[Cone, ...]:
+        """The cones of the rows of :attr:`constraints`: the equilibrium rows with the law's
+        zero rows, then its nonnegative rows and its cones."""
+        law = self.law
+        return _cones(("zero", self.A_eq.shape[0] + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
+
+    @cached_property
     def law_h(self) -> NDArray[np.float64]:
         """Scaled offset of the contact-law rows, ``h / W``."""
         return self.law.offset() / self.scaling.force
@@ -287,15 +292,12 @@ def tce_problem(f: Formulation, b: NDArray[np.float64], U: NDArray[np.float64]) 
 
     Unknowns ``x = F / W`` (n); rows: ``m_eq`` equalities, then the contact law.
     """
-    law = f.law
-    A = f.constraints
-    cones = _cones(("zero", f.A_eq.shape[0] + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
     # the objective's scale is free: a q far from order one (a compliance of 1e-18 with a 1 mm
     # motion gives |q| near 1e15), which Clarabel misreads as infeasible or unbounded, is
     # brought back to one
     q = f.q(U)
     s = q_scale(q)
-    return ConicProblem("tce", f.P / s, q / s, A, b, cones)
+    return ConicProblem("tce", f.P / s, q / s, f.constraints, b, f.cones)
 
 
 #: Largest ``|q|`` of a TCE objective solved as it is (see :func:`q_scale`): a 1 mm motion with a
@@ -374,8 +376,7 @@ def limit_problem(f: Formulation, b_fixed: NDArray[np.float64], b_live: NDArray[
     A = sp.hstack([f.constraints, column], format="csc")
     q = np.zeros(n + 1)
     q[-1] = -1.0
-    cones = _cones(("zero", m + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
-    return ConicProblem("limit", sp.csc_matrix((n + 1, n + 1)), q, A, tce_b(f, b_fixed), cones)
+    return ConicProblem("limit", sp.csc_matrix((n + 1, n + 1)), q, A, tce_b(f, b_fixed), f.cones)
 
 
 def restrained_limit_problem(
@@ -392,8 +393,7 @@ def restrained_limit_problem(
     :func:`with_bounded_forces`'. The multipliers of the equality rows are the virtual
     velocities, as in :func:`limit_problem`.
     """
-    return with_bounded_forces(limit_problem(f, b_fixed, b_live), _equilibrium_columns(f, G),
-                               np.asarray(capacity, dtype=float) / f.scaling.force)
+    return _restrained(f, limit_problem(f, b_fixed, b_live), G, capacity)
 
 
 def least_violation_problem(
@@ -496,12 +496,10 @@ def nearest_state_problem(f: Formulation, rhs: NDArray[np.float64], normal_ref: 
     or the interfaces' tangential frames turn. Unknowns ``x = F / W`` (n); rows as
     :func:`tce_problem`.
     """
-    law = f.law
     n, dim = f.n, f.model.dim
     q = np.zeros(n)
     q[0::dim] = -np.asarray(normal_ref, dtype=float) / f.scaling.force
-    cones = _cones(("zero", f.A_eq.shape[0] + law.n_zero), ("nonneg", law.n_nonneg), n_soc=law.n_soc)
-    return ConicProblem("nearest-state", sp.identity(n, format="csc"), q, f.constraints, tce_b(f, rhs), cones)
+    return ConicProblem("nearest-state", sp.identity(n, format="csc"), q, f.constraints, tce_b(f, rhs), f.cones)
 
 
 # Certificate of no finite limit: the least-force state that carries the live load alone,
@@ -547,6 +545,12 @@ def _equilibrium_columns(f: Formulation, G: NDArray[np.float64]) -> sp.csr_matri
     return sp.vstack([sp.csr_matrix(G * (W / f.row_div)[:, None]), sp.csr_matrix((f.law.M.shape[0], G.shape[1]))], format="csr")
 
 
+def _restrained(f: Formulation, problem: ConicProblem, G: NDArray[np.float64], capacity: ArrayLike) -> ConicProblem:
+    """``problem`` (whose rows are those of :attr:`Formulation.constraints`) with the bounded
+    extra forces ``0 <= p <= capacity`` (kN) of wrenches ``G`` (:func:`with_bounded_forces`)."""
+    return with_bounded_forces(problem, _equilibrium_columns(f, G), np.asarray(capacity, dtype=float) / f.scaling.force)
+
+
 def with_bounded_forces(problem: ConicProblem, columns: sp.spmatrix, upper: NDArray[np.float64]) -> ConicProblem:
     """``problem`` with ``k`` extra unknowns ``0 <= y <= upper`` appended after its own.
 
@@ -585,8 +589,7 @@ def restrained_tce_problem(
     Unknowns ``(x, p / W)`` (n + k); rows as :func:`tce_problem`, then
     :func:`with_bounded_forces`'.
     """
-    return with_bounded_forces(tce_problem(f, b, U), _equilibrium_columns(f, G),
-                               np.asarray(capacity, dtype=float) / f.scaling.force)
+    return _restrained(f, tce_problem(f, b, U), G, capacity)
 
 
 def restrained_phase1_problem(

@@ -30,7 +30,8 @@ from ..study.positions import critical_positions
 from ..study.names import LAMBDA_TOL, same_lambda
 from ..study.schema import GEOMETRY_SWEEPS
 
-__all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "report_content"]
+__all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "report_content", "settlement_rows",
+           "settlement_units"]
 
 #: the columns of ``tce show`` (:func:`tce.cli._show`), in its order, with the report's headings
 SHOW_COLUMNS = {
@@ -67,6 +68,7 @@ class Content:
     method: list[str]
     references: list[str]
     results: dict[str, Any]
+    settlement: dict[str, Any]
     warnings: list[str]
     provenance: dict[str, Any]
     figures: list[dict[str, str]] = field(default_factory=list)
@@ -318,6 +320,66 @@ def _search(ds: xr.Dataset) -> list[dict[str, str]]:
     return rows
 
 
+def settlement_units(ds: xr.Dataset) -> str:
+    """The unit of the settlement capacity as the dataset states it: ``×`` the scenario's
+    settlement vectors for a magnitude (units ``1``), else the stored unit (e.g. ``m``)."""
+    units = str(ds["settlement_capacity"].attrs.get("units", "1"))
+    return "× the scenario's settlement vectors" if units == "1" else units
+
+
+def _hinge_events(text: str) -> list[tuple[str, list[tuple[str, list[str]]]]]:
+    """The stored hinge sequence (``s=0: v06|v07 hinge; s=0: v18|v19 hinge; ...``) grouped by
+    magnitude, then by event, in order: ``[("s=0", [("hinge", ["v06|v07", "v18|v19"])]), ...]``."""
+    groups: list[tuple[str, list[tuple[str, list[str]]]]] = []
+    for entry in filter(None, (e.strip() for e in text.split(";"))):
+        where, _, what = entry.partition(": ")
+        joint, _, event = what.rpartition(" ")
+        if not groups or groups[-1][0] != where:
+            groups.append((where, []))
+        events = groups[-1][1]
+        if events and events[-1][0] == event:
+            events[-1][1].append(joint)
+        else:
+            events.append((event, [joint]))
+    return groups
+
+
+def settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
+    """The settlement path's answer per scenario (``[settlement_path]``), as ``tce show`` prints it.
+
+    Each row holds, as text: ``scenario``; ``capacity`` (largest magnitude found standing, in
+    :func:`settlement_units`; ``NaN`` unless the outcome is collapse, snap_through or
+    contact_lost); ``upper`` (smallest magnitude found not standing); ``outcome`` (as stored);
+    ``snaps`` (number of magnitudes at which the structure snaps: falls to a new standing
+    configuration);
+    ``hinges`` (the joints that start rotating, close again or snap, in order, with the
+    magnitude); ``lateral`` (lambda_max of the lateral pattern on the deformed structure at the
+    capacity's step; ``–`` without a capacity, where not computed (``lambda = false``) or where
+    its linear program did not end optimal). Empty without ``[settlement_path]``.
+    """
+    if "settlement_capacity" not in ds:
+        return []
+    rows = []
+    for k, name in enumerate(ds["scenario"].values):
+        capacity = float(ds["settlement_capacity"].values[k])
+        mags = np.asarray(ds["settlement_magnitude"].values[k], dtype=float)
+        groups = _hinge_events(str(ds["settlement_hinge_sequence"].values[k]))
+        hinges = "; ".join(f"{where}: " + ", ".join(f"{event} {' '.join(joints)}" for event, joints in events)
+                           for where, events in groups)
+        snaps = sum(any(event == "snap" for event, _ in events) for _, events in groups)
+        lateral = "–"
+        if "settlement_lambda_max" in ds and math.isfinite(capacity):
+            at = np.flatnonzero(mags == capacity)
+            there = float(ds["settlement_lambda_max"].values[k][at[-1]]) if at.size else math.nan
+            lateral = fmt(there) if math.isfinite(there) else lateral
+        rows.append({
+            "scenario": str(name), "capacity": fmt(capacity), "upper": fmt(float(ds["settlement_upper"].values[k])),
+            "outcome": str(ds["settlement_outcome"].values[k]), "snaps": str(snaps),
+            "hinges": hinges or "–", "lateral": lateral,
+        })
+    return rows
+
+
 def _moves_support(ds: xr.Dataset, toml: dict, i: int) -> bool:
     """Whether scenario ``i`` moves a support: its settlement case (``[scenarios.NAME]`` of the
     study text ``toml``) has a nonzero motion and its ``magnitude`` (1 when not swept) is not 0."""
@@ -385,6 +447,7 @@ def report_content(ds: xr.Dataset, results: Path) -> Content:
         method=method,
         references=refs,
         results=_results(ds),
+        settlement={"units": settlement_units(ds), "rows": settlement_rows(ds)} if "settlement_capacity" in ds else {},
         warnings=_warnings(ds, toml),
         provenance={
             "tce_run": str(ds.attrs.get("tce_version", "?")),

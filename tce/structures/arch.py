@@ -91,18 +91,21 @@ def arch_from_joints(
     uw = float(unit_weight)
     blocks = [Block(name, shape, uw, k in (0, n + 1)) for k, (name, shape) in enumerate(zip(names, shapes))]
 
-    # joint k between blocks k and k + 1: (ji, je) at -d, then (je, ji) at +d
-    pts = np.stack(
-        [_at_depth(ji, -d), _at_depth(je, -d), _at_depth(je, d), _at_depth(ji, d)], axis=1
-    )  # (n + 1, 4, 3)
-    # normal in the x-z plane, perpendicular to the joint, pointing left -> right
-    t = je - ji
-    normal = np.column_stack([t[:, 1], np.zeros(n + 1), -t[:, 0]])
     centroids = FaceTable.uniform(np.concatenate([front, back], axis=1), shapes[0].faces).centroid  # either orientation
-    flip = np.einsum("ij,ij->i", normal, centroids[1:] - centroids[:-1]) < 0
+    return Assembly(tuple(blocks), tuple(_joints(ji, je, d, centroids)), dict(meta or {}))
+
+
+def _joints(ji: np.ndarray, je: np.ndarray, d: float, centroids: np.ndarray) -> list[Interface]:
+    """Interfaces on the plane joints ``k`` from ``ji[k]`` to ``je[k]`` (``(x, z)``, m) across the
+    depth ``-d .. d``, joint ``k`` between blocks ``k`` and ``k + 1`` (``centroids`` theirs):
+    the points ``(ji, je)`` at ``-d``, then ``(je, ji)`` at ``+d``; the normal in the x-z plane,
+    perpendicular to the joint, pointing from block ``k`` into block ``k + 1``."""
+    pts = np.stack([_at_depth(ji, -d), _at_depth(je, -d), _at_depth(je, d), _at_depth(ji, d)], axis=1)
+    t = je - ji
+    normal = np.column_stack([t[:, 1], np.zeros(len(t)), -t[:, 0]])
+    flip = np.einsum("ij,ij->i", normal, centroids[1 : len(t) + 1] - centroids[: len(t)]) < 0
     normal[flip] *= -1.0
-    interfaces = [Interface(k, k + 1, pts[k], normal[k]) for k in range(n + 1)]
-    return Assembly(tuple(blocks), tuple(interfaces), dict(meta or {}))
+    return [Interface(k, k + 1, pts[k], normal[k]) for k in range(len(t))]
 
 
 def semicircular_arch(
@@ -152,15 +155,8 @@ def semicircular_arch(
     if joints not in JOINTS:
         raise ValueError(f"joints must be one of {', '.join(JOINTS)}, got {joints!r}")
     height = thickness if support_height is None else support_height
-    meta = dict(
-        generator="semicircular_arch",
-        inner_radius=float(inner_radius),
-        thickness=float(thickness),
-        depth=float(depth),
-        voussoirs=n,
-        unit_weight=float(unit_weight),
-        support_height=float(height),
-    )
+    meta = dict(generator="semicircular_arch", inner_radius=float(inner_radius), thickness=float(thickness),
+                depth=float(depth), voussoirs=n, unit_weight=float(unit_weight), support_height=float(height))
     if joints == "vertical":
         return _vertical_joint_arch(float(inner_radius), float(thickness), float(depth), n, float(unit_weight),
                                     float(height), {**meta, "joints": "vertical"})
@@ -321,18 +317,8 @@ def pointed_arch(
         ji[-1] = [0.0, f]
         je[-1] = [0.0, math.sqrt((R + t) ** 2 - e**2)]
     h = t if pier_height is None else pier_height
-    meta = dict(
-        generator="pointed_arch",
-        span=s,
-        rise=f,
-        centre_offset=e,
-        radius=R,
-        thickness=t,
-        depth=float(depth),
-        voussoirs=n,
-        unit_weight=float(unit_weight),
-        pier_height=float(h),
-    )
+    meta = dict(generator="pointed_arch", span=s, rise=f, centre_offset=e, radius=R, thickness=t, depth=float(depth),
+                voussoirs=n, unit_weight=float(unit_weight), pier_height=float(h))
     return arch_from_joints(_mirror_joints(ji, n), _mirror_joints(je, n), depth, unit_weight, h, meta)
 
 
@@ -391,17 +377,8 @@ def segmental_arch(
     je = np.column_stack([(R + t) * c, zc + (R + t) * sn])
     ji[0], ji[-1] = [-s / 2.0, 0.0], [s / 2.0, 0.0]
     h = t if pier_height is None else pier_height
-    meta = dict(
-        generator="segmental_arch",
-        span=s,
-        rise=f,
-        radius=R,
-        thickness=t,
-        depth=float(depth),
-        voussoirs=n,
-        unit_weight=float(unit_weight),
-        pier_height=float(h),
-    )
+    meta = dict(generator="segmental_arch", span=s, rise=f, radius=R, thickness=t, depth=float(depth), voussoirs=n,
+                unit_weight=float(unit_weight), pier_height=float(h))
     return arch_from_joints(ji, je, depth, unit_weight, h, meta)
 
 

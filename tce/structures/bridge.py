@@ -18,10 +18,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .arch import _at_depth, segmental_arch
+from .arch import _at_depth, _joints, segmental_arch
 from .assembly import Assembly, Block, Interface
-from .geometry import prisms
-from .params import check_blocks, check_positive, check_whole
+from .geometry import prism
+from .params import check_blocks, check_choice, check_positive, check_whole
 
 __all__ = ["arch_bridge"]
 
@@ -79,8 +79,7 @@ def arch_bridge(
     n_spans = check_whole(spans, "spans")
     check_blocks(n_spans * (check_whole(voussoirs, "voussoirs") + 2) + 1,
                  f"spans x (voussoirs + 2) + 1 = {n_spans} x ({voussoirs} + 2) + 1")
-    if piers not in ("free", "fixed"):
-        raise ValueError(f"piers must be 'free' or 'fixed', got {piers!r}")
+    check_choice(piers, "piers", ("free", "fixed"))
     ring = segmental_arch(span, rise, thickness, depth, voussoirs, unit_weight)
     n = ring.meta["voussoirs"]
     # joint ends (x, z) of one ring, centred on x = 0, from its interfaces' front vertices
@@ -97,54 +96,42 @@ def arch_bridge(
     loops, names, support = [], [], []
 
     def add(loop: np.ndarray, name: str, is_support: bool) -> None:
-        loops.append(_at_depth(loop, -d))
+        loops.append(loop)
         names.append(name)
         support.append(is_support)
 
+    def skewback(a: np.ndarray, e: np.ndarray) -> np.ndarray:
+        """Section of the abutment under the joint from ``a`` (intrados) to ``e`` (extrados)."""
+        return np.array([a, e, [e[0], base], [a[0], base]])
+
     width = len(str(n)) if n >= 10 else 2
-    first = ji[0] + [centres[0], 0.0], je[0] + [centres[0], 0.0]
-    add(np.array([first[0], first[1], [first[1][0], base], [first[0][0], base]]), "abutment_left", True)
-    joints = []  # (intrados, extrados) of every joint, left to right, and its two blocks
+    add(skewback(ji[0] + [centres[0], 0.0], je[0] + [centres[0], 0.0]), "abutment_left", True)
+    joints = []  # (intrados, extrados) of every joint, left to right: joint k joins blocks k and k + 1
     for s, cx in enumerate(centres):
         off = np.array([cx, 0.0])
         a, e = ji + off, je + off
-        start = len(names) - 1  # the support on the left of this span
         for k in range(n):
             add(np.array([a[k], a[k + 1], e[k + 1], e[k]]), f"s{s + 1}v{k + 1:0{width}d}", False)
-        for k in range(n + 1):
-            joints.append((a[k], e[k], start + k))
+        joints += zip(a, e)
         if s < n_spans - 1:
             nxt = ji + [centres[s + 1], 0.0], je + [centres[s + 1], 0.0]
             add(np.array([a[-1], e[-1], nxt[1][0], nxt[0][0], [nxt[0][0][0], base], [a[-1][0], base]]), f"pier{s + 1}",
                 piers == "fixed")
-    last = ji[-1] + [centres[-1], 0.0], je[-1] + [centres[-1], 0.0]
-    add(np.array([last[0], last[1], [last[1][0], base], [last[0][0], base]]), "abutment_right", True)
+    add(skewback(ji[-1] + [centres[-1], 0.0], je[-1] + [centres[-1], 0.0]), "abutment_right", True)
 
-    feet = []  # (pier, foundation) of every free pier
+    feet = []  # (pier, foundation, x0, x1) of every free pier, its base from x0 to x1
     if piers == "free":
         for k, name in enumerate(list(names)):
             if name.startswith("pier"):
                 x0, x1 = loops[k][0, 0], loops[k][3, 0]
-                feet.append((k, len(names)))
+                feet.append((k, len(names), x0, x1))
                 add(np.array([[x0, base], [x1, base], [x1, base - pier_width], [x0, base - pier_width]]),
                     f"foundation{name[4:]}", True)
-    shapes = []
-    for loop in loops:
-        back = loop.copy()
-        back[:, 1] = d
-        shapes.extend(prisms(loop[None], back[None]))
+    shapes = [prism(_at_depth(loop, -d), _at_depth(loop, d)) for loop in loops]
     blocks = tuple(Block(name, shape, float(unit_weight), sup) for name, shape, sup in zip(names, shapes, support))
-    interfaces = []
-    for a, e, left in joints:
-        pts = np.array([_at_depth(a[None], -d)[0], _at_depth(e[None], -d)[0], _at_depth(e[None], d)[0], _at_depth(a[None], d)[0]])
-        t = e - a
-        normal = np.array([t[1], 0.0, -t[0]])
-        normal /= np.linalg.norm(normal)
-        if normal @ (shapes[left + 1].centroid - shapes[left].centroid) < 0:
-            normal = -normal
-        interfaces.append(Interface(left, left + 1, pts, normal))
-    for pier, foot in feet:
-        x0, x1 = loops[pier][0, 0], loops[pier][3, 0]
+    centroids = np.array([shape.centroid for shape in shapes])
+    interfaces = _joints(np.array([a for a, _ in joints]), np.array([e for _, e in joints]), d, centroids)
+    for pier, foot, x0, x1 in feet:
         pts = np.array([[x0, -d, base], [x1, -d, base], [x1, d, base], [x0, d, base]])
         interfaces.append(Interface(pier, foot, pts, np.array([0.0, 0.0, -1.0])))
     meta = dict(generator="arch_bridge", spans=n_spans, span=float(span), rise=float(rise), thickness=float(thickness),

@@ -127,11 +127,11 @@ def hemispherical_dome(
     # colatitudes from the base (index 0, theta = 90 deg) up to the crown opening
     thetas = np.linspace(math.pi / 2.0, theta0, courses + 1)
     psis = np.linspace(0.0, 2.0 * math.pi, sectors + 1)
-    closed = theta0 == 0.0
     S, C = sectors, courses
     # corners on the intrados and extrados: [k, j] at colatitude thetas[k], azimuth psis[j % S]
-    inner, outer = _corners(ri, thetas, psis[np.arange(S + 1) % S]), _corners(ro, thetas, psis[np.arange(S + 1) % S])
-    wedges = closed
+    around = psis[np.arange(S + 1) % S]
+    inner, outer = _corners(ri, thetas, around), _corners(ro, thetas, around)
+    wedges = theta0 == 0.0  # a closed crown: wedges meeting on the axis
     lo, hi = slice(0, S), slice(1, S + 1)  # sector j spans azimuths j .. j + 1
 
     # supports: the prism under each sector's base joint
@@ -143,11 +143,11 @@ def hemispherical_dome(
     js = np.tile(np.arange(S), ring)
     quad = lambda g, k, j: np.stack([g[k, j], g[k, j + 1], g[k + 1, j + 1], g[k + 1, j]], axis=1)  # noqa: E731
     shapes += prisms(quad(inner, k0, js), quad(outer, k0, js))
+    j = np.arange(S)
+    axis_i = np.broadcast_to([0.0, 0.0, ri], (S, 3))  # the crown wedges' points on the axis
+    axis_o = np.broadcast_to([0.0, 0.0, ro], (S, 3))
     if wedges:
         # crown wedges: axis points (inner, outer) and the lower corners of the top course
-        j = np.arange(S)
-        axis_i = np.broadcast_to([0.0, 0.0, ri], (S, 3))
-        axis_o = np.broadcast_to([0.0, 0.0, ro], (S, 3))
         verts = np.stack([axis_i, inner[C - 1, j], inner[C - 1, j + 1], axis_o, outer[C - 1, j], outer[C - 1, j + 1]], axis=1)
         shapes += oriented_polyhedra(verts, _WEDGE_FACES)
     wj = max(2, len(str(S)))
@@ -163,12 +163,10 @@ def hemispherical_dome(
 
     # interfaces in order: base joints; then per course, sector by sector, the bed joint above
     # it (below the top course) and the meridian joint at psi_{j+1} towards the next sector
-    j = np.arange(S)
-    parts = [(j, vid(1, j), np.stack([inner[0, j], inner[0, j + 1], outer[0, j + 1], outer[0, j]], axis=1))]
+    parts = [(j, vid(1, j), top)]
     for k in range(1, C + 1):
         if wedges and k == C:
-            mer = np.stack([inner[k - 1, j + 1], outer[k - 1, j + 1],
-                            np.broadcast_to([0.0, 0.0, ro], (S, 3)), np.broadcast_to([0.0, 0.0, ri], (S, 3))], axis=1)
+            mer = np.stack([inner[k - 1, j + 1], outer[k - 1, j + 1], axis_o, axis_i], axis=1)
         else:
             mer = np.stack([inner[k - 1, j + 1], outer[k - 1, j + 1], outer[k, j + 1], inner[k, j + 1]], axis=1)
         if k < C:
@@ -190,18 +188,9 @@ def hemispherical_dome(
     normal[flip] *= -1.0
     interfaces = [Interface(int(a[i]), int(b[i]), pts[i], normal[i]) for i in range(len(a))]
 
-    meta = dict(
-        generator="hemispherical_dome",
-        radius=R,
-        thickness=t,
-        inner_radius=ri,
-        outer_radius=ro,
-        sectors=sectors,
-        courses=courses,
-        oculus=float(oculus),
-        unit_weight=float(unit_weight),
-        support_height=float(h),
-    )
+    meta = dict(generator="hemispherical_dome", radius=R, thickness=t, inner_radius=ri, outer_radius=ro,
+                sectors=sectors, courses=courses, oculus=float(oculus), unit_weight=float(unit_weight),
+                support_height=float(h))
     return Assembly(tuple(blocks), tuple(interfaces), meta)
 
 
@@ -214,8 +203,6 @@ def radial_settlement(
 
     Parameters
     ----------
-    assembly : Assembly
-        Any assembly with supports.
     magnitude : float
         Displacement (m) along each support's own horizontal radius: positive outward
         (away from the axis), negative inward.

@@ -303,6 +303,17 @@ def _canonical_faces(faces: tuple) -> tuple[tuple[tuple[int, ...], ...], int, in
     return out, min((min(f) for f in out), default=0), max((max(f) for f in out), default=-1) + 1
 
 
+@lru_cache(maxsize=1024)
+def _flat_faces(faces: tuple[tuple[int, ...], ...]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """The corners of a face list, face after face, and the corners per face (read-only;
+    cached: generators give thousands of blocks one face list)."""
+    loop = np.fromiter((i for f in faces for i in f), dtype=np.int64)
+    counts = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
+    loop.setflags(write=False)
+    counts.setflags(write=False)
+    return loop, counts
+
+
 @dataclass(frozen=True, eq=False)
 class FaceTable:
     """The faces of many polyhedra, flattened into arrays.
@@ -337,18 +348,12 @@ class FaceTable:
         nverts = np.fromiter((len(p.vertices) for p in polyhedra), dtype=np.int64, count=npoly)
         vstart = np.concatenate([[0], np.cumsum(nverts)])
         points = np.concatenate([p.vertices for p in polyhedra])
-        # each distinct face list flattened once; a polyhedron's corners are its list's plus its offset
-        kinds: dict[tuple[tuple[int, ...], ...], tuple[NDArray[np.int64], NDArray[np.int64]]] = {}
+        # a polyhedron's corners are those of its face list plus its offset
         loops, counts = [], []
         for p, offset in zip(polyhedra, vstart[:-1]):
-            flat = kinds.get(p.faces)
-            if flat is None:
-                flat = kinds[p.faces] = (
-                    np.fromiter((i for f in p.faces for i in f), dtype=np.int64),
-                    np.fromiter((len(f) for f in p.faces), dtype=np.int64, count=len(p.faces)),
-                )
-            loops.append(flat[0] + offset)
-            counts.append(flat[1])
+            loop, count = _flat_faces(p.faces)
+            loops.append(loop + offset)
+            counts.append(count)
         loop = np.concatenate(loops)
         fcounts = np.concatenate(counts)
         start = np.concatenate([[0], np.cumsum(fcounts)]).astype(np.int64)
@@ -369,8 +374,7 @@ class FaceTable:
         v = np.asarray(vertices, dtype=float)
         n, k = v.shape[:2]
         fl = _checked_faces(faces, k)
-        lp = np.fromiter((i for f in fl for i in f), dtype=np.int64)
-        counts = np.fromiter((len(f) for f in fl), dtype=np.int64, count=len(fl))
+        lp, counts = _flat_faces(fl)
         loop = (lp[None, :] + (np.arange(n) * k)[:, None]).ravel()
         start = np.concatenate([[0], np.cumsum(np.tile(counts, n))]).astype(np.int64)
         return cls(v.reshape(-1, 3), np.arange(n + 1, dtype=np.int64) * k, loop, start,
@@ -567,10 +571,6 @@ def oriented_polyhedra(vertices: ArrayLike, faces: Sequence[Sequence[int]]) -> l
     faces : sequence of sequences of int
         Their common face list, oriented the same way (all outwards or all inwards) for
         each polyhedron: a polyhedron whose volume comes out negative gets it reversed.
-
-    Returns
-    -------
-    list of Polyhedron
     """
     v = np.asarray(vertices, dtype=float)
     if v.ndim != 3 or v.shape[2] != 3:
@@ -590,10 +590,6 @@ def prisms(bottom: ArrayLike, top: ArrayLike) -> list[Polyhedron]:
         ``n`` pairs of loops (m); ``bottom[p, i]`` is joined to ``top[p, i]`` by a side face.
         The loops may run either way: each prism's faces are oriented outwards from the
         sign of its volume.
-
-    Returns
-    -------
-    list of Polyhedron
     """
     b, t = np.asarray(bottom, float), np.asarray(top, float)
     if b.ndim != 3 or b.shape != t.shape or b.shape[2] != 3:

@@ -238,18 +238,9 @@ def barrel_vault(
                     overlap = _section_overlap(p, q, min_area)
                 if overlap is not None:
                     out.joint(name(c, i), name(c + 1, j), _at_depth(overlap, ys[c + 1]))
-    meta = dict(
-        generator="barrel_vault",
-        inner_radius=ri,
-        thickness=float(thickness),
-        depth=float(depth),
-        voussoirs=n,
-        courses=nc,
-        bond=bond,
-        unit_weight=float(unit_weight),
-        support_height=float(h),
-        supports=supports,
-    )
+    meta = dict(generator="barrel_vault", inner_radius=ri, thickness=float(thickness), depth=float(depth),
+                voussoirs=n, courses=nc, bond=bond, unit_weight=float(unit_weight), support_height=float(h),
+                supports=supports)
     return out.assembly(meta)
 
 
@@ -368,16 +359,7 @@ def groin_vault(
         # springings: the east one on corner r, the west one on corner r+1
         out.joint(pier[r, _WEBS[r]], name(r, n - 1), _turn(upper, r, k))
         out.joint(pier[(r + 1) % 4, _WEBS[r]], name(r, 0), _turn(lower, r + 1, k))
-    meta = dict(
-        generator="groin_vault",
-        span_x=float(span_x),
-        span_y=float(span_y),
-        thickness=float(thickness),
-        voussoirs=n,
-        unit_weight=float(unit_weight),
-        support_height=float(h),
-        supports=supports,
-        inner_radius=ri,
-        rise=ri,
-    )
+    meta = dict(generator="groin_vault", span_x=float(span_x), span_y=float(span_y), thickness=float(thickness),
+                voussoirs=n, unit_weight=float(unit_weight), support_height=float(h), supports=supports,
+                inner_radius=ri, rise=ri)
     return out.assembly(meta)

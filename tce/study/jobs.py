@@ -12,12 +12,15 @@ not depend on the load of a shared machine.
 
 Estimate of the work, CPU seconds::
 
-    sum over scenarios (increments + 2) * t_solve + scenarios * SCENARIO_S + (groups - 1) * t_build
+    sum over scenarios (increments + 2) * t_solve + settlement + scenarios * SCENARIO_S + (groups - 1) * t_build
 
 with ``increments = lambda_max / step + 1`` from the direct limit of the scenario's direction
 on the first scenario's analysis (``lam_cap / step + 1`` when there is none), ``t_solve`` a
 warm TCE solve of the first scenario and ``t_build`` the time to build its analysis. A model of
 more than :data:`LARGE_MODEL` unknowns is taken as large work without solving anything.
+``settlement`` is the finite-settlement path of a study with ``[settlement_path]``: its
+increments up to ``s_max`` (``s_max / increment`` per scenario, an upper bound: a path ends
+at its collapse) times :data:`SETTLEMENT_INCREMENT_S`.
 """
 
 from __future__ import annotations
@@ -34,7 +37,8 @@ if TYPE_CHECKING:
     from ..core.analysis import Analysis
     from .schema import Scenario
 
-__all__ = ["LARGE_MODEL", "SCENARIO_S", "WORKER_START_S", "JobsChoice", "choose_jobs", "estimate_work"]
+__all__ = ["LARGE_MODEL", "SCENARIO_S", "SETTLEMENT_INCREMENT_S", "WORKER_START_S", "JobsChoice", "choose_jobs",
+           "estimate_work", "settlement_increments"]
 
 log = logging.getLogger(__name__)
 
@@ -43,6 +47,9 @@ log = logging.getLogger(__name__)
 WORKER_START_S = 1.5
 #: CPU seconds to record and write one scenario's answer (its dataset and netCDF file).
 SCENARIO_S = 0.02
+#: CPU seconds of one increment of a settlement path (``[settlement_path]``, its linear programs
+#: with ``lambda = true``; docs/performance.md).
+SETTLEMENT_INCREMENT_S = 0.03
 #: Unknowns above which a model is taken as large work without a timed solve.
 LARGE_MODEL = 20_000
 @dataclass(frozen=True)
@@ -62,6 +69,15 @@ class JobsChoice:
     jobs: int
     reason: str
     work_s: float = float("nan")
+
+
+def settlement_increments(sc: Scenario) -> float:
+    """Increments of the settlement path of ``sc`` up to its ``s_max`` (0 without ``[settlement_path]``
+    or when ``sc`` moves no support: nothing to follow)."""
+    opts = sc.settlement_path
+    if opts is None or not any(any(u != 0 for u in v) for v in sc.settlements.values()):
+        return 0.0
+    return opts["s_max"] / opts["increment"]
 
 
 def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario], Analysis]) -> tuple[float, str]:
@@ -96,8 +112,11 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
         increments = min(lam, cap) / step + 1 if math.isfinite(lam) else min(cap / step, MAX_INCREMENTS) + 1
         solves += increments + 2
     groups = len({sc.group for sc in scenarios})
-    work = solves * t_solve + len(scenarios) * SCENARIO_S + (groups - 1) * t_build
-    return work, (f"about {solves:.0f} solves of {t_solve * 1e3:.2g} ms, {len(scenarios)} answers of "
+    increments = sum(map(settlement_increments, scenarios))
+    work = (solves * t_solve + increments * SETTLEMENT_INCREMENT_S + len(scenarios) * SCENARIO_S
+            + (groups - 1) * t_build)
+    path = f", {increments:.0f} settlement increments of {SETTLEMENT_INCREMENT_S:.2g} s" if increments else ""
+    return work, (f"about {solves:.0f} solves of {t_solve * 1e3:.2g} ms{path}, {len(scenarios)} answers of "
                   f"{SCENARIO_S:.2g} s and {groups} model(s) of {t_build:.2g} s, CPU")
 
 

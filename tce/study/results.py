@@ -45,6 +45,7 @@ from ..core.resultants import global_vertex_forces
 from ..core.result import DOFS, WRENCH_COMPONENTS, XYZ
 from ..core.solve import SOLVER_NAME, TCEResult
 from ..files import atomic_write, temporaries
+from ..structures.assembly import Assembly
 from .schema import Scenario, Study
 
 __all__ = [
@@ -206,6 +207,16 @@ def _text(values: object) -> np.ndarray:
     return np.asarray(values, dtype=object)
 
 
+def _per_scenario(scalars: dict[str, object]) -> dict[str, tuple]:
+    """Variables ``(scenario,)`` of one scenario's scalars."""
+    return {k: (("scenario",), np.asarray([v])) for k, v in scalars.items()}
+
+
+def _interface_names(a: Assembly) -> list[str]:
+    """The interfaces of ``a`` as ``'A|B'`` block names."""
+    return [f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces]
+
+
 def _step_fields(step: TCEResult, slots: np.ndarray, n_itf: int) -> dict[str, np.ndarray]:
     """Per-step arrays of one TCE answer (NaN unless optimal), interfaces in assembly order."""
     n_sup = step.support_wrenches.shape[0]
@@ -236,12 +247,7 @@ def _path_vars(path: Sequence[TCEResult], slots: np.ndarray, n_itf: int) -> dict
     """Load-path variables ``(scenario, step, ...)`` of one scenario."""
     per_step = [_step_fields(s, slots, n_itf) for s in path]
     stack = {k: np.stack([p[k] for p in per_step])[None] for k in per_step[0]}
-    scalar = {
-        "lam": [s.lam for s in path],
-        "tce": [s.tce for s in path],
-        "eq_residual": [s.eq_residual for s in path],
-        "cone_residual": [s.cone_residual for s in path],
-    }
+    scalar = {k: [getattr(s, k) for s in path] for k in ("lam", "tce", "eq_residual", "cone_residual")}
     dims = ("scenario", "step")
     out: dict[str, tuple] = {k: (dims, np.asarray([v], dtype=float)) for k, v in scalar.items()}
     out["status"] = (dims, _text([[s.status for s in path]]))
@@ -285,7 +291,7 @@ def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int
         "solve_time": lp.solve_time,
         "wall_time": lp.wall_time,
     }
-    out: dict[str, tuple] = {k: (("scenario",), np.asarray([v])) for k, v in scalars.items()}
+    out = _per_scenario(scalars)
     out["outcome"] = (("scenario",), _text([lp.outcome]))
     out["model"] = (("scenario",), _text([lp.steps[0].model]))
     out["mechanism"] = (("scenario", "block", "dof"), vel[None])
@@ -299,7 +305,7 @@ def _static_vars(analysis: Analysis, imap: InterfaceMap) -> dict[str, tuple]:
     (``vertex_point``, ``block_centroid``) per scenario, since a geometry sweep gives each
     scenario its own; names and support flags (the same for every scenario) without."""
     a = analysis.assembly
-    names = [f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces]
+    names = _interface_names(a)
     owner = np.asarray(imap.interfaces, dtype=int)[imap.vertex_slot]
     return {
         "vertex_point": (("scenario", "vertex", "xyz"), imap.vertex_points[None]),
@@ -334,7 +340,7 @@ def _coords(sc: Scenario, analysis: Analysis, n_steps: int) -> dict[str, tuple]:
         "step": (("step",), np.arange(n_steps)),
         "support": (("support",), _text(a.support_names)),
         "component": (("component",), _text(WRENCH_COMPONENTS)),
-        "interface": (("interface",), _text([f"{a.names[i.a]}|{a.names[i.b]}" for i in a.interfaces])),
+        "interface": (("interface",), _text(_interface_names(a))),
         "xyz": (("xyz",), _text(XYZ)),
         "block": (("block",), _text(a.names)),
         "dof": (("dof",), _text(DOFS)),
@@ -364,7 +370,7 @@ def _nonassoc_vars(na: NonAssocResult) -> dict[str, tuple]:
         "nonassoc_dilatancy": na.dilatancy,
         "nonassoc_consistency": na.consistency,
     }
-    out: dict[str, tuple] = {k: (("scenario",), np.asarray([v])) for k, v in scalars.items()}
+    out = _per_scenario(scalars)
     out["nonassoc_status"] = (("scenario",), _text([na.status]))
     return out
 
@@ -383,7 +389,6 @@ def scenario_dataset(
     sc : Scenario
         The scenario that was run; its :attr:`~tce.study.Scenario.key` is kept in the
         attrs (``scenario_key``) so that a rerun can tell whether it is still valid.
-    lp : LoadPathResult
     analysis : Analysis
         The analysis that ran it (for the assembly and the model's interfaces).
     nonassoc : NonAssocResult, optional
@@ -675,15 +680,8 @@ def merge_scenarios(study: Study, parts: dict[str, xr.Dataset]) -> xr.Dataset:
     n_steps = max(parts[n].sizes["step"] for n in order)
     ds = _stacked([parts[n] for n in order], n_steps)
     if ds is None:  # the parts' other dimensions differ (a geometry sweep): let xarray align them
-        ds = xr.concat(
-            [_pad(parts[n], n_steps) for n in order],
-            dim="scenario",
-            data_vars="minimal",
-            coords="minimal",
-            compat="override",
-            join="outer",
-            combine_attrs="drop",
-        )
+        ds = xr.concat([_pad(parts[n], n_steps) for n in order], dim="scenario", data_vars="minimal",
+                       coords="minimal", compat="override", join="outer", combine_attrs="drop")
     ds["geometry"] = (("scenario",), np.asarray(geometries(study)[1], dtype=np.int64))
     ds.attrs = study_attrs(study, ds["model"].values.tolist())
     return _label(ds)

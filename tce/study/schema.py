@@ -25,11 +25,11 @@ import itertools
 import json
 import math
 import tomllib
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
-from typing import Annotated, Any, Literal, get_args
+from typing import Annotated, Any, ClassVar, Literal, Union, get_args
 
 from pydantic import (
     BaseModel,
@@ -49,8 +49,12 @@ from ..core.loads import LoadError, LoadPattern, resolve
 from ..core.material import Material
 from ..core.fill import DISPERSION_2_TO_1
 from ..core.vehicles import STANDARD, standard_vehicle
+from ..structures.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
 from ..structures.assembly import Assembly
-from ..structures.io import MAX_BLOCKS, InputLimitError
+from ..structures.bridge import arch_bridge
+from ..structures.dome import hemispherical_dome
+from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
+from ..structures.vault import barrel_vault, groin_vault
 from . import guards
 from .guards import StudyError
 from .names import PLOT_KINDS
@@ -69,7 +73,6 @@ __all__ = [
     "parse_study",
 ]
 
-COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
 #: swept parameters that change the structure (the others change material or settlement)
 GEOMETRY_SWEEPS = ("inner_radius", "thickness", "depth", "radius")
 #: swept parameters of the material
@@ -110,7 +113,19 @@ class StudySection(_Strict):
         return v
 
 
-class ArchStructure(_Strict):
+class _Generated(_Strict):
+    """A ``[structure]`` section built by a generator of :mod:`tce.structures` (``builder``);
+    every generator takes the unit weight (kN/m^3)."""
+
+    builder: ClassVar[Callable[..., Assembly]]
+    unit_weight: Positive = 20.0
+
+    def build(self) -> Assembly:
+        """The assembly this section describes."""
+        return type(self).builder(**self.model_dump(exclude={"type"}))
+
+
+class ArchStructure(_Generated):
     """``[structure] type = "semicircular_arch"``: :func:`tce.structures.arch.semicircular_arch`."""
 
     type: Literal["semicircular_arch"]
@@ -118,18 +133,13 @@ class ArchStructure(_Strict):
     thickness: Positive = 0.2
     depth: Positive = 0.25
     voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
-    unit_weight: Positive = 20.0
     support_height: Positive | None = None
     joints: Literal["radial", "vertical"] = "radial"
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.arch import semicircular_arch
-
-        return semicircular_arch(**self.model_dump(exclude={"type"}))
+    builder = semicircular_arch
 
 
-class PointedArchStructure(_Strict):
+class PointedArchStructure(_Generated):
     """``[structure] type = "pointed_arch"``: :func:`tce.structures.arch.pointed_arch`."""
 
     type: Literal["pointed_arch"]
@@ -139,17 +149,12 @@ class PointedArchStructure(_Strict):
     thickness: Positive = 0.2
     depth: Positive = 0.25
     voussoirs: Annotated[int, Field(ge=2)] = 14
-    unit_weight: Positive = 20.0
     pier_height: Positive | None = None
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.arch import pointed_arch
-
-        return pointed_arch(**self.model_dump(exclude={"type"}))
+    builder = pointed_arch
 
 
-class SegmentalArchStructure(_Strict):
+class SegmentalArchStructure(_Generated):
     """``[structure] type = "segmental_arch"``: :func:`tce.structures.arch.segmental_arch`."""
 
     type: Literal["segmental_arch"]
@@ -158,17 +163,12 @@ class SegmentalArchStructure(_Strict):
     thickness: Positive = 0.2
     depth: Positive = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 12
-    unit_weight: Positive = 20.0
     pier_height: Positive | None = None
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.arch import segmental_arch
-
-        return segmental_arch(**self.model_dump(exclude={"type"}))
+    builder = segmental_arch
 
 
-class ArchOnPiersStructure(_Strict):
+class ArchOnPiersStructure(_Generated):
     """``[structure] type = "arch_on_piers"``: :func:`tce.structures.arch.semicircular_arch_on_piers`."""
 
     type: Literal["arch_on_piers"]
@@ -177,16 +177,11 @@ class ArchOnPiersStructure(_Strict):
     depth: Positive = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 14
     pier_height: Positive = 1.0
-    unit_weight: Positive = 20.0
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.arch import semicircular_arch_on_piers
-
-        return semicircular_arch_on_piers(**self.model_dump(exclude={"type"}))
+    builder = semicircular_arch_on_piers
 
 
-class ArchBridgeStructure(_Strict):
+class ArchBridgeStructure(_Generated):
     """``[structure] type = "arch_bridge"``: :func:`tce.structures.bridge.arch_bridge`."""
 
     type: Literal["arch_bridge"]
@@ -196,19 +191,14 @@ class ArchBridgeStructure(_Strict):
     thickness: Positive = 0.4
     depth: Positive = 3.0
     voussoirs: Annotated[int, Field(ge=1)] = 12
-    unit_weight: Positive = 20.0
     pier_width: Positive = 1.0
     pier_height: Positive = 3.0
     piers: Literal["free", "fixed"] = "free"
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.bridge import arch_bridge
-
-        return arch_bridge(**self.model_dump(exclude={"type"}))
+    builder = arch_bridge
 
 
-class BarrelVaultStructure(_Strict):
+class BarrelVaultStructure(_Generated):
     """``[structure] type = "barrel_vault"``: :func:`tce.structures.vault.barrel_vault`."""
 
     type: Literal["barrel_vault"]
@@ -218,18 +208,13 @@ class BarrelVaultStructure(_Strict):
     voussoirs: Annotated[int, Field(ge=1)] = 12
     courses: Annotated[int, Field(ge=1)] = 6
     bond: Literal["stack", "running"] = "stack"
-    unit_weight: Positive = 20.0
     support_height: Positive | None = None
     supports: Literal["walls", "courses"] = "walls"
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.vault import barrel_vault
-
-        return barrel_vault(**self.model_dump(exclude={"type"}))
+    builder = barrel_vault
 
 
-class GroinVaultStructure(_Strict):
+class GroinVaultStructure(_Generated):
     """``[structure] type = "groin_vault"``: :func:`tce.structures.vault.groin_vault`."""
 
     type: Literal["groin_vault"]
@@ -237,18 +222,13 @@ class GroinVaultStructure(_Strict):
     span_y: Positive | None = None
     thickness: Positive = 0.2
     voussoirs: Annotated[int, Field(ge=2, multiple_of=2)] = 8
-    unit_weight: Positive = 20.0
     support_height: Positive | None = None
     supports: Literal["corners", "springings"] = "corners"
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.vault import groin_vault
-
-        return groin_vault(**self.model_dump(exclude={"type"}))
+    builder = groin_vault
 
 
-class DomeStructure(_Strict):
+class DomeStructure(_Generated):
     """``[structure] type = "dome"``: :func:`tce.structures.dome.hemispherical_dome`."""
 
     type: Literal["dome"]
@@ -257,14 +237,9 @@ class DomeStructure(_Strict):
     sectors: Annotated[int, Field(ge=3)] = 16
     courses: Annotated[int, Field(ge=1)] = 8
     oculus: Annotated[float, Field(ge=0, lt=90)] = 0.0
-    unit_weight: Positive = 20.0
     support_height: Positive | None = None
 
-    def build(self) -> Assembly:
-        """The assembly this section describes."""
-        from ..structures.dome import hemispherical_dome
-
-        return hemispherical_dome(**self.model_dump(exclude={"type"}))
+    builder = hemispherical_dome
 
 
 class FileStructure(_Strict):
@@ -281,8 +256,6 @@ class FileStructure(_Strict):
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
-        from ..structures.io import load_assembly
-
         return load_assembly(self.path, supports=self.supports, unit_weight=self.unit_weight)
 
 
@@ -298,19 +271,10 @@ _STRUCTURES = (
     ArchBridgeStructure,
 )
 #: the ``[structure] type`` values, in the order docs/studies.md lists them
-STRUCTURE_TYPES = tuple(cls.model_fields["type"].annotation.__args__[0] for cls in _STRUCTURES)
-Structure = Annotated[
-    ArchStructure
-    | PointedArchStructure
-    | SegmentalArchStructure
-    | ArchOnPiersStructure
-    | BarrelVaultStructure
-    | GroinVaultStructure
-    | DomeStructure
-    | FileStructure
-    | ArchBridgeStructure,
-    Field(discriminator="type"),
-]
+STRUCTURE_TYPES = tuple(get_args(cls.model_fields["type"].annotation)[0] for cls in _STRUCTURES)
+#: ``[structure] type`` -> its section
+_SECTIONS: dict[str, type[BaseModel]] = dict(zip(STRUCTURE_TYPES, _STRUCTURES, strict=True))
+Structure = Annotated[Union[_STRUCTURES], Field(discriminator="type")]  # noqa: UP007 (a union of a tuple)
 
 
 class MaterialSection(_Strict):
@@ -429,9 +393,10 @@ class LoadsSection(_Strict):
         """The directions as a list."""
         return [float(a) for a in (self.alpha if isinstance(self.alpha, list) else [self.alpha])]
 
-    def pattern(self, alpha: float) -> LoadPattern:
-        """The load pattern in direction ``alpha`` (raises :class:`tce.core.loads.LoadError`)."""
-        return LoadPattern(
+    def pattern(self, alpha: float, load_x: float | None = None) -> LoadPattern:
+        """The load pattern in direction ``alpha``, moved to ``load_x`` (m) when given (a
+        ``[sweep] load_x`` value); raises :class:`tce.core.loads.LoadError`."""
+        pattern = LoadPattern(
             alpha=alpha,
             lateral=self.lateral,
             point=[p.model_dump(exclude_none=True) for p in self.point],
@@ -439,6 +404,7 @@ class LoadsSection(_Strict):
             vehicle=[v.declaration() for v in self.vehicle],
             fill=None if self.fill is None else self.fill.model_dump(),
         )
+        return pattern if load_x is None else pattern.moved(load_x)
 
     def path_settings(self) -> dict[str, Any]:
         """``lambda_step``, ``tolerance``, ``lambda_cap``: how the load path runs (None: anchored
@@ -604,7 +570,7 @@ class SettlementPathSection(_Strict):
     magnitude, the geometry updated as the blocks move, to the settlement capacity
     (:func:`tce.analysis.settlement_path.settlement_path`, ``docs/settlements.md``)."""
 
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True, strict=True, populate_by_name=True)
+    model_config = ConfigDict(populate_by_name=True)  # merged with _Strict's
 
     increment: Positive = 0.001
     s_max: Positive = 1.0
@@ -816,7 +782,7 @@ class Study:
                     settlement=case,
                     settlements={s: [scale * u for u in vec] for s, vec in motions.items()},
                     alpha=p["alpha"],
-                    pattern=_pattern(spec.loads, p).to_dict(),
+                    pattern=spec.loads.pattern(p["alpha"], p.get("load_x")).to_dict(),
                     params=p,
                     structure=structure,
                     material=_with(spec.material.model_dump(), p, MATERIAL_SWEEPS),
@@ -832,12 +798,6 @@ class Study:
         return self._digests[key]
 
 
-def _pattern(section: LoadsSection, params: dict[str, float]) -> LoadPattern:
-    """The load pattern of a scenario: direction ``alpha``, moved to ``load_x`` when swept."""
-    pattern = section.pattern(params["alpha"])
-    return pattern.moved(params["load_x"]) if "load_x" in params else pattern
-
-
 def _fmt(value: float) -> str:
     """Exact label of a swept value: the shortest text that reads back as the same float
     (``0.8000001`` stays ``0.8000001``), without a trailing ``.0``."""
@@ -847,9 +807,7 @@ def _fmt(value: float) -> str:
 
 def _with(section: dict[str, Any], params: dict[str, float], keys: tuple[str, ...]) -> dict[str, Any]:
     """``section`` with the swept values of ``keys`` applied."""
-    out = dict(section)
-    out.update({k: params[k] for k in keys if k in params})
-    return out
+    return section | {k: params[k] for k in keys if k in params}
 
 
 # ---------------------------------------------------------------------------- reading
@@ -864,11 +822,6 @@ _HINTS = {
     "string_pattern_mismatch": "use only letters, digits, '_', '.' and '-', not starting with '.' or '-'",
     "union_tag_invalid": "use one of the structure types {tags}",
     "union_tag_not_found": "add type = \"semicircular_arch\" (or another structure type)",
-}
-
-#: ``[structure] type`` -> its section (from the ``Structure`` union)
-_STRUCTURES: dict[str, type[BaseModel]] = {
-    get_args(cls.model_fields["type"].annotation)[0]: cls for cls in get_args(get_args(Structure)[0])
 }
 
 
@@ -889,7 +842,7 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
     try:
         spec = StudyFile.model_validate(data)
     except ValidationError as exc:
-        raise StudyError("\n".join(describe(path, exc, StudyFile, "docs/studies.md", _HINTS, _STRUCTURES))) from None
+        raise StudyError("\n".join(describe(path, exc, StudyFile, "docs/studies.md", _HINTS, _SECTIONS))) from None
     guards.check_work(path, spec)
     if isinstance(spec.structure, FileStructure):
         where = (path.parent / spec.structure.path).resolve()

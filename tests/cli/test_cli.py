@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -133,3 +134,71 @@ def test_main_gives_the_callers_signal_handlers_back(tmp_path) -> None:
     before = signal.getsignal(signal.SIGINT)
     assert main(["show", str(tmp_path / "missing.nc")]) == 2
     assert signal.getsignal(signal.SIGINT) is before
+
+
+SETTLEMENT_STUDY = """
+[study]
+name = "spreading"
+
+[structure]
+type = "semicircular_arch"
+inner_radius = 0.9
+thickness = 0.2
+voussoirs = 12
+
+[scenarios.spread]
+left = [-1.0, 0, 0, 0, 0, 0]
+right = [1.0, 0, 0, 0, 0, 0]
+
+[scenarios.sink]
+right = [0, 0, -1.0, 0, 0, 0]
+
+[scenarios.none]
+
+[settlement_path]
+increment = 0.01
+lambda = true
+"""
+
+
+def test_show_prints_the_settlement_path(tmp_path: Path, capsys) -> None:
+    """``tce run`` counts the settlement paths' outcomes and ``tce show`` prints, per scenario, the
+    settlement outcome, the capacity (equal to the dataset's at its printed digits), the snaps,
+    the hinge sequence in order and the lateral lambda_max at the capacity (fails on main:
+    neither said anything about the settlement path)."""
+    import re
+
+    import numpy as np
+
+    study = tmp_path / "spreading.toml"
+    study.write_text(SETTLEMENT_STUDY, encoding="utf-8")
+    assert main(["-q", "run", str(study), "--out", str(tmp_path), "--no-plots", "--jobs", "1"]) == 0
+    results = tmp_path / "spreading" / "results.nc"
+    ds = xr.load_dataset(results)
+    outcomes = list(map(str, ds["settlement_outcome"].values))
+    summary = capsys.readouterr().out
+    tally = ", ".join(f"{outcomes.count(o)} {o}" for o in dict.fromkeys(outcomes))
+    assert f"; settlement path: {tally};" in summary and "no_motion" in tally
+    assert main(["show", str(results)]) == 0
+    show = capsys.readouterr().out
+    assert "settlement path (capacity: largest magnitude found standing, × the scenario's settlement vectors" in show
+    line = re.compile(r"^  (\w+): (\w+): capacity (\S+) \(first not standing (\S+)\), (\d+) snap\(s\), "
+                      r"lateral (\S+); hinges (.*)$", re.M)
+    rows = {m[1]: m.groups()[1:] for m in line.finditer(show)}
+    assert list(rows) == list(map(str, ds["scenario"].values))
+    for k, (name, (outcome, capacity, upper, snaps, lateral, hinges)) in enumerate(rows.items()):
+        assert outcome == outcomes[k]
+        digits = len(capacity.split("e")[0].replace(".", "").lstrip("0"))  # significant digits printed
+        expected = float(ds["settlement_capacity"].values[k])
+        if math.isnan(expected):
+            assert capacity == "NaN" and lateral == "–"
+        else:
+            assert float(capacity) == float(f"{expected:.{digits}g}")
+            step = int(np.flatnonzero(ds["settlement_magnitude"].values[k] == expected)[-1])
+            assert float(lateral) == pytest.approx(float(ds["settlement_lambda_max"].values[k][step]), rel=1e-5)
+        assert float(upper) == pytest.approx(float(ds["settlement_upper"].values[k]), rel=1e-5, nan_ok=True)
+        stored = [e.split(": ", 1) for e in str(ds["settlement_hinge_sequence"].values[k]).split("; ") if e]
+        joints = [what.rsplit(" ", 1)[0] for _, what in stored]
+        assert re.findall(r"\w+\|\w+", hinges) == joints  # the joints in the stored order
+        assert int(snaps) == len({s for s, what in stored if what.endswith(" snap")})
+    assert rows["spread"][0] == "collapse" and rows["none"][0] == "no_motion"

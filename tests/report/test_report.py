@@ -273,3 +273,46 @@ def test_the_assessment_and_the_searched_position_are_in_the_report(run, tmp_pat
     numbers, missing = _missing(show, page)
     assert not missing, missing
     assert "NOT adequate" in text_ and "0.7843" in text_
+
+
+def test_the_settlement_path_has_its_section(run, tmp_path: Path, capsys) -> None:
+    """The numbers ``tce show`` prints of the settlement path (values set by hand on the run's file:
+    the printing is what is checked) are in the report's section of their own, after the results,
+    and the sections after it are numbered on (fails on main: no settlement section)."""
+    import numpy as np
+    import xarray as xr
+
+    ds = xr.load_dataset(run["folder"] / "results.nc")
+    n = ds.sizes["scenario"]
+    outcomes = ["collapse", "collapse", "numerical", "no_motion"][:n]
+    mags = np.array([[0.0, 0.05, 0.135, np.nan], [0.0, 0.0454687, 0.2, 0.662969],
+                     [0.0, 0.5, 0.747, np.nan], [np.nan] * 4])[:n]
+    lam = np.array([[0.285, 0.01, 0.000666482, np.nan], [0.285, 0.05, 0.03, 0.0168379],
+                    [0.285, 0.1, 0.2, np.nan], [np.nan] * 4])[:n]
+    ds = ds.assign(
+        settlement_capacity=("scenario", np.array([0.135, 0.662969, np.nan, np.nan])[:n]),
+        settlement_upper=("scenario", np.array([0.135156, 0.663125, 0.747969, np.nan])[:n]),
+        settlement_outcome=("scenario", np.array(outcomes, dtype=object)),
+        settlement_hinge_sequence=("scenario", np.array([
+            "s=0: v02|v03 hinge; s=0: v06|v07 hinge",
+            "s=0: v02|v03 hinge; s=0.0454687: v07|v08 snap; s=0.0454687: v06|v07 hinge",
+            "s=0: v01|v02 hinge", ""][:n], dtype=object)),
+        settlement_magnitude=(("scenario", "settlement_step"), mags),
+        settlement_lambda_max=(("scenario", "settlement_step"), lam),
+    )
+    path = tmp_path / "results.nc"
+    ds.to_netcdf(path)
+    assert main(["show", str(path)]) == 0
+    show = capsys.readouterr().out
+    assert "collapse: capacity 0.662969 (first not standing 0.663125), 1 snap(s), lateral 0.0168379; " \
+           "hinges s=0: hinge v02|v03; s=0.0454687: snap v07|v08, hinge v06|v07" in show
+    assert "numerical: capacity NaN (first not standing 0.747969), 0 snap(s), lateral –" in show
+    assert main(["report", str(path), "--no-pdf"]) == 0
+    text, page = _page(tmp_path)
+    numbers, missing = _missing(show, page)
+    assert not missing, missing
+    heads = re.findall(r'<h2 id="(\w+)">(\d+)\. ', text)
+    assert [h for h, _ in heads][5:8] == ["results", "settlement", "warnings"]
+    assert [int(k) for _, k in heads] == list(range(1, len(heads) + 1))
+    assert "s=0: hinge v02|v03; s=0.0454687: snap v07|v08, hinge v06|v07" in page.cells
+    assert "0.0168379" in page.cells
