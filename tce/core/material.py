@@ -26,6 +26,7 @@ What the parameters mean at the ends of the friction range:
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Any
 
@@ -39,10 +40,9 @@ FLOWS = ("associative", "non-associative")
 def _finite(name: str, value: float | None, lower: float, strict: bool) -> None:
     if value is None:
         return
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number (float), got {type(value).__name__} {value!r}")
+    v = float(value)
     if not math.isfinite(v) or v < lower or (strict and v == lower):
         bound = f"> {lower}" if strict else f">= {lower}"
         raise ValueError(f"{name} must be a finite number {bound}, got {value!r}")
@@ -82,6 +82,9 @@ class Material:
         A negative, NaN or infinite parameter, an unknown ``flow``, a cohesion with
         unlimited friction, a tensile strength above ``cohesion / friction``, or a shear
         stiffness without a normal one. The message names the parameter.
+    TypeError
+        A parameter that is not a real number (the string ``"0.8"``, a bool); the message
+        names the parameter and the type expected.
     """
 
     friction: float | None = None

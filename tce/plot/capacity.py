@@ -10,6 +10,8 @@ marked (:func:`tce.study.positions.critical_positions`).
 from __future__ import annotations
 
 import math
+import textwrap
+from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,9 +20,10 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from ..study.outcomes import outcome_words
 from ..study.positions import critical_positions
 from .data import value
-from .figures import COLOURS, LINESTYLES, MARKERS
+from .figures import COLOURS, LINESTYLES, MARKERS, NOTE_COLOUR
 
 __all__ = ["influence_line"]
 
@@ -84,7 +87,8 @@ def influence_line(ds: xr.Dataset) -> Figure:
         One axes: one line per group (gid ``"capacity:<group>"``), its critical position a
         star (``"critical:<group>"``), tied positions hollow stars (``"tie:<group>"``),
         positions carried at any multiplier a triangle at the top (``"no_limit:<group>"``);
-        the critical positions written beside the axes.
+        the critical positions written beside the axes. When no position has a finite
+        lambda_max, the axes say why in words (gid ``"no_lambda"``: each outcome's meaning).
     """
     search = "scan_x" in ds
     curves = _search_curves(ds) if search else _sweep_curves(ds)
@@ -124,6 +128,14 @@ def influence_line(ds: xr.Dataset) -> Figure:
                    va="top", fontsize=8, bbox=dict(boxstyle="round", facecolor="white", edgecolor="#9a9a9a"))
     finite = [v for c in curves for v in c.lam if math.isfinite(v)]
     ax.set_ylim(0.0, 1.15 * max(finite) if finite else 1.0)
+    if not finite:  # no position has a limit (unbounded, infeasible, numerical...): say why
+        xs = np.concatenate([c.x for c in curves])
+        if xs.size and np.ptp(xs) > 0:
+            ax.set_xlim(xs.min() - 0.05 * np.ptp(xs), xs.max() + 0.05 * np.ptp(xs))
+        counts = Counter(map(str, ds["outcome"].values))
+        why = "\n".join(textwrap.fill(f"{n} scenario(s) {outcome_words(o)}", 70) for o, n in sorted(counts.items()))
+        ax.text(0.5, 0.5, "no finite λmax at any position:\n" + why, transform=ax.transAxes, ha="center",
+                va="center", fontsize=8, color=NOTE_COLOUR, gid="no_lambda")
     ax.set_xlabel("position x of the moving live load" + ("s' reference" if search else "") + " (m)")
     ax.set_ylabel("λmax: live-load multiplier at collapse (–)")
     ax.set_title("capacity against load position" + (" (direct limit at each position)" if search else " (influence line)"),

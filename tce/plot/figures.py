@@ -147,6 +147,19 @@ def _wrap(note: str, width_in: float) -> str:
     return "\n".join(textwrap.wrap(note, max(20, int(width_in * 17)))) if note else ""
 
 
+def _notes_figure(title: str, notes: Sequence[str], width: float = 7.0) -> Figure:
+    """A figure of words only: ``title`` and one wrapped paragraph per note (why nothing is drawn)."""
+    paras = [_wrap(n, width - 0.6) for n in notes]
+    height = 0.8 + sum(0.16 * (p.count("\n") + 1) + 0.12 for p in paras)
+    fig = Figure(figsize=(width, height))
+    fig.suptitle(title, fontsize=FONT + 2, y=1 - 0.12 / height)
+    y = height - 0.6
+    for p in paras:
+        fig.text(0.3 / width, y / height, p, ha="left", va="top", fontsize=FONT, color=NOTE_COLOUR)
+        y -= 0.16 * (p.count("\n") + 1) + 0.12
+    return fig
+
+
 def _min_span(ax: Axes, values: NDArray[np.float64]) -> None:
     """Limits that make a constant look constant: at least 5 % of the largest magnitude."""
     v = values[np.isfinite(values)]
@@ -773,7 +786,12 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
     if "max" in targets:
         handles.append(Line2D([], [], color=HINGE_COLOUR, linewidth=3, alpha=0.5, label="hinge line at λmax"))
     width = 0.7 + cols * w + (cols - 1) * 0.7 + 0.2
-    grid = _Grid(rows, cols, w, w, left=0.7, wspace=0.7, hspace=0.8, top=0.7, bottom=0.45,
+    # a scenario none of whose drawn states has a solved step: why, under the legend
+    asked = {s: [find_state(ds, s, t) for t in targets] for s in names}
+    notes = [_wrap(f"{s}: no pressure point drawn: {sts[0].note}", width - 0.4)
+             for s, sts in asked.items() if all(st.step is None for st in sts)]
+    lines = sum(n.count("\n") + 1 for n in notes)
+    grid = _Grid(rows, cols, w, w, left=0.7, wspace=0.7, hspace=0.8, top=0.7, bottom=0.45 + 0.14 * lines,
                  below=_legend_height([x.get_label() for x in handles], width))
     itf_names = [str(x) for x in ds["interface"].values]
     for n, k in enumerate(itfs):
@@ -792,8 +810,7 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
                         ax.plot(xy[:, 0], xy[:, 1], color=HINGE_COLOUR, linewidth=3, alpha=0.5, zorder=1,
                                 gid="hinge", solid_capstyle="butt")
         for s in names:
-            for j, t in enumerate(targets):
-                st = find_state(ds, s, t)
+            for j, st in enumerate(asked[s]):
                 if st.step is None:
                     continue
                 p = value(ds, "pressure_point", s, ["step", "interface", "xyz"])[st.step, k]
@@ -818,7 +835,10 @@ def base_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[object])
     what = ", ".join("λmax" if t == "max" else f"λ = {t:g}" for t in targets)
     grid.fig.suptitle(f"{_study(ds)}: pressure points on the support interfaces at {what}", fontsize=FONT + 1.5,
                       y=1 - 0.15 / grid.height)
-    _bottom_legend(grid, handles)
+    _bottom_legend(grid, handles, y=0.04 + 0.14 * lines)
+    if notes:
+        grid.fig.text(0.2 / grid.width, (0.04 + 0.14 * lines) / grid.height, "\n".join(notes), ha="left", va="top",
+                      fontsize=FONT - 0.5, color=NOTE_COLOUR, gid="no_state")
     return grid.fig
 
 
@@ -931,6 +951,9 @@ def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[o
         Pressure points in the joint rows (gid ``"transversal:<scenario>:<lambda>"``) and
         the curves of the bottom panel (gid ``"shift:<scenario>:<lambda>"``).
 
+        When no drawn state has a solved step (every step unbounded, infeasible or
+        numerical), a figure of words only: each state's note.
+
     Raises
     ------
     ValueError
@@ -943,9 +966,11 @@ def transversal_figure(ds: xr.Dataset, names: Sequence[str], targets: Sequence[o
     if chain is None or frame.kind == "radial":
         raise ValueError("the transversal shift needs one line of blocks on supports along a line")
     across = next(iter(frame.across.values()))
-    states = [st for st in (find_state(ds, s, t) for s in names for t in targets) if st.step is not None]
-    if not states:
-        raise ValueError("no drawn state has a solved step")
+    asked = [find_state(ds, s, t) for s in names for t in targets]
+    states = [st for st in asked if st.step is not None]
+    if not states:  # every step unbounded, infeasible or numerical: say so
+        return _notes_figure(f"{_study(ds)}: transversal shift of the pressure points: no state drawn",
+                             [f"{st.scenario}: {st.label}: {st.note}" for st in asked])
     drawn = [(st, *transversal_offsets(ds, st, asm, chain, across)) for st in states]
     pitch = 1.6 * max(float(np.ptp(o[:, 0])) for o in drawn[0][1])
     depth = max(float(np.ptp(o[:, 1])) for o in drawn[0][1])
@@ -1080,7 +1105,7 @@ def summary_figure(ds: xr.Dataset) -> Figure:
                                     gid=f"no_limit:{p}:{g}")
             for o, mark in bad.items():
                 ax.plot([], [], linestyle="none", marker=mark, markersize=6, color="#555555",
-                        label=f"{o}: no λmax (at the foot; the curve's colour)")
+                        label=f"{o}: no λmax\n(at the foot; the curve's colour)")
             finite = [v for v in lmax.values() if math.isfinite(v)]  # from 0: differences read against the value
             ax.set_ylim(0.0, 1.15 * max(finite) if finite and max(finite) > 0 else 1.0)
             if categorical:

@@ -13,6 +13,7 @@ import hashlib
 import json
 import math
 import platform
+import re
 import tomllib
 from dataclasses import dataclass, field
 from importlib.metadata import PackageNotFoundError, version
@@ -24,8 +25,9 @@ import xarray as xr
 
 from .. import __version__
 from ..core.material import Material
-from ..plot.data import assembly, geometry_groups, scenarios
+from ..plot.data import assembly, geometry_groups, outcome_note, scenarios
 from ..study.positions import critical_positions
+from ..study.names import LAMBDA_TOL, same_lambda
 from ..study.schema import GEOMETRY_SWEEPS
 
 __all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "report_content", "settlement_rows",
@@ -163,14 +165,19 @@ def _loads(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
     }
 
 
+#: a citation ``[n]`` in the method's text (and the label that starts a reference)
+_CITATION = re.compile(r"\[(\d+)\]")
+
+
 def _method(ds: xr.Dataset, material: dict, toml: dict) -> tuple[list[str], list[str]]:
     """Paragraphs on the method and assumptions, and the references they cite."""
     refs = ["[1] 3D exploration of internal stresses due to lateral loads and foundation movements in a semicircular "
             "arch (the TCE method implemented by tce; docs/conventions.md).",
             "[2] J. Heyman, The stone skeleton, International Journal of Solids and Structures 2 (1966) 249-279."]
     text = [
-        "The structure is a set of rigid blocks in unilateral contact; contact forces act at the vertices of the "
-        "interfaces (normal force ≥ 0 unless a tensile strength is given; friction cone ||f_t|| ≤ μ f_n + c A). "
+        "The structure is a set of rigid blocks in unilateral contact (masonry as Heyman idealised it [2]); contact "
+        "forces act at the vertices of the interfaces (normal force ≥ 0 unless a tensile strength is given; "
+        "friction cone ||f_t|| ≤ μ f_n + c A). "
         "Every free block is in equilibrium under self-weight, the fixed loads and λ times the live loads; support "
         "blocks may move (six components about their centroid) [1].",
         "Among all admissible force states the one minimising the Total Complementary Energy is the answer: a linear "
@@ -207,7 +214,22 @@ def _method(ds: xr.Dataset, material: dict, toml: dict) -> tuple[list[str], list
     if "load_x" in ds.coords:
         text.append("The moving live loads are placed at every position of the sweep; the critical position is the "
                     "one with the smallest λmax (an influence line, as bridge assessment does).")
-    return text, refs
+    return _numbered(text, refs)
+
+
+def _numbered(text: list[str], refs: list[str]) -> tuple[list[str], list[str]]:
+    """``text`` and ``refs`` with the citations ``[n]`` renumbered 1, 2, ... in order of first
+    citation, the references sorted so and those never cited left out."""
+    order: dict[str, str] = {}
+    for paragraph in text:
+        for n in _CITATION.findall(paragraph):
+            order.setdefault(n, str(len(order) + 1))
+
+    def renumber(paragraph: str) -> str:
+        return _CITATION.sub(lambda m: f"[{order[m.group(1)]}]", paragraph)
+
+    cited = [r for r in refs if _CITATION.match(r).group(1) in order]  # type: ignore[union-attr]
+    return [renumber(p) for p in text], sorted((renumber(r) for r in cited), key=lambda r: int(_CITATION.match(r)[1]))
 
 
 def _results(ds: xr.Dataset) -> dict[str, Any]:
@@ -240,10 +262,22 @@ def _results(ds: xr.Dataset) -> dict[str, Any]:
         "columns": SHOW_COLUMNS,
         "checks": {"lambda_max": "λmax", **{k: CHECK_COLUMNS.get(k, k) for k in extra + nonassoc}},
         "rows": rows,
-        "smallest": (fmt(min(finite)[0]), min(finite)[1]) if finite else None,
+        "smallest": _smallest(finite),
         "outcomes": {o: int((ds["outcome"].values == o).sum()) for o in np.unique(ds["outcome"].values.astype(str))},
         "critical": critical,
     }
+
+
+def _smallest(finite: list[tuple[float, str]]) -> tuple[str, str] | None:
+    """The smallest lambda_max and who has it: ``"scenario a"``, or every scenario tied with it
+    (:func:`tce.study.names.same_lambda`, within 1e-9 relative) named (None when none is finite)."""
+    if not finite:
+        return None
+    low = min(lam for lam, _ in finite)
+    tied = [name for lam, name in finite if same_lambda(lam, low)]
+    if len(tied) == 1:
+        return fmt(low), f"scenario {tied[0]}"
+    return fmt(low), f"scenarios {', '.join(tied)}, tied within {LAMBDA_TOL:g} relative"
 
 
 def _assessment(ds: xr.Dataset) -> list[dict[str, str]]:
@@ -346,22 +380,29 @@ def settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
     return rows
 
 
-def _warnings(ds: xr.Dataset) -> list[str]:
+def _moves_support(ds: xr.Dataset, toml: dict, i: int) -> bool:
+    """Whether scenario ``i`` moves a support: its settlement case (``[scenarios.NAME]`` of the
+    study text ``toml``) has a nonzero motion and its ``magnitude`` (1 when not swept) is not 0."""
+    case = toml.get("scenarios", {}).get(str(ds["settlement"].values[i]), {}) if "settlement" in ds.coords else {}
+    moved = any(isinstance(v, list) and any(x != 0 for x in v) for v in case.values())
+    return moved and ("magnitude" not in ds.coords or float(ds["magnitude"].values[i]) != 0.0)
+
+
+def _warnings(ds: xr.Dataset, toml: dict) -> list[str]:
     out = []
     for i, name in enumerate(ds["scenario"].values):
-        outcome = str(ds["outcome"].values[i])
-        reason = str(ds["no_limit_reason"].values[i]) if "no_limit_reason" in ds else ""
-        if outcome == "no_limit":
-            out.append(f"{name}: capped: no limit found up to the cap of the load path{f' ({reason})' if reason else ''}.")
-        elif outcome != "limit":
-            out.append(f"{name}: outcome {outcome}: no λmax is reported for it.")
+        note = outcome_note(ds, str(name))  # what the outcome means (docs/conventions.md), "" for limit
+        if note:
+            out.append(f"{name}: {note}.")
         if "unique" in ds:
             flat = np.asarray(ds["unique"].values[i], dtype=float)
             status = ds["status"].values[i].astype(str)
             n = int(((flat == 0) & (status == "optimal")).sum())
             if n:
-                out.append(f"{name}: {n} optimal step(s) are not necessarily unique (rigid contacts, no support "
-                           "motion): the force state drawn is one admissible state of many.")
+                why = ("rigid contacts: the minimisers of the energy form a face" if _moves_support(ds, toml, i) else
+                       "rigid contacts, no support motion: every admissible state minimises the energy")
+                out.append(f"{name}: {n} optimal step(s) are not necessarily unique ({why}): the force state drawn "
+                           "is the canonical one of many (docs/conventions.md).")
         if "nonassoc_status" in ds and str(ds["nonassoc_status"].values[i]) not in ("converged", ""):
             out.append(f"{name}: the non-associative scheme did not converge ({ds['nonassoc_status'].values[i]}): "
                        "only the associative upper bound holds.")
@@ -407,7 +448,7 @@ def report_content(ds: xr.Dataset, results: Path) -> Content:
         references=refs,
         results=_results(ds),
         settlement={"units": settlement_units(ds), "rows": settlement_rows(ds)} if "settlement_capacity" in ds else {},
-        warnings=_warnings(ds),
+        warnings=_warnings(ds, toml),
         provenance={
             "tce_run": str(ds.attrs.get("tce_version", "?")),
             "tce_report": __version__,

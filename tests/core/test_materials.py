@@ -276,3 +276,13 @@ def test_bracket_figure_only_for_material_sweeps(tmp_path: Path) -> None:
 def test_study_error_type() -> None:
     with pytest.raises(StudyError, match="material.flow"):
         parse_study(STUDY.replace('"non-associative"', '"dilatant"'))
+
+
+@pytest.mark.parametrize("name", ["friction", "normal_stiffness", "cohesion", "tensile_strength",
+                                  "compressive_strength"])
+@pytest.mark.parametrize("bad", ["0.8", True])
+def test_a_parameter_that_is_not_a_number_is_named(name: str, bad: object) -> None:
+    """``Material(friction="0.8")`` raised a bare TypeError from a comparison (issue 37 item 8)."""
+    kwargs = {"friction": 0.8, name: bad}
+    with pytest.raises(TypeError, match=f"^{name} must be a real number \\(float\\), got {type(bad).__name__}"):
+        Material(**kwargs)
