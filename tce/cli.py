@@ -353,7 +353,8 @@ def _run(args: argparse.Namespace) -> int:
         tally += f"; settlement path: {_settlement_tally(report.results)}"
     print(f"{report.results}: {len(report.outcomes)} scenarios ({what}): {tally}; {len(report.figures)} figures")
     if not (args.no_plots or args.no_report):
-        _report_lines(_write_report(report.results, figures=report.figures, pdf=args.pdf))
+        files = _write_report(report.results, figures=report.figures, pdf=args.pdf)
+        _report_lines(files, "" if args.pdf else f"tce run --pdf, or tce report {report.results}")
     odd = {name: o for name, o in report.outcomes.items() if o != "limit"}
     for name, outcome in odd.items():
         print(f"  {outcome}: {name}")
@@ -575,13 +576,13 @@ def _write_report(results: Path, out: Path | None = None, figures: list[Path] | 
         raise UsageError(f"{results}: cannot write its report: not a complete tce results file ({exc})") from None
 
 
-def _report_lines(files) -> None:
-    from .report import NO_PDF_ASKED
-
+def _report_lines(files, how_to_print: str = "") -> None:
+    """The report's files, or why its PDF was not printed (``how_to_print``: the command that
+    prints it, where the PDF was not asked for)."""
     if files.pdf:
         print(f"report: {files.html}, {files.pdf}")
-    elif files.skipped == NO_PDF_ASKED:
-        print(f"report: {files.html} (the PDF: tce run --pdf, or tce report {files.html.parent / 'results.nc'})")
+    elif how_to_print:
+        print(f"report: {files.html} (the PDF: {how_to_print})")
     else:
         print(f"report: {files.html} (PDF skipped: {files.skipped})")
 

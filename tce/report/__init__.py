@@ -24,7 +24,7 @@ import xarray as xr
 
 from ..files import atomic_write
 
-__all__ = ["NO_PDF_ASKED", "ReportFiles", "find_browser", "print_pdf", "report_html", "write_report"]
+__all__ = ["ReportFiles", "find_browser", "print_pdf", "report_html", "write_report"]
 
 log = logging.getLogger(__name__)
 
@@ -50,8 +50,6 @@ CAPTIONS = {
 CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync", "--no-pdf-header-footer")
 PRINT_TIMEOUT = 180.0  # s
-#: the reason :class:`ReportFiles` gives for a PDF that was not asked for
-NO_PDF_ASKED = "not asked for"
 
 
 @dataclass(frozen=True)
@@ -182,7 +180,7 @@ def write_report(results: Path, out: Path | None = None, figures: list[Path] | N
     with atomic_write(html) as tmp:
         tmp.write_text(page, encoding="utf-8")
     if not pdf:
-        return ReportFiles(html, None, NO_PDF_ASKED)
+        return ReportFiles(html, None, "not asked for")
     why = print_pdf(html, out / "report.pdf")
     if why:
         log.warning("report PDF skipped: %s; the HTML report is %s", why, html)
