@@ -10,6 +10,7 @@ import xarray as xr
 
 import tce
 from tce.cli import main
+from study.test_settlement_path import STUDY as SETTLEMENT_STUDY
 
 STUDY = """
 [study]
@@ -134,31 +135,6 @@ def test_main_gives_the_callers_signal_handlers_back(tmp_path) -> None:
     before = signal.getsignal(signal.SIGINT)
     assert main(["show", str(tmp_path / "missing.nc")]) == 2
     assert signal.getsignal(signal.SIGINT) is before
-
-
-SETTLEMENT_STUDY = """
-[study]
-name = "spreading"
-
-[structure]
-type = "semicircular_arch"
-inner_radius = 0.9
-thickness = 0.2
-voussoirs = 12
-
-[scenarios.spread]
-left = [-1.0, 0, 0, 0, 0, 0]
-right = [1.0, 0, 0, 0, 0, 0]
-
-[scenarios.sink]
-right = [0, 0, -1.0, 0, 0, 0]
-
-[scenarios.none]
-
-[settlement_path]
-increment = 0.01
-lambda = true
-"""
 
 
 def test_show_prints_the_settlement_path(tmp_path: Path, capsys) -> None:
