@@ -319,7 +319,6 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
     if any(faint.values()):
         handles.append(Line2D([], [], color="black", alpha=0.4, linewidth=2.5,
                               label="faint: optimum not unique\n(the canonical state is drawn)"))
-    notes = [f"{s}: {outcome_note(ds, s)}" for s in names if outcome_note(ds, s)]
     limits = sorted({round(float(value(ds, "lambda_max", s)), 9) for s in names
                      if math.isfinite(float(value(ds, "lambda_max", s)))})
     if limits:
@@ -329,7 +328,9 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
     ncols, nrows = (2, 2) if square else (len(comps), len(facets))
     w = 3.4
     width = 0.8 + ncols * w + (ncols - 1) * 0.85 + 0.2
-    below = _legend_height([h.get_label() for h in handles], width) + 0.16 * len(notes)
+    notes = [_wrap(f"{s}: {outcome_note(ds, s)}", width - 0.4) for s in names if outcome_note(ds, s)]
+    lines = [0, *np.cumsum([n.count("\n") + 1 for n in notes])]  # note lines below each note
+    below = _legend_height([h.get_label() for h in handles], width) + 0.16 * lines[-1]
     grid = _Grid(nrows, ncols, w, 2.3, left=0.8, wspace=0.85, hspace=0.8, top=0.8, bottom=0.45, below=below)
     lmax = limits
     xmax = 1.08 * max([*lmax, *(float(np.max(v)) for v in lams.values() if v.size)], default=1.0)
@@ -367,9 +368,10 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
                 title += ("\n" if title else "") + _wrap("coincide: " + _coincide(same, len(members) == 1), w)
             ax.set_title(title, fontsize=FONT - 0.5, loc="left", y=1.0)
     grid.fig.suptitle(f"{_study(ds)}: forces on the supports", fontsize=FONT + 2, y=1 - 0.18 / grid.height)
-    _bottom_legend(grid, handles, y=0.06 + 0.16 * len(notes))
+    _bottom_legend(grid, handles, y=0.06 + 0.16 * lines[-1])
     for k, note in enumerate(notes):
-        grid.fig.text(0.5, (0.06 + 0.16 * k) / grid.height, note, ha="center", fontsize=FONT - 0.5, color=NOTE_COLOUR)
+        grid.fig.text(0.5, (0.06 + 0.16 * lines[k]) / grid.height, note, ha="center", va="bottom",
+                      fontsize=FONT - 0.5, color=NOTE_COLOUR)
     return grid.fig
 
 
