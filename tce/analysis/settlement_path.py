@@ -73,13 +73,14 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import scipy.sparse as sp
 
+from ..core.loads import AppliedLoads
 from ..core.material import Material
 from ..core.model import EZ, Plane, find_plane
 from ..core.result import Result
@@ -230,6 +231,7 @@ class _Scene:
     support: NDArray[np.int64]  # support block indices
     velocity: NDArray[np.float64]  # (ns, ndof) per unit magnitude about the centroid
     size: float
+    dead: tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]] | None = None  # blocks, points, forces
 
     @property
     def dim(self) -> int:
@@ -386,10 +388,20 @@ def _unscale(sc: _Scene, x: NDArray[np.float64]) -> NDArray[np.float64]:
     return x.reshape(-1, sc.ndof) / sc.scale
 
 
-def _weights(sc: _Scene) -> NDArray[np.float64]:
-    """The self-weight load vector over the free blocks' dofs, in units of their total weight."""
+def _weights(sc: _Scene, cf: _Config | None = None) -> NDArray[np.float64]:
+    """The self-weight load vector over the free blocks' dofs, in units of their total weight;
+    with ``cf``, plus the dead point loads (:func:`settlement_path`'s ``dead``) carried by their
+    blocks to configuration ``cf`` (their points moved, their forces unchanged)."""
     b = np.zeros(sc.ndof * len(sc.free))
-    b[sc.dim - 1 :: sc.ndof] = -sc.weights[sc.free] / sc.weights[sc.free].sum()
+    total = sc.weights[sc.free].sum()
+    b[sc.dim - 1 :: sc.ndof] = -sc.weights[sc.free] / total
+    if cf is not None and sc.dead is not None:
+        blocks, points, forces = sc.dead  # on free blocks only (:func:`_dead`)
+        col = np.full(len(sc.weights), -1)
+        col[sc.free] = np.arange(len(sc.free))
+        r = cf.place(blocks, points, sc) - cf.c[blocks]
+        w = np.column_stack([forces, sc.kin.moment(r, forces)]) / sc.scale / total  # scaled dofs (:func:`_operators`)
+        np.add.at(b, (sc.ndof * col[blocks])[:, None] + np.arange(sc.ndof), w)
     return b
 
 
@@ -397,7 +409,7 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
     """The TCE and its kinematic dual on the closed contacts of configuration ``cf`` (module
     docstring); the equilibrium of the duals is checked."""
     Gn, Gt, hn, ht, kc, p, dirs = _operators(sc, cf, closed)
-    b = _weights(sc)
+    b = _weights(sc, cf)
     V = np.abs(sc.velocity).max(initial=0.0) or 1.0  # velocities in units of the supports' largest
     status, res = _linprog(-b, A_ub=-Gn, b_ub=hn / V, A_eq=Gt, b_eq=-ht / V, bounds=(None, None))
     if status == "infeasible":
@@ -438,10 +450,10 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
     the scene's coordinates) on the closed contacts of ``cf``:
     ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding)."""
     Gn, Gt, *_ = _operators(sc, cf, closed)
-    b = _weights(sc)
+    b, weight = _weights(sc, cf), _weights(sc)
     blat = np.zeros_like(b)
     for j in range(sc.dim):
-        blat[j :: sc.ndof] = -b[sc.dim - 1 :: sc.ndof] * direction[j]
+        blat[j :: sc.ndof] = -weight[sc.dim - 1 :: sc.ndof] * direction[j]
     nn, nt = Gn.shape[0], Gt.shape[0]
     A = sp.hstack([Gn.T, Gt.T, sp.csr_matrix(blat[:, None])])
     c = np.zeros(nn + nt + 1)
@@ -497,7 +509,6 @@ def _snap(
     twice the widest relative rotation of a joint open at the start of the fall (a snap
     turns the blocks back by the opening of the joint it closes).
     """
-    b = _weights(sc)
     bounds = (-1.0, 1.0)  # scaled velocities (:func:`_operators`)
     start = cf
     ajar = _per_interface(sc, ~closed)
@@ -505,6 +516,7 @@ def _snap(
     reach = max(limit, 2.0 * float(np.linalg.norm(rel, axis=-1).max(initial=0.0)))
     everything = np.ones(closed.shape, dtype=bool)
     for _ in range(2000):
+        b = _weights(sc, cf)
         Gn, Gt, *_ = _operators(sc, cf, closed)
         status, res = _linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds)
         if status != "optimal":
@@ -540,6 +552,21 @@ def _snap(
                 return None
         cf, closed = new, now
     return None
+
+
+def _dead(sc: _Scene, dead: AppliedLoads) -> _Scene:
+    """``sc`` with the fixed forces of ``dead`` (resolved on the same assembly) in its coordinates."""
+    if dead.scaled.any():
+        raise ValueError("dead: the settlement path carries fixed loads only; live loads are searched after it")
+    if isinstance(sc.kin, _Planar):
+        plane = sc.kin.plane
+        if not dead.in_plane(plane):
+            raise ValueError("dead: loads out of the assembly's plane; only in-plane loads are followed")
+        points = np.column_stack([(dead.points - plane.origin) @ plane.e, dead.points[:, 2]])
+        forces = np.column_stack([dead.forces @ plane.e, dead.forces[:, 2]])
+    else:
+        points, forces = dead.points, dead.forces
+    return replace(sc, dead=(dead.blocks, points, forces))
 
 
 def _checked(
@@ -694,6 +721,7 @@ def settlement_path(
     snap_ratio: float = 1e3,
     snap_limit: float = 0.3,
     model: str = "auto",
+    dead: AppliedLoads | None = None,
 ) -> SettlementPathResult:
     """Follow the support motion ``s * settlements`` from ``s = 0`` until nothing stands.
 
@@ -730,6 +758,11 @@ def settlement_path(
         ``"auto"`` follows a planar assembly in its plane and any other in space;
         ``"spatial"`` follows every assembly in space (the same path: a check of the
         spatial kinematics on a planar structure).
+    dead : AppliedLoads, optional
+        Fixed loads besides the self-weight (:func:`tce.core.loads.resolve` of a pattern on
+        ``assembly`` without live loads: a fill's weight, fixed point loads), carried along
+        the path by the blocks they act on: each force keeps its direction and magnitude, its
+        point moves with its block. The lateral pattern of ``lam`` stays the self-weight's.
     """
     t0 = time.perf_counter()
     if not (math.isfinite(increment) and increment > 0):
@@ -740,6 +773,8 @@ def settlement_path(
     if not (math.isfinite(atol) and atol > 0):
         raise ValueError(f"atol must be a finite number > 0, got {atol!r}")
     sc, direction = _checked(assembly, material, settlements, alpha if lam else None, model)
+    if dead is not None:
+        sc = _dead(sc, dead)
     gtol = gap_tol * sc.size
     sett = {k: list(np.asarray(v, dtype=float)) for k, v in settlements.items()}
     n_solves = 0

@@ -146,6 +146,17 @@ META: dict[str, tuple[str, str]] = {
     "settlement_hinge_point": ("m", "current position of each hinge (NaN for interfaces that do not rotate)"),
     "settlement_step": ("-", "standing configuration of the settlement path, in order of magnitude"),
     "settlement_magnitude": ("1", "settlement magnitude, in multiples of the scenario's settlement vectors"),
+    "live_at": ("1", "settlement magnitude at which the live loads are applied to the deformed structure "
+                "([settlement_path] live_at)"),
+    "settlement_live_step": ("1", "magnitude of the path's standing configuration used (the last at or below live_at; "
+                             "NaN where nothing stands)"),
+    "settlement_live_lambda": ("1", "lambda_max of the live loads on the deformed structure (their critical position "
+                               "searched again with [loads] critical_position)"),
+    "settlement_live_x": ("m", "critical position of the moving loads on the deformed structure (NaN without a search)"),
+    "settlement_live_status": ("-", "status of that limit or search (optimal, unbounded, infeasible, numerical), "
+                               "not_standing beyond the path's last standing magnitude, no_motion"),
+    "settlement_live_gap": ("m", "widest opening of a contact point counted as a contact on the deformed structure "
+                            "(within contact_gap: the motion that closes it is neglected)"),
     # coordinates
     "scenario": ("-", "scenario name"),
     "step": ("-", "load-path step, sorted by load multiplier"),

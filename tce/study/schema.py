@@ -568,7 +568,12 @@ class AssessmentSection(_Strict):
 class SettlementPathSection(_Strict):
     """``[settlement_path]``: follow each scenario's settlement vectors times a growing
     magnitude, the geometry updated as the blocks move, to the settlement capacity
-    (:func:`tce.analysis.settlement_path.settlement_path`, ``docs/settlements.md``)."""
+    (:func:`tce.analysis.settlement_path.settlement_path`, ``docs/settlements.md``), carrying
+    the fixed loads; ``live_at``: the magnitudes at which the live loads' ``lambda_max`` is
+    computed on the deformed structure (its critical position searched again with
+    ``[loads] critical_position``; :mod:`tce.study.settlement`), the contacts open by at most
+    ``contact_gap`` (m; default ``1e-3`` of the structure's size) carrying compression: a joint
+    opened by less closes under a motion that the limit analysis neglects."""
 
     model_config = ConfigDict(populate_by_name=True)  # merged with _Strict's
 
@@ -576,6 +581,8 @@ class SettlementPathSection(_Strict):
     s_max: Positive = 1.0
     tolerance: Positive | None = None
     lam: bool = Field(default=False, alias="lambda")
+    live_at: list[Annotated[float, Field(ge=0.0, allow_inf_nan=False)]] | None = None
+    contact_gap: Positive | None = None
 
     @model_validator(mode="after")
     def _not_too_many_increments(self) -> SettlementPathSection:
@@ -586,6 +593,15 @@ class SettlementPathSection(_Strict):
                 f"s_max / increment = {self.s_max / self.increment:.3g} increments, more than {MAX_STEPS}; "
                 "fix: a larger increment or a smaller s_max"
             )
+        if self.live_at is not None:
+            if not self.live_at:
+                raise ValueError("live_at is an empty list; fix: give the magnitudes (>= 0) or remove it")
+            _distinct("settlement_path.live_at", self.live_at)
+            if max(self.live_at) > self.s_max:
+                raise ValueError(
+                    f"live_at {max(self.live_at):g} is beyond s_max = {self.s_max:g}; fix: raise s_max or "
+                    "lower the magnitude"
+                )
         return self
 
 
@@ -1041,10 +1057,18 @@ def _check_settlement_path(study: Study) -> None:
     from ..analysis.settlement_path import check_path_scene
 
     for sc in study.scenarios():
-        if not sc.loads_pattern.default:
+        pattern = sc.loads_pattern
+        if pattern.live_loads and not section.live_at:
             raise StudyError(
-                f"{study.path}: settlement_path: the path carries the self-weight (and, with lambda = true, the "
-                "lateral pattern) only; fix: remove the [loads] point or distributed loads, or [settlement_path]"
+                f"{study.path}: settlement_path: the path carries the self-weight and the fixed loads; the live "
+                f"loads ({', '.join(pattern.live_loads)}) are applied after it, on the deformed structure, at the "
+                "magnitudes of live_at; fix: add live_at = [...] to [settlement_path] (multiples of the settlement "
+                "vectors), or remove [settlement_path]"
+            )
+        if section.live_at and not pattern.live_loads:
+            raise StudyError(
+                f"{study.path}: settlement_path.live_at: no live load to apply (lambda multiplies the lateral "
+                "pattern alone, which lambda = true follows along the path); fix: remove live_at or add a live load"
             )
         try:
             check_path_scene(study.assembly(sc.structure), build_material(sc.material), sc.settlements, sc.alpha if section.lam else None)
