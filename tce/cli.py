@@ -378,6 +378,7 @@ def _show(args: argparse.Namespace) -> int:
     print(table.to_string(float_format=lambda v: f"{v:.6g}"))
     _show_loads(ds)
     _show_outcomes(ds)
+    _show_small_displacements(ds)
     if "load_x" in ds.coords:
         _show_critical(ds)
     if "critical_x" in ds:
@@ -389,6 +390,16 @@ def _show(args: argparse.Namespace) -> int:
     if "settlement_capacity" in ds:
         _show_settlement(ds)
     return 0
+
+
+def _show_small_displacements(ds) -> None:
+    """Where a scenario moves a support: lambda_max does not depend on the settlement's
+    magnitude (:func:`tce.report.content.small_displacement_note`)."""
+    from .report.content import small_displacement_note
+
+    note = small_displacement_note(ds)
+    if note:
+        print(f"settlements: {note.replace('λ', 'lambda_')}")
 
 
 def _show_loads(ds) -> None:
@@ -442,13 +453,21 @@ def _show_assessment(ds) -> None:
 def _show_settlement(ds) -> None:
     """The settlement path's answer per scenario (``[settlement_path]``,
     :func:`tce.report.content.settlement_rows`)."""
-    from .report.content import settlement_rows, settlement_units
+    from .report.content import live_settlement_rows, settlement_rows, settlement_units
 
     print(f"settlement path (capacity: largest magnitude found standing, {settlement_units(ds)}; "
           "lateral: lambda_max of the lateral pattern on the deformed structure at the capacity):")
     for r in settlement_rows(ds):
         print(f"  {r['scenario']}: {r['outcome']}: capacity {r['capacity']} (first not standing {r['upper']}), "
               f"{r['snaps']} snap(s), lateral {r['lateral']}; hinges {r['hinges']}")
+    live = live_settlement_rows(ds)
+    if live:
+        print("live loads after a finite settlement (lambda_max on the deformed structure, the fixed loads carried; "
+              "the small-displacement lambda_max does not depend on the settlement's magnitude):")
+    for r in live:
+        where = f" at x = {r['x']} m" if r["x"] != "–" else ""
+        print(f"  {r['scenario']}: s = {r['at']} (path step {r['step']}): {r['status']}: lambda_max {r['lambda']}{where}; "
+              f"gaps up to {r['gap']} mm counted closed")
 
 
 def _show_search(ds) -> None:

@@ -30,8 +30,9 @@ from ..study.positions import critical_positions
 from ..study.names import LAMBDA_TOL, same_lambda
 from ..study.schema import GEOMETRY_SWEEPS
 
-__all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "report_content", "settlement_rows",
-           "settlement_units"]
+__all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "live_settlement_rows", "report_content",
+           "small_displacement_note",
+           "settlement_rows", "settlement_units"]
 
 #: the columns of ``tce show`` (:func:`tce.cli._show`), in its order, with the report's headings
 SHOW_COLUMNS = {
@@ -380,6 +381,47 @@ def settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
     return rows
 
 
+def live_settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
+    """The live loads' ``lambda_max`` on the deformed structure (``[settlement_path] live_at``),
+    one row per scenario and magnitude, as ``tce show`` prints it.
+
+    Each row holds, as text: ``scenario``; ``at`` (the magnitude asked, in
+    :func:`settlement_units`); ``step`` (the path's standing magnitude used); ``lambda``
+    (``lambda_max`` of the live loads there, ``–`` unless optimal); ``x`` (the critical
+    position, m; ``–`` without a search); ``status``; ``gap`` (the widest opening counted as
+    a contact, mm). Empty without ``live_at``.
+    """
+    if "settlement_live_lambda" not in ds:
+        return []
+    rows = []
+    for k, name in enumerate(ds["scenario"].values):
+        for j, at in enumerate(ds["live_at"].values):
+            status = str(ds["settlement_live_status"].values[k, j])
+            ok = status == "optimal"
+            value = lambda var: float(ds[var].values[k, j])  # noqa: E731
+            rows.append({
+                "scenario": str(name), "at": fmt(float(at)), "step": fmt(value("settlement_live_step")),
+                "lambda": fmt(value("settlement_live_lambda")) if ok else "–",
+                "x": fmt(value("settlement_live_x")) if ok and math.isfinite(value("settlement_live_x")) else "–",
+                "status": status,
+                "gap": fmt(1e3 * value("settlement_live_gap")) if math.isfinite(value("settlement_live_gap")) else "–",
+            })
+    return rows
+
+
+def small_displacement_note(ds: xr.Dataset) -> str:
+    """One sentence where a scenario moves a support and no finite settlement is followed with
+    the live loads (``[settlement_path] live_at``): ``lambda_max`` does not depend on the
+    settlement's magnitude; "" otherwise."""
+    text = str(ds.attrs.get("study", ""))
+    toml = tomllib.loads(text) if text else {}
+    if "settlement_live_lambda" in ds or not any(_moves_support(ds, toml, i) for i in range(ds.sizes["scenario"])):
+        return ""
+    return ("λmax does not depend on the support motions (rigid blocks, small displacements: the static theorem): "
+            "a settlement changes the force state, not the collapse load, whatever its magnitude; the adequacy "
+            "after a finite settlement is [settlement_path] live_at (docs/settlements.md)")
+
+
 def _moves_support(ds: xr.Dataset, toml: dict, i: int) -> bool:
     """Whether scenario ``i`` moves a support: its settlement case (``[scenarios.NAME]`` of the
     study text ``toml``) has a nonzero motion and its ``magnitude`` (1 when not swept) is not 0."""
@@ -389,7 +431,8 @@ def _moves_support(ds: xr.Dataset, toml: dict, i: int) -> bool:
 
 
 def _warnings(ds: xr.Dataset, toml: dict) -> list[str]:
-    out = []
+    note = small_displacement_note(ds)
+    out = [note + "."] if note else []
     for i, name in enumerate(ds["scenario"].values):
         note = outcome_note(ds, str(name))  # what the outcome means (docs/conventions.md), "" for limit
         if note:
@@ -447,7 +490,8 @@ def report_content(ds: xr.Dataset, results: Path) -> Content:
         method=method,
         references=refs,
         results=_results(ds),
-        settlement={"units": settlement_units(ds), "rows": settlement_rows(ds)} if "settlement_capacity" in ds else {},
+        settlement={"units": settlement_units(ds), "rows": settlement_rows(ds), "live": live_settlement_rows(ds)}
+        if "settlement_capacity" in ds else {},
         warnings=_warnings(ds, toml),
         provenance={
             "tce_run": str(ds.attrs.get("tce_version", "?")),

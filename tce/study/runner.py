@@ -34,6 +34,7 @@ Faults (``docs/studies.md``, "Faults and resuming"):
 from __future__ import annotations
 
 import contextlib
+import json
 import logging
 import math
 import multiprocessing as mp
@@ -57,7 +58,8 @@ from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
 from ..analysis.assessment import adequacy_factor
-from ..analysis.critical import critical_position
+from ..analysis.critical import CriticalResult, critical_position
+from ..core.loads import LoadPattern
 from . import keys
 from .jobs import choose_jobs
 from .names import same_lambda
@@ -190,7 +192,7 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     tol = sc.loads["tolerance"]
     pattern, crit = sc.loads_pattern, None
     if sc.loads.get("critical_position"):
-        crit = critical_position(analysis, pattern, start=sc.loads["positions"])
+        crit = _search(sc, analysis, pattern)
         if crit.ok:
             log.debug("scenario %r: critical position %s", sc.name, crit.message)
             pattern = crit.pattern
@@ -221,6 +223,27 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
         factors = sc.loads["dead_factor"], sc.loads["live_factor"]
         ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
     return ds if crit is None else with_critical(ds, crit)
+
+
+#: a worker's critical-position searches of the run: search key -> result (most recently used last)
+_SEARCHES: dict[str, CriticalResult] = {}
+
+
+def _search(sc: Scenario, analysis: Analysis, pattern: LoadPattern) -> CriticalResult:
+    """The critical-position search of a scenario, run once per process for every scenario
+    with the same structure, material, loads and starting grid: the direct limit does not
+    depend on support motions (the static theorem), so scenarios that differ only in their
+    settlements (a magnitude sweep) share one search."""
+    key = json.dumps([sc.group, sc.pattern, sc.loads["positions"]], sort_keys=True)
+    crit = _SEARCHES.pop(key, None)
+    if crit is None:
+        crit = critical_position(analysis, pattern, start=sc.loads["positions"])
+    else:
+        log.debug("scenario %r: the critical position of an earlier scenario with other settlements", sc.name)
+    _SEARCHES[key] = crit
+    while len(_SEARCHES) > _KEEP:
+        _SEARCHES.pop(next(iter(_SEARCHES)))
+    return crit
 
 
 def missing_lambdas(solved: Sequence[float], wanted: Sequence[float], upper: float) -> list[float]:
