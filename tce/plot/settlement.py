@@ -1,8 +1,8 @@
 """Figures of the finite-settlement path (``[settlement_path]``, ``docs/settlements.md``).
 
 :func:`settlement_curves`
-    Thrust and lambda_max of the deformed structure against the settlement magnitude, one
-    colour per scenario; the capacity a dotted vertical line, each snap (a hinge moving to a
+    Thrust, lambda_max of the deformed structure and the live loads' adequacy after the
+    settlement against the settlement magnitude, one colour per scenario; the capacity a dotted vertical line, each snap (a hinge moving to a
     neighbouring joint) a cross. The settlement analogue of the paper's Fig. 8.
 :func:`settlement_shapes`
     The deformed structure at 0, half the capacity and the capacity, true scale.
@@ -86,19 +86,20 @@ def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
     Figure
         Left: for a planar structure ``|H|`` of each support (kN; gid
         ``"thrust:<scenario>:<support>"``); for a spatial one the thrust against the motion
-        (:func:`_thrust_against_motion`; gid ``"thrust:<scenario>"``); right, when computed:
-        lambda_max (gid ``"lambda:<scenario>"``).
+        (:func:`_thrust_against_motion`; gid ``"thrust:<scenario>"``); then, when computed:
+        lambda_max of the lateral pattern (gid ``"lambda:<scenario>"``); with ``live_at``, the
+        live loads' lambda_max on the deformed structure (:func:`_live`).
     """
     names = list(names or settled_scenarios(ds))
     asm = assembly(ds)
     plane = find_plane(asm)
     e = plane.e if plane is not None else np.array([1.0, 0.0, 0.0])
     lam = "settlement_lambda_max" in ds and bool(np.isfinite(ds["settlement_lambda_max"].values).any())
-    fig = Figure(figsize=(11.0 if lam else 7.0, 5.0))
-    width = 0.36 if lam else 0.8
-    axes = [fig.add_axes((0.08, 0.26, width, 0.64))]
-    if lam:
-        axes.append(fig.add_axes((0.58, 0.26, width, 0.64)))
+    live = "settlement_live_lambda" in ds
+    n_axes = 1 + lam + live
+    fig = Figure(figsize=(3.0 + 4.0 * n_axes, 5.0))
+    width = 0.8 / n_axes - 0.06 * (n_axes > 1)
+    axes = [fig.add_axes((0.08 + k / n_axes * 0.92, 0.26, width, 0.64)) for k in range(n_axes)]
     handles = []
     supports = [str(s) for s in ds["support"].values]
     for i, name in enumerate(names):
@@ -122,6 +123,8 @@ def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
             vals = np.asarray(ds["settlement_lambda_max"].sel(scenario=name).values, dtype=float)[:n]
             (line,) = axes[1].plot(mags, vals, color=colour, lw=1.6)
             line.set_gid(f"lambda:{name}")
+        if live:
+            _live(axes[-1], ds, name, colour)
         outcome = str(ds["settlement_outcome"].sel(scenario=name).values)
         label = f"{name}: capacity {cap:.4g} ({outcome})" if np.isfinite(cap) else f"{name}: {outcome}"
         handles.append(Line2D([], [], color=colour, lw=1.6, label=label))
@@ -137,11 +140,35 @@ def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
         axes[1].set_xlabel("settlement magnitude (multiples of the settlement vector)")
         axes[1].set_ylabel("λmax of the deformed structure")
         axes[1].set_title("Lateral capacity left")
+    if live:
+        handles.append(Line2D([], [], color="0.3", ls="--", lw=1.0, label="small displacements (any magnitude)"))
+        axes[-1].set_xlabel("settlement magnitude (multiples of the settlement vector)")
+        axes[-1].set_ylabel("λmax of the live loads on the deformed structure")
+        axes[-1].set_title("Adequacy of the live loads after the settlement")
     for ax in axes:
         ax.grid(True, lw=0.4, alpha=0.5)
         ax.set_xlim(left=0.0)
     fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
     return fig
+
+
+def _live(ax, ds: xr.Dataset, name: str, colour: str) -> None:
+    """The live loads' lambda_max on the deformed structure at each ``live_at`` magnitude
+    (dots joined, gid ``"live:<scenario>"``; magnitudes not solved optimal left out and named
+    below the axis), and the small-displacement lambda_max of the scenario's load path,
+    which no magnitude changes (dashed, gid ``"live0:<scenario>"``)."""
+    at = np.asarray(ds["settlement_live_step"].sel(scenario=name).values, dtype=float)
+    vals = np.asarray(ds["settlement_live_lambda"].sel(scenario=name).values, dtype=float)
+    status = [str(v) for v in ds["settlement_live_status"].sel(scenario=name).values]
+    ok = np.array([v == "optimal" for v in status]) & np.isfinite(at)
+    (line,) = ax.plot(at[ok], vals[ok], "o-", color=colour, lw=1.6, ms=4)
+    line.set_gid(f"live:{name}")
+    small = float(ds["lambda_direct"].sel(scenario=name)) if "lambda_direct" in ds else float("nan")
+    if np.isfinite(small):
+        ax.axhline(small, color=colour, ls="--", lw=1.0).set_gid(f"live0:{name}")
+    others = [f"{a:g}: {s}" for a, s, good in zip(ds["live_at"].values, status, ok) if not good]
+    if others:
+        ax.text(0.0, -0.2, f"{name}, not drawn: " + "; ".join(others), transform=ax.transAxes, fontsize=7, va="top")
 
 
 def _outline(points: np.ndarray) -> np.ndarray:
