@@ -12,7 +12,7 @@ plane the two ends of each joint's trace, in space the vertices of its polygon. 
 the rigid problem (the paper, eq. (11), ``D = 0``)::
 
     minimise    sum_j f_j . h_j                     (= -sum_s R_s . U_s)
-    subject to  G' f + b = 0,   fn >= 0             (G: compatibility, b: self-weight)
+    subject to  G' f + b = 0,   fn >= 0             (G: compatibility, b: self-weight, dead loads)
 
 and its dual, the kinematic problem of the blocks driven by the support velocity ``U``::
 

@@ -185,3 +185,44 @@ def test_magnitude_sweep_searches_once(tmp_path: Path, monkeypatch, capsys):
     assert len(set(np.round(ds["critical_lambda"].values, 12))) == 1
     assert main(["show", str(report.results)]) == 0
     assert "lambda_max does not depend on the support motions" in capsys.readouterr().out
+
+
+def test_fixed_position_and_beyond_the_capacity(tmp_path: Path):
+    """A live point load at its declared position (no search): at magnitude 0 the direct limit
+    of the undeformed arch; beyond the settlement capacity nothing stands (``not_standing``)."""
+    text = """
+[study]
+name = "arch"
+
+[structure]
+type = "semicircular_arch"
+inner_radius = 0.9
+thickness = 0.2
+voussoirs = 12
+
+[loads]
+lateral = false
+
+[[loads.point]]
+force = [0.0, 0.0, -1.0]
+on_top = [-0.4, 0.0]
+
+[scenarios.spread]
+left = [-1.0, 0, 0, 0, 0, 0]
+right = [1.0, 0, 0, 0, 0, 0]
+
+[settlement_path]
+increment = 0.02
+s_max = 1.0
+live_at = [0.0, 0.9]
+"""
+    study = load_study(_write(tmp_path, text))
+    report = run_study(study, out=tmp_path / "results", jobs=1, plots=False)
+    ds = xr.open_dataset(report.results)
+    assert str(ds["settlement_outcome"].values[0]) in ("collapse", "snap_through", "contact_lost")
+    assert float(ds["settlement_capacity"].values[0]) < 0.9
+    assert list(ds["settlement_live_status"].values[0]) == ["optimal", "not_standing"]
+    sc = study.scenarios()[0]
+    ref = Analysis(study.assembly(sc.structure)).limit(loads=sc.loads_pattern)
+    np.testing.assert_allclose(ds["settlement_live_lambda"].values[0, 0], ref.lambda_max, rtol=1e-6)
+    assert np.isnan(ds["settlement_live_x"].values[0]).all() and np.isnan(ds["settlement_live_lambda"].values[0, 1])
