@@ -398,13 +398,13 @@ def live_settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
         for j, at in enumerate(ds["live_at"].values):
             status = str(ds["settlement_live_status"].values[k, j])
             ok = status == "optimal"
-            value = lambda var: float(ds[var].values[k, j])  # noqa: E731
+            v = {key: float(ds[f"settlement_live_{key}"].values[k, j]) for key in ("step", "lambda", "x", "gap")}
             rows.append({
-                "scenario": str(name), "at": fmt(float(at)), "step": fmt(value("settlement_live_step")),
-                "lambda": fmt(value("settlement_live_lambda")) if ok else "–",
-                "x": fmt(value("settlement_live_x")) if ok and math.isfinite(value("settlement_live_x")) else "–",
+                "scenario": str(name), "at": fmt(float(at)), "step": fmt(v["step"]),
+                "lambda": fmt(v["lambda"]) if ok else "–",
+                "x": fmt(v["x"]) if ok and math.isfinite(v["x"]) else "–",
                 "status": status,
-                "gap": fmt(1e3 * value("settlement_live_gap")) if math.isfinite(value("settlement_live_gap")) else "–",
+                "gap": fmt(1e3 * v["gap"]) if math.isfinite(v["gap"]) else "–",
             })
     return rows
 
