@@ -104,8 +104,9 @@ log = logging.getLogger(__name__)
 #: sliding contact may show in a non-dilatant mechanism
 DILATANCY_TOL = 1e-4
 
-#: relative steps below a sub-problem's lambda_max at which its nearest state is sought, in
-#: turn until one solves cleanly (:meth:`NonAssocSolver._nearest`)
+#: steps below a sub-problem's lambda_max at which its nearest state is sought, in turn until
+#: one solves cleanly (:meth:`NonAssocSolver._nearest`): each relative to ``lambda_max``, then
+#: relative to ``max(|lambda_max|, 1)`` (the scheme's own scale of ``lambda``, ``tol``)
 NEAREST_BACKOFF = (1e-8, 1e-7, 1e-6)
 
 #: the extrapolation of a slow linear approach (:func:`slow_mode_limit`): plain steps in
@@ -495,19 +496,24 @@ class NonAssocSolver:
         ``lambda_max``: the optimal face), the one nearest to the normal forces
         ``normal_ref`` with the least tangential forces
         (:func:`tce.core.problem.nearest_state_problem`: unique, and the same in every frame),
-        taken at ``lam (1 -`` :data:`NEAREST_BACKOFF` ``)`` because the face at ``lambda_max``
-        itself has no interior. None when that solve fails or misses equilibrium or the law
-        by more than 1e-8 (of ``W`` and ``W L``) at every step."""
+        taken at ``lam - b |lam|`` for ``b`` in :data:`NEAREST_BACKOFF` because the face at
+        ``lambda_max`` itself has no interior, then at ``lam - b max(|lam|, 1)``: where
+        ``lambda`` is small (a scheme creeping towards 0) the relative steps leave a slab
+        thinner than the solver's tolerance, the solve fails there or not depending on the
+        order of the contacts, and the state of the step after would be the solver's own
+        choice. None when that solve fails or misses equilibrium or the law by more than 1e-8
+        (of ``W`` and ``W L``) at every step."""
         f = solver.formulation
         settings = solver.options.settings(refine=True, kkt=f.kkt)
-        for backoff in NEAREST_BACKOFF:
-            rhs = b_fixed + lam * (1.0 - backoff) * b_live
+        steps = dict.fromkeys(b * s for s in (abs(lam), max(abs(lam), 1.0)) for b in NEAREST_BACKOFF)
+        for backoff in steps:
+            rhs = b_fixed + (lam - backoff) * b_live
             sol = solve_once(nearest_state_problem(f, rhs, normal_ref), settings)
             F = f.forces(sol.x)
             eq, law = f.residuals(F, rhs) if sol.solved else (np.inf, np.inf)
             if eq <= 1e-8 and law <= 1e-8:
                 return F.reshape(self.model.n_contacts, self.model.dim)
-            log.debug("nearest state at backoff %.0e: clarabel %s, residual %.3g, law %.3g", backoff, sol.status, eq, law)
+            log.debug("nearest state %.1e below lambda_max: clarabel %s, residual %.3g, law %.3g", backoff, sol.status, eq, law)
         return None
 
     def _dilatancy(self, res: LimitResult, forces: NDArray[np.float64]) -> float:
