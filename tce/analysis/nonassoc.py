@@ -18,14 +18,21 @@ for 3D blocks [2]_:
    dilatancy: a sliding contact that carries load does not open. The iterate is the
    optimal state nearest to the normal forces in use, with the least tangential forces
    (:func:`tce.core.problem.nearest_state_problem`: strictly convex, so one state, the same
-   in every frame), taken ``1e-8`` (relative) below ``lambda_k``; iteration 0 takes the
-   associative optimal state of least norm alike. (The solver's own choice among optimal
-   states depends on the frame, and so would the fixed point.)
+   in every frame), taken ``1e-8`` below ``lambda_k`` (relative; of ``max(lambda_k, 1)``
+   where the relative step is too thin for the solver, :data:`NEAREST_BACKOFF`); iteration 0
+   takes the associative optimal state of least norm alike. (The solver's own choice among
+   optimal states depends on the frame and on the order of the contacts, and so would the
+   fixed point; it is taken only where every nearest-state solve fails.)
 3. the scheme stops at a fixed point, a state ``F`` that is a non-associative collapse
    state to ``tol`` (times the total weight ``W`` for forces): ``lambda`` settled (the
    last three iterates within ``tol`` of each other, relative, absolute below 1: two
    changes in a row, because one small change may be followed by a larger one, as after an
-   extrapolation, 5.); ``F`` an optimal state of the last sub-problem (equilibrium at
+   extrapolation, 5.; and where the two changes have one sign and the second is smaller, a
+   creep of ratio ``rho`` between them, what is left of it if it goes on geometrically,
+   ``|d_k| rho / (1 - rho)`` (the error estimate of Aitken's delta-squared process [3]_),
+   also within ``tol``: a slow creep of small changes is not a fixed point; a creep that
+   does not shrink is not settled unless its changes are below ``1e-3 tol``, the solver's
+   noise); ``F`` an optimal state of the last sub-problem (equilibrium at
    ``lambda_k``, its capacities met), admissible for the Coulomb law itself (violation
    ``<= tol W``); and, at every contact that slides in the last mechanism (tangential speed
    above :data:`DILATANCY_TOL` of the largest vertex speed), ``|fn - fn_used| <= tol W``
@@ -53,6 +60,12 @@ for 3D blocks [2]_:
    The extrapolation only chooses the next capacities; a state is accepted by the test of
    3. alone.
 
+Which fixed point: the one the iterates reach from the associative optimal state of least
+norm, every iterate the unique nearest state of its sub-problem (2.), so that the sequence and
+its limit are the same in every frame and every order of the blocks and contacts, to the
+solver's tolerances (``tests/analysis/test_nonassoc.py``: a block-file wall in shuffled
+orders).
+
 The fixed point is a collapse state of the non-associative problem, so ``lambda_nonassoc``
 is at most ``lambda_assoc`` (its state is statically admissible); it is the scheme's
 estimate, not a proven lower bound: a non-associative problem may have several collapse
@@ -72,6 +85,8 @@ References
 .. [2] F. Portioli, C. Casapulla, M. Gilbert and L. Cascini, "Limit analysis of 3D masonry
    block structures with non-associative frictional joints using cone programming",
    *Computers & Structures* 143 (2014) 108-121.
+.. [3] A. C. Aitken, "On Bernoulli's numerical solution of algebraic equations",
+   *Proceedings of the Royal Society of Edinburgh* 46 (1926) 289-305.
 """
 
 from __future__ import annotations
@@ -428,11 +443,19 @@ class NonAssocSolver:
 
     def _settled(self, history: list[float]) -> bool:
         """Whether the last three values of ``lambda`` (the associative one included) lie
-        within ``tol`` (relative, absolute below 1) of each other (module docstring, 3.)."""
+        within ``tol`` (relative, absolute below 1) of each other, and a creep between them
+        would end within ``tol`` too (module docstring, 3.)."""
         if len(history) < 3:
             return False
         last = history[-3:]
-        return max(last) - min(last) <= self.tol * max(abs(history[-1]), 1.0)
+        bound = self.tol * max(abs(history[-1]), 1.0)
+        if max(last) - min(last) > bound:
+            return False
+        d1, d2 = last[1] - last[0], last[2] - last[1]
+        if d1 * d2 > 0 and abs(d2) > 1e-3 * bound:
+            rho = d2 / d1
+            return rho < 1.0 and abs(d2) * rho / (1.0 - rho) <= bound
+        return True
 
     def _sliding(self, res: LimitResult) -> NDArray[np.bool_]:
         """Contacts whose tangential relative speed in the mechanism of ``res`` exceeds
