@@ -121,7 +121,7 @@ DILATANCY_TOL = 1e-4
 
 #: steps below a sub-problem's lambda_max at which its nearest state is sought, in turn until
 #: one solves cleanly (:meth:`NonAssocSolver._nearest`): each relative to ``lambda_max``, then
-#: relative to ``max(|lambda_max|, 1)`` (the scheme's own scale of ``lambda``, ``tol``)
+#: to ``max(|lambda_max|, 1)`` (the scheme's own scale of ``lambda``, as of ``tol``)
 NEAREST_BACKOFF = (1e-8, 1e-7, 1e-6)
 
 #: the extrapolation of a slow linear approach (:func:`slow_mode_limit`): plain steps in
@@ -519,16 +519,16 @@ class NonAssocSolver:
         ``lambda_max``: the optimal face), the one nearest to the normal forces
         ``normal_ref`` with the least tangential forces
         (:func:`tce.core.problem.nearest_state_problem`: unique, and the same in every frame),
-        taken at ``lam - b |lam|`` for ``b`` in :data:`NEAREST_BACKOFF` because the face at
-        ``lambda_max`` itself has no interior, then at ``lam - b max(|lam|, 1)``: where
-        ``lambda`` is small (a scheme creeping towards 0) the relative steps leave a slab
-        thinner than the solver's tolerance, the solve fails there or not depending on the
-        order of the contacts, and the state of the step after would be the solver's own
-        choice. None when that solve fails or misses equilibrium or the law by more than 1e-8
+        taken at ``lam - b |lam|``, then at ``lam - b max(|lam|, 1)``, for each ``b`` of
+        :data:`NEAREST_BACKOFF` in turn, because the face at ``lambda_max`` itself has no
+        interior: where ``lambda`` is small (a scheme creeping towards 0) the relative step
+        leaves a slab thinner than the solver's tolerance, the solve fails there or not
+        depending on the order of the contacts, and the state of the step after would be the
+        solver's own choice. None when that solve fails or misses equilibrium or the law by more than 1e-8
         (of ``W`` and ``W L``) at every step."""
         f = solver.formulation
         settings = solver.options.settings(refine=True, kkt=f.kkt)
-        steps = dict.fromkeys(b * s for s in (abs(lam), max(abs(lam), 1.0)) for b in NEAREST_BACKOFF)
+        steps = dict.fromkeys(b * s for b in NEAREST_BACKOFF for s in (abs(lam), max(abs(lam), 1.0)))
         for backoff in steps:
             rhs = b_fixed + (lam - backoff) * b_live
             sol = solve_once(nearest_state_problem(f, rhs, normal_ref), settings)
