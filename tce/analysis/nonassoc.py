@@ -524,8 +524,8 @@ class NonAssocSolver:
         interior: where ``lambda`` is small (a scheme creeping towards 0) the relative step
         leaves a slab thinner than the solver's tolerance, the solve fails there or not
         depending on the order of the contacts, and the state of the step after would be the
-        solver's own choice. None when that solve fails or misses equilibrium or the law by more than 1e-8
-        (of ``W`` and ``W L``) at every step."""
+        solver's own choice. None when that solve fails or misses equilibrium or the law by
+        more than 1e-8 (of ``W`` and ``W L``) at every step."""
         f = solver.formulation
         settings = solver.options.settings(refine=True, kkt=f.kkt)
         steps = dict.fromkeys(b * s for b in NEAREST_BACKOFF for s in (abs(lam), max(abs(lam), 1.0)))
