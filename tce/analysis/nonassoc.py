@@ -18,14 +18,21 @@ for 3D blocks [2]_:
    dilatancy: a sliding contact that carries load does not open. The iterate is the
    optimal state nearest to the normal forces in use, with the least tangential forces
    (:func:`tce.core.problem.nearest_state_problem`: strictly convex, so one state, the same
-   in every frame), taken ``1e-8`` (relative) below ``lambda_k``; iteration 0 takes the
-   associative optimal state of least norm alike. (The solver's own choice among optimal
-   states depends on the frame, and so would the fixed point.)
+   in every frame), taken ``1e-8`` below ``lambda_k`` (relative; of ``max(lambda_k, 1)``
+   where the relative step is too thin for the solver, :data:`NEAREST_BACKOFF`); iteration 0
+   takes the associative optimal state of least norm alike. (The solver's own choice among
+   optimal states depends on the frame and on the order of the contacts, and so would the
+   fixed point; it is taken only where every nearest-state solve fails.)
 3. the scheme stops at a fixed point, a state ``F`` that is a non-associative collapse
    state to ``tol`` (times the total weight ``W`` for forces): ``lambda`` settled (the
    last three iterates within ``tol`` of each other, relative, absolute below 1: two
    changes in a row, because one small change may be followed by a larger one, as after an
-   extrapolation, 5.); ``F`` an optimal state of the last sub-problem (equilibrium at
+   extrapolation, 5.; and where the two changes have one sign and the second is smaller, a
+   creep of ratio ``rho`` between them, what is left of it if it goes on geometrically,
+   ``|d_k| rho / (1 - rho)`` (the error estimate of Aitken's delta-squared process [3]_),
+   also within ``tol``: a slow creep of small changes is not a fixed point; a creep that
+   does not shrink is not settled unless its changes are below ``1e-3 tol``, the solver's
+   noise); ``F`` an optimal state of the last sub-problem (equilibrium at
    ``lambda_k``, its capacities met), admissible for the Coulomb law itself (violation
    ``<= tol W``); and, at every contact that slides in the last mechanism (tangential speed
    above :data:`DILATANCY_TOL` of the largest vertex speed), ``|fn - fn_used| <= tol W``
@@ -53,6 +60,12 @@ for 3D blocks [2]_:
    The extrapolation only chooses the next capacities; a state is accepted by the test of
    3. alone.
 
+Which fixed point: the one the iterates reach from the associative optimal state of least
+norm, every iterate the unique nearest state of its sub-problem (2.), so that the sequence and
+its limit are the same in every frame and every order of the blocks and contacts, to the
+solver's tolerances (``tests/analysis/test_nonassoc.py``: a block-file wall in shuffled
+orders).
+
 The fixed point is a collapse state of the non-associative problem, so ``lambda_nonassoc``
 is at most ``lambda_assoc`` (its state is statically admissible); it is the scheme's
 estimate, not a proven lower bound: a non-associative problem may have several collapse
@@ -72,6 +85,8 @@ References
 .. [2] F. Portioli, C. Casapulla, M. Gilbert and L. Cascini, "Limit analysis of 3D masonry
    block structures with non-associative frictional joints using cone programming",
    *Computers & Structures* 143 (2014) 108-121.
+.. [3] A. C. Aitken, "On Bernoulli's numerical solution of algebraic equations",
+   *Proceedings of the Royal Society of Edinburgh* 46 (1926) 289-305.
 """
 
 from __future__ import annotations
@@ -104,8 +119,9 @@ log = logging.getLogger(__name__)
 #: sliding contact may show in a non-dilatant mechanism
 DILATANCY_TOL = 1e-4
 
-#: relative steps below a sub-problem's lambda_max at which its nearest state is sought, in
-#: turn until one solves cleanly (:meth:`NonAssocSolver._nearest`)
+#: steps below a sub-problem's lambda_max at which its nearest state is sought, in turn until
+#: one solves cleanly (:meth:`NonAssocSolver._nearest`): each relative to ``lambda_max``, then
+#: to ``max(|lambda_max|, 1)`` (the scheme's own scale of ``lambda``, as of ``tol``)
 NEAREST_BACKOFF = (1e-8, 1e-7, 1e-6)
 
 #: the extrapolation of a slow linear approach (:func:`slow_mode_limit`): plain steps in
@@ -427,11 +443,19 @@ class NonAssocSolver:
 
     def _settled(self, history: list[float]) -> bool:
         """Whether the last three values of ``lambda`` (the associative one included) lie
-        within ``tol`` (relative, absolute below 1) of each other (module docstring, 3.)."""
+        within ``tol`` (relative, absolute below 1) of each other, and a creep between them
+        would end within ``tol`` too (module docstring, 3.)."""
         if len(history) < 3:
             return False
         last = history[-3:]
-        return max(last) - min(last) <= self.tol * max(abs(history[-1]), 1.0)
+        bound = self.tol * max(abs(history[-1]), 1.0)
+        if max(last) - min(last) > bound:
+            return False
+        d1, d2 = last[1] - last[0], last[2] - last[1]
+        if d1 * d2 > 0 and abs(d2) > 1e-3 * bound:
+            rho = d2 / d1
+            return rho < 1.0 and abs(d2) * rho / (1.0 - rho) <= bound
+        return True
 
     def _sliding(self, res: LimitResult) -> NDArray[np.bool_]:
         """Contacts whose tangential relative speed in the mechanism of ``res`` exceeds
@@ -495,19 +519,24 @@ class NonAssocSolver:
         ``lambda_max``: the optimal face), the one nearest to the normal forces
         ``normal_ref`` with the least tangential forces
         (:func:`tce.core.problem.nearest_state_problem`: unique, and the same in every frame),
-        taken at ``lam (1 -`` :data:`NEAREST_BACKOFF` ``)`` because the face at ``lambda_max``
-        itself has no interior. None when that solve fails or misses equilibrium or the law
-        by more than 1e-8 (of ``W`` and ``W L``) at every step."""
+        taken at ``lam - b |lam|``, then at ``lam - b max(|lam|, 1)``, for each ``b`` of
+        :data:`NEAREST_BACKOFF` in turn, because the face at ``lambda_max`` itself has no
+        interior: where ``lambda`` is small (a scheme creeping towards 0) the relative step
+        leaves a slab thinner than the solver's tolerance, the solve fails there or not
+        depending on the order of the contacts, and the state of the step after would be the
+        solver's own choice. None when that solve fails or misses equilibrium or the law by
+        more than 1e-8 (of ``W`` and ``W L``) at every step."""
         f = solver.formulation
         settings = solver.options.settings(refine=True, kkt=f.kkt)
-        for backoff in NEAREST_BACKOFF:
-            rhs = b_fixed + lam * (1.0 - backoff) * b_live
+        steps = dict.fromkeys(b * s for b in NEAREST_BACKOFF for s in (abs(lam), max(abs(lam), 1.0)))
+        for backoff in steps:
+            rhs = b_fixed + (lam - backoff) * b_live
             sol = solve_once(nearest_state_problem(f, rhs, normal_ref), settings)
             F = f.forces(sol.x)
             eq, law = f.residuals(F, rhs) if sol.solved else (np.inf, np.inf)
             if eq <= 1e-8 and law <= 1e-8:
                 return F.reshape(self.model.n_contacts, self.model.dim)
-            log.debug("nearest state at backoff %.0e: clarabel %s, residual %.3g, law %.3g", backoff, sol.status, eq, law)
+            log.debug("nearest state %.1e below lambda_max: clarabel %s, residual %.3g, law %.3g", backoff, sol.status, eq, law)
         return None
 
     def _dilatancy(self, res: LimitResult, forces: NDArray[np.float64]) -> float:

@@ -22,7 +22,7 @@ from matplotlib.lines import Line2D
 
 from ..study.outcomes import outcome_words
 from ..study.positions import critical_positions
-from .data import value
+from .data import study_cap, value
 from .figures import COLOURS, LINESTYLES, MARKERS, NOTE_COLOUR
 
 __all__ = ["influence_line"]
@@ -68,6 +68,15 @@ def _search_curves(ds: xr.Dataset) -> list[_Curve]:
             tuple(float(t) for t in ties.split(",")) if ties else (),
         ))
     return out
+
+
+def _outcome_words(ds: xr.Dataset, outcome: str) -> str:
+    """The words of ``outcome`` for the scenarios of ``ds`` that end with it: a capped path
+    with the study's cap and the lowest of their direct limits (each is capped below its own)."""
+    direct = ds["lambda_direct"].values[ds["outcome"].values == outcome] if "lambda_direct" in ds else np.array([])
+    lowest = float(np.nanmin(direct)) if np.isfinite(direct).any() else math.nan
+    words = outcome_words(outcome, direct=lowest, cap=study_cap(ds), lam="λ")
+    return words + " (the lowest of theirs)" if outcome == "capped" and direct.size and np.ptp(direct) > 0 else words
 
 
 def influence_line(ds: xr.Dataset) -> Figure:
@@ -133,7 +142,7 @@ def influence_line(ds: xr.Dataset) -> Figure:
         if xs.size and np.ptp(xs) > 0:
             ax.set_xlim(xs.min() - 0.05 * np.ptp(xs), xs.max() + 0.05 * np.ptp(xs))
         counts = Counter(map(str, ds["outcome"].values))
-        why = "\n".join(textwrap.fill(f"{n} scenario(s) {outcome_words(o)}", 70) for o, n in sorted(counts.items()))
+        why = "\n".join(textwrap.fill(f"{n} scenario(s) {_outcome_words(ds, o)}", 70) for o, n in sorted(counts.items()))
         ax.text(0.5, 0.5, "no finite λmax at any position:\n" + why, transform=ax.transAxes, ha="center",
                 va="center", fontsize=8, color=NOTE_COLOUR, gid="no_lambda")
     ax.set_xlabel("position x of the moving live load" + ("s' reference" if search else "") + " (m)")

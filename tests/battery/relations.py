@@ -14,7 +14,7 @@ Tolerances, each from how the number is computed:
   1e-5 of the size under a resultant above 1e-3 of the weight (a QP solved by an
   interior-point method; measured: 1e-9);
 - the non-associative estimate stops when lambda's last two changes are each within its
-  ``tol = 1e-6`` (absolute below 1): 1e-5.
+  ``tol = 1e-6`` (absolute below 1), and so is what is left of a creep between them: 1e-5.
 """
 
 from __future__ import annotations

@@ -137,19 +137,22 @@ WALL_INTERFACE_ORDER = (2, 10, 32, 26, 31, 19, 5, 21, 34, 28, 0, 8, 17, 37, 29, 
 def test_nonassociative_estimate_does_not_depend_on_block_order():
     """Found by the permutation relation (hypothesis 6.170's draw): the wall's estimate was
     1.646e-5 as listed and 2.885e-5 with its blocks in another order, both `converged`
-    (tolerance 1e-6). The scheme extrapolates along a slow mode near lambda 2e-4 and jumps
-    close to the fixed point; the first change of lambda after the jump was 2.2e-7, the next
-    5.7e-6, and the test of one change stopped there. Fixed in tce.analysis.nonassoc: lambda
-    must settle over two changes; the fixed point, with tol 1e-8 in five orders, lies at
-    2.81e-5 to 2.86e-5."""
+    (tolerance 1e-6). Requiring lambda to settle over two changes made this draw agree
+    (2.81e-5 to 2.86e-5), but other orders still gave 2.5e-7 or `not_converged` (issue 36).
+    The scheme halves lambda every step towards 0; near lambda 5e-5 the nearest state
+    sought 1e-8 (relative) below it failed in some orders, the solver's own state restarted
+    the scheme, and a slow creep of changes below 1e-6 passed for settled. Fixed in
+    tce.analysis.nonassoc: the nearest state is also sought at steps of the scheme's own
+    scale, and a creep must end within tol. Every order now follows lambda to 0 (2.46e-7
+    after 23 iterations, 2026-11-27); the same check in shuffled orders is
+    tests/analysis/test_nonassoc.py::test_same_in_every_order_of_blocks_and_interfaces."""
     sc = scene("file", "non_associative", "distributed_fixed", "across", 225.0)
     swap = [k % 2 == 1 for k in range(len(sc.assembly.interfaces))]
     other = permuted(sc.assembly, list(WALL_ORDER), list(WALL_INTERFACE_ORDER), swap)
     a, b = (nonassociative_limit(Analysis(asm, sc.material), loads=sc.pattern) for asm in (sc.assembly, other))
     assert a.status == b.status == "converged"
-    assert abs(a.lambda_nonassoc - b.lambda_nonassoc) <= 1e-5 * max(1.0, a.lambda_nonassoc)
-    for r in (a, b):  # each within the scheme's tolerance (1e-6, absolute below 1) of the fixed point
-        assert 2.81e-5 - 1e-6 <= r.lambda_nonassoc <= 2.86e-5 + 1e-6
+    for r in (a, b):  # each within the scheme's tolerance (1e-6, absolute below 1) of the fixed point 0
+        assert 0.0 <= r.lambda_nonassoc <= 1e-6
 
 
 def test_load_path_near_the_limit_is_decided():
