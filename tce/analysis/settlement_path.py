@@ -92,13 +92,18 @@ from ..structures.geometry import Polyhedron, lateral_direction
 if TYPE_CHECKING:
     from scipy.optimize import OptimizeResult
 
-__all__ = ["MAX_STEPS", "SettlementPathResult", "check_path_scene", "settlement_path"]
+__all__ = ["LATERAL_GAP", "MAX_STEPS", "SettlementPathResult", "check_path_scene", "settlement_path"]
 
 #: Most increments (accepted or bisected) one path may take.
 MAX_STEPS = 20_000
 
 #: Most snaps (falls to a new standing configuration, :func:`_snap`) one path may take.
 MAX_SNAPS = 100
+
+#: Default gap (times the assembly's size) below which an open contact point still carries
+#: compression in the settled structure's lateral capacity (``lateral_gap``,
+#: ``docs/settlements.md``).
+LATERAL_GAP = 1e-3
 
 _FEAS = 1e-9  # relative tolerance of the equilibrium residual and of "velocity is zero"
 
@@ -351,15 +356,22 @@ class _Step:
     message: str = ""
 
 
-def _operators(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]):
+def _operators(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], on_a: bool = False):
     """Compatibility rows of the closed contacts: ``(Gn, Gt, hn, ht, kc, p, dirs)``.
 
     ``G`` (sparse) acts on the free blocks' scaled velocities ``(v, w L)`` (``L`` the
     assembly's size: every column is a length per unit magnitude, whatever the unit of
     length; :func:`_unscale`); ``Gn`` has one row per closed contact, ``Gt`` one per closed
     contact and tangent (tangent by tangent); ``h`` is the supports' part, ``kc`` the closed
-    contacts, ``p`` their points and ``dirs`` (nk, dim, dim) their directions ``(n, t...)``."""
+    contacts, ``p`` their points and ``dirs`` (nk, dim, dim) their directions ``(n, t...)``.
+
+    The points are midway between the two copies of each contact point, or with ``on_a`` block
+    A's copies: those of one interface then lie in a plane normal to ``n`` exactly, so that the
+    tangential forces, unbounded without a friction limit, make no moment about it even where
+    the copies are apart (an open point carrying compression: :func:`_limit`)."""
     p, n, _ = _contacts(sc, cf)
+    if on_a:
+        p = cf.place(sc.ia[sc.ci], sc.points, sc)
     kc = np.flatnonzero(closed)
     nk, nf, nd, dim = len(kc), len(sc.free), sc.ndof, sc.dim
     col = np.full(len(sc.weights), -1)
@@ -449,8 +461,9 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
 def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArray[np.float64]) -> tuple[str, float]:
     """lambda_max of the lateral pattern (the weights along the horizontal ``direction``, in
     the scene's coordinates) on the closed contacts of ``cf``:
-    ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding)."""
-    Gn, Gt, *_ = _operators(sc, cf, closed)
+    ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding), the contacts at block
+    A's copies of their points (:func:`_operators`)."""
+    Gn, Gt, *_ = _operators(sc, cf, closed, on_a=True)
     b, weight = _weights(sc, cf), _weights(sc)
     blat = np.zeros_like(b)
     for j in range(sc.dim):
@@ -656,8 +669,8 @@ class SettlementPathResult(Result):
         ``(Rx, Rz, M)``, spatial ``(Fx, Fy, Fz, Mx, My, Mz)``, about the support's current
         centroid.
     lambda_max : (k,) ndarray
-        lambda_max of the lateral pattern (``alpha``) on the deformed structure (NaN when
-        not asked for).
+        lambda_max of the lateral pattern (``alpha``) on the deformed structure, every
+        contact point within ``lateral_gap`` carrying compression (NaN when not asked for).
     placements : (k, n_blocks, 3 or 6) ndarray
         Every block's displacement from its reference placement (the centroid's translation,
         m, and the rotation about it, rad): planar ``(dx, dz, theta)``, spatial
@@ -738,6 +751,7 @@ def settlement_path(
     snap_limit: float = 0.3,
     model: str = "auto",
     dead: AppliedLoads | None = None,
+    lateral_gap: float = LATERAL_GAP,
 ) -> SettlementPathResult:
     """Follow the support motion ``s * settlements`` from ``s = 0`` until nothing stands.
 
@@ -760,6 +774,12 @@ def settlement_path(
         Also lambda_max of the lateral pattern in direction ``alpha`` (for a planar
         assembly 0 or 180 degrees: in the plane) on the deformed structure at every
         standing magnitude.
+    lateral_gap : float
+        For ``lam``: every contact point whose gap is below ``lateral_gap`` times the
+        assembly's size may carry compression in the lateral capacity (a gap that small is
+        closed by a motion of the order that limit analysis neglects;
+        ``docs/settlements.md``, "The lateral capacity of the settled structure"); 0 lets
+        only the closed points carry it (the structure as it stands, no gap closing).
     gap_tol : float
         A contact point is closed when its gap is below ``gap_tol`` times the assembly's size.
     snap_ratio : float
@@ -788,6 +808,8 @@ def settlement_path(
     atol = increment / 64 if atol is None else float(atol)
     if not (math.isfinite(atol) and atol > 0):
         raise ValueError(f"atol must be a finite number > 0, got {atol!r}")
+    if not (math.isfinite(lateral_gap) and lateral_gap >= 0):
+        raise ValueError(f"lateral_gap must be a finite number >= 0, got {lateral_gap!r}")
     sc, direction = _checked(assembly, material, settlements, alpha if lam else None, model)
     if dead is not None:
         sc = _dead(sc, dead)
@@ -909,7 +931,8 @@ def settlement_path(
     lam_max = np.full(k, np.nan)
     if lam:
         for i, (c, cl, _) in enumerate(records):
-            st, val = _limit(sc, c, cl, direction)
+            _, _, gap = _contacts(sc, c)
+            st, val = _limit(sc, c, cl | (gap <= lateral_gap * sc.size), direction)
             n_solves += 1
             lam_max[i] = val if st == "optimal" else np.nan
     placements = np.zeros((k, nb, sc.ndof))
