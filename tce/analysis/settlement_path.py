@@ -37,6 +37,11 @@ changes) and solves again. An increment after which the program is unbounded is 
 (from the last standing configuration) until the bracket is narrower than ``atol``: the
 settlement capacity is the largest magnitude found standing.
 
+With ``lam``, lambda_max of the lateral pattern on each standing configuration lets every
+contact point whose gap is within ``lateral_gap`` times the size carry compression (a gap
+closed by a motion that limit analysis neglects; ``lateral_gap = 0``: only the closed points,
+the structure as it stands; ``docs/settlements.md``).
+
 Outcomes (``status``): ``collapse`` (bracketed: no admissible state above ``capacity``),
 ``snap_through`` (the mechanism's speed per unit support motion exceeds ``snap_ratio``
 times the supports' own: the structure jumps under a vanishing support motion, which a
