@@ -31,9 +31,8 @@ An increment ``ds`` moves every block rigidly by ``v ds`` (a rotation about its 
 and a translation; the supports exactly to ``(s + ds) U``), projects the configuration back
 onto the contacts that stayed closed (one Gauss-Newton step on their relative
 displacements, its least-norm solution on one sparse factorisation, so that the hinges of a
-long path do not drift apart), reclassifies every
-contact point (hinges open, close again or migrate to a neighbouring joint as the geometry
-changes) and solves again. An increment after which the program is unbounded is bisected
+long path do not drift apart), reclassifies every contact point (hinges open, close again
+or migrate to a neighbouring joint as the geometry changes) and solves again. An increment after which the program is unbounded is bisected
 (from the last standing configuration) until the bracket is narrower than ``atol``: the
 settlement capacity is the largest magnitude found standing.
 
@@ -465,7 +464,7 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
 
 def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArray[np.float64]) -> tuple[str, float]:
     """lambda_max of the lateral pattern (the weights along the horizontal ``direction``, in
-    the scene's coordinates) on the closed contacts of ``cf``:
+    the scene's coordinates) on the contacts ``closed`` of ``cf``:
     ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding), the contacts at block
     A's copies of their points (:func:`_operators`)."""
     Gn, Gt, *_ = _operators(sc, cf, closed, on_a=True)
@@ -779,12 +778,6 @@ def settlement_path(
         Also lambda_max of the lateral pattern in direction ``alpha`` (for a planar
         assembly 0 or 180 degrees: in the plane) on the deformed structure at every
         standing magnitude.
-    lateral_gap : float
-        For ``lam``: every contact point whose gap is below ``lateral_gap`` times the
-        assembly's size may carry compression in the lateral capacity (a gap that small is
-        closed by a motion of the order that limit analysis neglects;
-        ``docs/settlements.md``, "The lateral capacity of the settled structure"); 0 lets
-        only the closed points carry it (the structure as it stands, no gap closing).
     gap_tol : float
         A contact point is closed when its gap is below ``gap_tol`` times the assembly's size.
     snap_ratio : float
@@ -804,6 +797,12 @@ def settlement_path(
         ``assembly`` without live loads: a fill's weight, fixed point loads), carried along
         the path by the blocks they act on: each force keeps its direction and magnitude, its
         point moves with its block. The lateral pattern of ``lam`` stays the self-weight's.
+    lateral_gap : float
+        For ``lam``: every contact point whose gap is below ``lateral_gap`` times the
+        assembly's size may carry compression in the lateral capacity (a gap that small is
+        closed by a motion of the order that limit analysis neglects;
+        ``docs/settlements.md``, "The lateral capacity of the settled structure"); 0 lets
+        only the closed points carry it (the structure as it stands, no gap closing).
     """
     t0 = time.perf_counter()
     if not (math.isfinite(increment) and increment > 0):
