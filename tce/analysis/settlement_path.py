@@ -30,11 +30,16 @@ interpenetration (``incompatible``), unbounded when nothing stands (collapse).
 An increment ``ds`` moves every block rigidly by ``v ds`` (a rotation about its centroid
 and a translation; the supports exactly to ``(s + ds) U``), projects the configuration back
 onto the contacts that stayed closed (one Gauss-Newton step on their relative
-displacements, so that the hinges of a long path do not drift apart), reclassifies every
-contact point (hinges open, close again or migrate to a neighbouring joint as the geometry
-changes) and solves again. An increment after which the program is unbounded is bisected
+displacements, its least-norm solution on one sparse factorisation, so that the hinges of a
+long path do not drift apart), reclassifies every contact point (hinges open, close again
+or migrate to a neighbouring joint as the geometry changes) and solves again. An increment after which the program is unbounded is bisected
 (from the last standing configuration) until the bracket is narrower than ``atol``: the
 settlement capacity is the largest magnitude found standing.
+
+With ``lam``, lambda_max of the lateral pattern on each standing configuration lets every
+contact point whose gap is within ``lateral_gap`` times the size carry compression (a gap
+closed by a motion that limit analysis neglects; ``lateral_gap = 0``: only the closed points,
+the structure as it stands; ``docs/settlements.md``).
 
 Outcomes (``status``): ``collapse`` (bracketed: no admissible state above ``capacity``),
 ``snap_through`` (the mechanism's speed per unit support motion exceeds ``snap_ratio``
@@ -91,7 +96,7 @@ from ..structures.geometry import Polyhedron, lateral_direction
 if TYPE_CHECKING:
     from scipy.optimize import OptimizeResult
 
-__all__ = ["MAX_STEPS", "SettlementPathResult", "check_path_scene", "settlement_path"]
+__all__ = ["LATERAL_GAP", "MAX_STEPS", "SettlementPathResult", "check_path_scene", "settlement_path"]
 
 #: Most increments (accepted or bisected) one path may take.
 MAX_STEPS = 20_000
@@ -99,7 +104,18 @@ MAX_STEPS = 20_000
 #: Most snaps (falls to a new standing configuration, :func:`_snap`) one path may take.
 MAX_SNAPS = 100
 
+#: Default gap (times the assembly's size) below which an open contact point still carries
+#: compression in the settled structure's lateral capacity (``lateral_gap``,
+#: ``docs/settlements.md``).
+LATERAL_GAP = 1e-3
+
 _FEAS = 1e-9  # relative tolerance of the equilibrium residual and of "velocity is zero"
+
+#: Regularisation of the projection's normal equations (:func:`_project`), relative to their
+#: largest diagonal entry, and its number of iterates: a direction of the misfit whose squared
+#: singular value is 1e-8 of the largest keeps 1e-8 of its error.
+_TIKHONOV = 1e-10
+_REFINE = 4
 
 #: status word (``docs/conventions.md``) of each :func:`scipy.optimize.linprog` status; any
 #: other (1 iteration limit, 4 numerical difficulties) is ``numerical``
@@ -344,43 +360,44 @@ class _Step:
     message: str = ""
 
 
-def _operators(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]):
+def _operators(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], on_a: bool = False):
     """Compatibility rows of the closed contacts: ``(Gn, Gt, hn, ht, kc, p, dirs)``.
 
     ``G`` (sparse) acts on the free blocks' scaled velocities ``(v, w L)`` (``L`` the
     assembly's size: every column is a length per unit magnitude, whatever the unit of
     length; :func:`_unscale`); ``Gn`` has one row per closed contact, ``Gt`` one per closed
     contact and tangent (tangent by tangent); ``h`` is the supports' part, ``kc`` the closed
-    contacts, ``p`` their points and ``dirs`` (nk, dim, dim) their directions ``(n, t...)``."""
+    contacts, ``p`` their points and ``dirs`` (nk, dim, dim) their directions ``(n, t...)``.
+
+    The points are midway between the two copies of each contact point, or with ``on_a`` block
+    A's copies: those of one interface then lie in a plane normal to ``n`` exactly, so that the
+    tangential forces, unbounded without a friction limit, make no moment about it even where
+    the copies are apart (an open point carrying compression: :func:`_limit`)."""
     p, n, _ = _contacts(sc, cf)
+    if on_a:
+        p = cf.place(sc.ia[sc.ci], sc.points, sc)
     kc = np.flatnonzero(closed)
-    nk, nf, nd = len(kc), len(sc.free), sc.ndof
+    nk, nf, nd, dim = len(kc), len(sc.free), sc.ndof, sc.dim
     col = np.full(len(sc.weights), -1)
     col[sc.free] = np.arange(nf)
     vsup = np.zeros((len(sc.weights), nd))
     vsup[sc.support] = sc.velocity
     pt = p[kc]
-    dirs = np.concatenate([n[kc][:, None, :], sc.kin.tangents(n[kc])], axis=1) if nk else np.zeros((0, sc.dim, sc.dim))
-    rows = np.arange(nk)
-    out = []
-    for j in range(sc.dim):
-        d = dirs[:, j]
-        vals, ri, cj = [], [], []
-        h = np.zeros(nk)
-        for blk, sign in ((sc.ib[sc.ci[kc]], 1.0), (sc.ia[sc.ci[kc]], -1.0)):
-            # velocity of the point on block blk along d per unit (v, w): d, and (w x r) . d
-            coef = sign * np.column_stack([d, sc.kin.moment(pt - cf.c[blk], d)])
-            free = col[blk] >= 0
-            vals.append((coef[free] / sc.scale).ravel())
-            ri.append(np.repeat(rows[free], nd))
-            cj.append((nd * col[blk][free, None] + np.arange(nd)).ravel())
-            h[~free] += np.einsum("ij,ij->i", coef[~free], vsup[blk[~free]])
-        G = sp.csr_matrix((np.concatenate(vals), (np.concatenate(ri), np.concatenate(cj))), shape=(nk, nd * nf))
-        out.append((G, h))
-    Gn, hn = out[0]
-    Gt = sp.vstack([g for g, _ in out[1:]]).tocsr()
-    ht = np.concatenate([h for _, h in out[1:]])
-    return Gn, Gt, hn, ht, kc, pt, dirs
+    dirs = np.concatenate([n[kc][:, None, :], sc.kin.tangents(n[kc])], axis=1) if nk else np.zeros((0, dim, dim))
+    rows = np.arange(dim * nk).reshape(dim, nk)  # direction by direction: normal, then the tangents
+    vals, ri, cj = [], [], []
+    h = np.zeros((dim, nk))
+    for blk, sign in ((sc.ib[sc.ci[kc]], 1.0), (sc.ia[sc.ci[kc]], -1.0)):
+        # velocity of the point on block blk along each direction d per unit (v, w): d, and (w x r) . d
+        r = pt - cf.c[blk]
+        coef = sign * np.stack([np.column_stack([dirs[:, j], sc.kin.moment(r, dirs[:, j])]) for j in range(dim)])
+        free = col[blk] >= 0
+        vals.append((coef[:, free] / sc.scale).ravel())
+        ri.append(np.repeat(rows[:, free], nd))
+        cj.append(np.broadcast_to(nd * col[blk][free, None] + np.arange(nd), (dim, int(free.sum()), nd)).ravel())
+        h[:, ~free] += np.einsum("jmd,md->jm", coef[:, ~free], vsup[blk[~free]])
+    G = sp.csr_matrix((np.concatenate(vals), (np.concatenate(ri), np.concatenate(cj))), shape=(dim * nk, nd * nf))
+    return G[:nk], G[nk:], h[0], h[1:].ravel(), kc, pt, dirs
 
 
 def _unscale(sc: _Scene, x: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -447,9 +464,10 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
 
 def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArray[np.float64]) -> tuple[str, float]:
     """lambda_max of the lateral pattern (the weights along the horizontal ``direction``, in
-    the scene's coordinates) on the closed contacts of ``cf``:
-    ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding)."""
-    Gn, Gt, *_ = _operators(sc, cf, closed)
+    the scene's coordinates) on the contacts ``closed`` of ``cf``:
+    ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding), the contacts at block
+    A's copies of their points (:func:`_operators`)."""
+    Gn, Gt, *_ = _operators(sc, cf, closed, on_a=True)
     b, weight = _weights(sc, cf), _weights(sc)
     blat = np.zeros_like(b)
     for j in range(sc.dim):
@@ -476,8 +494,16 @@ def _move(sc: _Scene, cf: _Config, v: NDArray[np.float64], ds: float, advance: b
 
 def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     """One Gauss-Newton step that closes the relative displacement (every component) of the
-    contacts ``keep`` by the least change of the free blocks' placements."""
-    from scipy.sparse.linalg import lsqr  # imported on first use
+    contacts ``keep`` by the least change of the free blocks' placements.
+
+    The step is the least-norm least-squares solution ``dq = -J+ mis`` of the linearised
+    misfit (``J`` the compatibility rows of :func:`_operators`, rank-deficient where a block
+    is free to turn about a hinge or where the contact rows are redundant), computed on one
+    sparse factorisation of ``J'J + mu I`` by iterated Tikhonov regularisation: every
+    iterate stays in the row space of ``J`` (no motion along a mechanism), and the error in a
+    direction of singular value ``sigma`` shrinks by ``mu / (sigma**2 + mu)`` per iterate.
+    """
+    from scipy.sparse.linalg import splu  # imported on first use
 
     if not keep.any():
         return cf
@@ -485,8 +511,13 @@ def _project(sc: _Scene, cf: _Config, keep: NDArray[np.bool_]) -> _Config:
     pa = cf.place(sc.ia[sc.ci[kc]], sc.points[kc], sc)
     pb = cf.place(sc.ib[sc.ci[kc]], sc.points[kc], sc)
     mis = np.einsum("kd,kjd->jk", pb - pa, dirs).ravel()  # normal rows, then tangent by tangent
-    J = sp.vstack([Gn, Gt]).tocsr()
-    dq = lsqr(J, -mis, atol=1e-12, btol=1e-12, iter_lim=100 * J.shape[1])[0]  # least norm
+    J = sp.vstack([Gn, Gt]).tocsc()
+    JtJ = (J.T @ J).tocsc()
+    mu = _TIKHONOV * max(float(JtJ.diagonal().max(initial=0.0)), 1.0)
+    lu = splu((JtJ + mu * sp.identity(J.shape[1], format="csc")).tocsc())
+    dq = np.zeros(J.shape[1])
+    for _ in range(_REFINE):
+        dq += lu.solve(-(J.T @ (mis + J @ dq)))
     return cf.turned(sc, _unscale(sc, dq), sc.free)
 
 
@@ -515,9 +546,12 @@ def _snap(
     rel = sc.kin.angles(cf.R[sc.ib[ajar]] @ np.swapaxes(cf.R[sc.ia[ajar]], -1, -2))
     reach = max(limit, 2.0 * float(np.linalg.norm(rel, axis=-1).max(initial=0.0)))
     everything = np.ones(closed.shape, dtype=bool)
+    nc = len(closed)
     for _ in range(2000):
         b = _weights(sc, cf)
-        Gn, Gt, *_ = _operators(sc, cf, closed)
+        GnA, GtA, *_ = _operators(sc, cf, everything)  # every contact's rows; the closed ones' below
+        kc = np.flatnonzero(closed)
+        Gn, Gt = GnA[kc], GtA[(nc * np.arange(sc.dim - 1)[:, None] + kc).ravel()]
         status, res = _linprog(-b, A_ub=-Gn, b_ub=np.zeros(Gn.shape[0]), A_eq=Gt, b_eq=np.zeros(Gt.shape[0]), bounds=bounds)
         if status != "optimal":
             return _Step("numerical", message="HiGHS, following the fall: " + res.message)
@@ -525,7 +559,6 @@ def _snap(
             return None
         d = np.zeros((len(sc.weights), sc.ndof))
         d[sc.free] = _unscale(sc, res.x)
-        GnA, *_ = _operators(sc, cf, everything)
         rate = GnA @ res.x  # opening rate of every contact along d
         _, _, gap = _contacts(sc, cf)
         closing = ~closed & (rate < -_FEAS)
@@ -640,8 +673,8 @@ class SettlementPathResult(Result):
         ``(Rx, Rz, M)``, spatial ``(Fx, Fy, Fz, Mx, My, Mz)``, about the support's current
         centroid.
     lambda_max : (k,) ndarray
-        lambda_max of the lateral pattern (``alpha``) on the deformed structure (NaN when
-        not asked for).
+        lambda_max of the lateral pattern (``alpha``) on the deformed structure, every
+        contact point within ``lateral_gap`` carrying compression (NaN when not asked for).
     placements : (k, n_blocks, 3 or 6) ndarray
         Every block's displacement from its reference placement (the centroid's translation,
         m, and the rotation about it, rad): planar ``(dx, dz, theta)``, spatial
@@ -722,6 +755,7 @@ def settlement_path(
     snap_limit: float = 0.3,
     model: str = "auto",
     dead: AppliedLoads | None = None,
+    lateral_gap: float = LATERAL_GAP,
 ) -> SettlementPathResult:
     """Follow the support motion ``s * settlements`` from ``s = 0`` until nothing stands.
 
@@ -763,6 +797,12 @@ def settlement_path(
         ``assembly`` without live loads: a fill's weight, fixed point loads), carried along
         the path by the blocks they act on: each force keeps its direction and magnitude, its
         point moves with its block. The lateral pattern of ``lam`` stays the self-weight's.
+    lateral_gap : float
+        For ``lam``: every contact point whose gap is below ``lateral_gap`` times the
+        assembly's size may carry compression in the lateral capacity (a gap that small is
+        closed by a motion of the order that limit analysis neglects;
+        ``docs/settlements.md``, "The lateral capacity of the settled structure"); 0 lets
+        only the closed points carry it (the structure as it stands, no gap closing).
     """
     t0 = time.perf_counter()
     if not (math.isfinite(increment) and increment > 0):
@@ -772,6 +812,8 @@ def settlement_path(
     atol = increment / 64 if atol is None else float(atol)
     if not (math.isfinite(atol) and atol > 0):
         raise ValueError(f"atol must be a finite number > 0, got {atol!r}")
+    if not (math.isfinite(lateral_gap) and lateral_gap >= 0):
+        raise ValueError(f"lateral_gap must be a finite number >= 0, got {lateral_gap!r}")
     sc, direction = _checked(assembly, material, settlements, alpha if lam else None, model)
     if dead is not None:
         sc = _dead(sc, dead)
@@ -893,7 +935,8 @@ def settlement_path(
     lam_max = np.full(k, np.nan)
     if lam:
         for i, (c, cl, _) in enumerate(records):
-            st, val = _limit(sc, c, cl, direction)
+            _, _, gap = _contacts(sc, c)
+            st, val = _limit(sc, c, cl | (gap <= lateral_gap * sc.size), direction)
             n_solves += 1
             lam_max[i] = val if st == "optimal" else np.nan
     placements = np.zeros((k, nb, sc.ndof))

@@ -28,7 +28,7 @@ def path(t_over_r: float, n: int, increment: float = 0.004):
     return settlement_path(arch(t_over_r, n), SPREAD, increment=increment, s_max=0.5)
 
 
-#: (0.225, 72) snaps: about 80 s of the settlement path's least squares (docs/performance.md), run with -m slow
+#: (0.225, 72) snaps: about 30 CPU-s, most of it following its falls (docs/performance.md), run with -m slow
 @pytest.mark.parametrize("t_over_r, n", [(0.12, 36), (0.15, 36), (0.2, 36), (0.25, 36), (0.15, 72), (0.13, 72),
                                          pytest.param(0.225, 72, marks=pytest.mark.slow)])
 def test_capacity_brackets_the_hinge_kinematics(t_over_r, n):
