@@ -160,10 +160,10 @@ class TCEResult(Result):
     """Answer of one TCE solve (status words: :data:`tce.core.result.STATUSES`).
 
     The status is decided by the solver's optimum (:attr:`optimum`); the state the result
-    reports (:attr:`forces` and the fields after it) is the canonical one
-    (:mod:`tce.core.canonical`) where the optimum of a rigid scene may not be unique. That
-    state is computed on the first read of any of those fields, once: a caller that only
-    reads the status (a load path's decisions) does not pay for it (``docs/conventions.md``).
+    reports (:attr:`state`: :attr:`forces` and the properties after it) is the canonical one
+    (:mod:`tce.core.canonical`) where the optimum of a rigid scene may not be unique. Both are
+    built on their first read, once: a caller that only reads the status (a load path's
+    decisions) pays for neither, and the result is a value all the same (``docs/conventions.md``).
 
     Attributes
     ----------
@@ -176,8 +176,6 @@ class TCEResult(Result):
         ``"spatial"`` or ``"planar"``: the model that ran.
     settlements : (6 ns,) ndarray
         Stacked support motions (m, rad), support order.
-    optimum : ForceState
-        The solver's own optimal state (NaN unless optimal; ``unique`` None where undecided).
     iterations : int
         Interior-point iterations (main problem).
     setup_time : float
@@ -197,22 +195,27 @@ class TCEResult(Result):
     loads: LoadPattern = field(repr=False)
     model: str
     settlements: NDArray[np.float64] = field(repr=False)
-    optimum: ForceState = field(repr=False)
     iterations: int = 0
     setup_time: float = 0.0
     retry: str = ""
     interface_map: InterfaceMap = field(repr=False)
-    #: computes the canonical state (None: the optimum is the state reported); dropped once called
-    selector: Callable[[], ForceState] | None = field(default=None, repr=False)
+    #: ``selector(canonical)``: the optimum's state (False) or the state reported (True), built
+    #: on first read; dropped (with the solver it holds) once both are
+    selector: Callable[[bool], ForceState] | None = field(repr=False)
+
+    @cached_property
+    def optimum(self) -> ForceState:
+        """The solver's own optimal state (NaN unless optimal; ``unique`` None where undecided)."""
+        assert self.selector is not None
+        return self.selector(False)
 
     @cached_property
     def state(self) -> ForceState:
-        """The state reported: the canonical state of a rigid optimum, else :attr:`optimum`
-        (computed on first read)."""
-        if self.selector is None:
-            return self.optimum
-        out = self.selector()
-        object.__setattr__(self, "selector", None)  # the solver it holds is no longer needed
+        """The state reported: the canonical state of a rigid optimum, else :attr:`optimum`."""
+        assert self.selector is not None
+        out = self.selector(True)
+        self.optimum  # noqa: B018 (built before the selector goes)
+        object.__setattr__(self, "selector", None)
         return out
 
     def __getstate__(self) -> dict[str, Any]:
@@ -600,32 +603,37 @@ class TCESolver:
             F = p = res = None
         if restraint is not None:
             notes.append(f"passive restraint: {restraint.size} bounded forces")
-        optimum = self._state(F, p, res, U, restraint)
-        selector = None
-        if status == "optimal" and f.D is None and self.options.canonical:
-            x = (F if p is None else np.concatenate([F, p])) / self.scaling.force
-            selector = partial(self._canonical_state, b, q, x, check, U, restraint, optimum)
+        canon = (b, q, check) if status == "optimal" and f.D is None and self.options.canonical else None
         if retry:
             log.debug("solve at lam=%g of %s: %s decided by %s (%s)", lam, pattern, status, retry, "; ".join(notes))
         return TCEResult(
             status=status, message="; ".join(notes), solver=SOLVER_NAME, solve_time=stime,
             wall_time=time.perf_counter() - t0, lam=float(lam), alpha=pattern.direction, loads=pattern,
-            model=self.model.kind, settlements=U, optimum=optimum, iterations=sol.iterations, setup_time=setup,
-            retry=retry, interface_map=self.model.interface_map, selector=selector,
+            model=self.model.kind, settlements=U, iterations=sol.iterations, setup_time=setup, retry=retry,
+            interface_map=self.model.interface_map, selector=partial(self._select, F, p, res, U, restraint, canon),
         )
 
-    def _canonical_state(
-        self, b: NDArray[np.float64], q: NDArray[np.float64], x: NDArray[np.float64], check: Check,
-        U: NDArray[np.float64], restraint: Restraint | None, optimum: ForceState,
+    def _select(
+        self, F: NDArray[np.float64] | None, p: NDArray[np.float64] | None, res: tuple[float, float] | None,
+        U: NDArray[np.float64], restraint: Restraint | None,
+        canon: tuple[NDArray[np.float64], NDArray[np.float64], Check] | None, canonical: bool,
     ) -> ForceState:
-        """The canonical state of the optimal answer ``x`` (scaled unknowns) of the TCE problem
-        of ``b`` and ``q`` (:meth:`tce.core.canonical.CanonicalSolver.state`); the optimum,
-        uniqueness undecided, when it cannot be found."""
+        """:attr:`TCEResult.selector`: the state of the optimum (physical forces ``F``, restraint
+        forces ``p``, residuals ``res``; None: not optimal), or with ``canonical`` and ``canon``
+        (the scaled ``b``, ``q`` and check of a rigid optimum) its canonical state
+        (:meth:`tce.core.canonical.CanonicalSolver.state`); the optimum, uniqueness undecided,
+        where that cannot be found."""
+        if not canonical or canon is None:
+            return self._state(F, p, res, U, restraint)
+        assert F is not None
+        b, q, check = canon
+        x = (F if p is None else np.concatenate([F, p])) / self.scaling.force
         can = self._canonical_solver().state(b, q, x, check, restraint)
         if can.forces is None or can.residuals is None:
-            log.warning("canonical state not found: the solver's state kept (%s)", self.model.kind)
-            return replace(optimum, solve_time=can.solve_time + can.setup_time)
-        state = self._state(can.forces, can.restraint_forces, can.residuals, U, restraint, can.unique)
+            log.warning("canonical state not found: the solver's state kept (%s model)", self.model.kind)
+            state = self._state(F, p, res, U, restraint)
+        else:
+            state = self._state(can.forces, can.restraint_forces, can.residuals, U, restraint, can.unique)
         return replace(state, solve_time=can.solve_time + can.setup_time)
 
     def _canonical_solver(self) -> CanonicalSolver:
