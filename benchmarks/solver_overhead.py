@@ -1,8 +1,8 @@
 """tce's solves against Clarabel driven by hand on the same data (development benchmark).
 
-``hot_path``: the load path's inner solve (:meth:`tce.core.analysis.Analysis.path`), its status
-read and its canonical state read, against Clarabel's own ``update(b) + solve()`` on identical
-data, interleaved call by call.
+``hot_path``: ``tce bench --section hot_path`` (:mod:`tce.quality.bench`): the load path's
+inner solve, its status read and its canonical state read, against Clarabel's own
+``update(b) + solve()`` on identical data, interleaved call by call.
 ``limit_cost``: the direct lambda_max against one raw Clarabel set-up + solve of the same
 problem, and the load path against a bisection written by hand on a warm raw Clarabel solver:
 to lambda_max (the states not read), and with the canonical state of every step read (as a
@@ -29,53 +29,8 @@ from tce.core.limit import LimitSolver
 from tce.core.material import Material
 from tce.core.model import build_model
 from tce.core.solve import SolverOptions
-from tce.quality.bench import COLUMNS, FRICTION, LAMS, SETTLEMENT, report, row
+from tce.quality.bench import COLUMNS, FRICTION, SECTIONS, SETTLEMENT, report, row
 from tce.structures.arch import semicircular_arch
-
-
-def hot_path(quick: bool) -> list[dict[str, Any]]:
-    """tce's load-path solve against Clarabel's own update + solve, interleaved (module doc):
-    the solve as a load path's decision reads it (the status) and with its state read (the
-    canonical state selected, as a stored or drawn step is); CPU time."""
-    from tce.core.analysis import Analysis
-    from tce.core.problem import tce_b
-
-    arch = semicircular_arch().validate()
-    rows: list[dict[str, Any]] = []
-    reps = 150 if quick else 1000
-    clock = time.process_time
-    for kind in ("spatial", "planar"):
-        an = Analysis(arch, Material(friction=FRICTION), model=kind)
-        solve = an.path(0.0, SETTLEMENT)
-        solve(LAMS[0]).forces
-        solver = an.solver(kind)
-        raw = solver._warm._solver  # the very Clarabel object tce's solve drives
-        data = [tce_b(solver.formulation, solver.rhs(lam, 0.0)) for lam in LAMS]
-        t_tce, t_state, t_raw, statuses = [], [], [], set()
-        for i in range(reps):
-            lam = LAMS[i % len(LAMS)]
-            t0 = clock()
-            statuses.add(solve(lam).status)
-            t1 = clock()
-            solve(lam).forces
-            t2 = clock()
-            raw.update(b=data[i % len(LAMS)])
-            raw.solve()
-            t3 = clock()
-            t_tce.append(t1 - t0)
-            t_state.append(t2 - t1)
-            t_raw.append(t3 - t2)
-        m_tce, m_state, m_raw = statistics.median(t_tce), statistics.median(t_state), statistics.median(t_raw)
-        label = "3D SOCP" if kind == "spatial" else "planar LP"
-        common = dict(model=kind, n_blocks=len(arch.blocks), n_solves=reps)
-        rows.append(row("hot_path", f"arch 16 blocks, {label}", "tce load-path solve, status read (Analysis.path)",
-                         time_s=m_tce, note=f"{m_tce / m_raw:.3f}x raw (CPU); statuses {sorted(statuses)}",
-                         **common))
-        rows.append(row("hot_path", f"arch 16 blocks, {label}", "tce load-path solve, canonical state read",
-                         time_s=m_state, note=f"{m_state / m_raw:.3f}x raw (CPU)", **common))
-        rows.append(row("hot_path", f"arch 16 blocks, {label}", "clarabel update(b) + solve (raw)",
-                         time_s=m_raw, **common))
-    return rows
 
 
 def _raw_bisection(raw: Any, b0: np.ndarray, b1: np.ndarray, step: float, atol: float,
@@ -261,4 +216,4 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer repeats")
     quick = parser.parse_args().quick
-    print(report(pd.DataFrame(hot_path(quick) + limit_cost(quick), columns=COLUMNS)), end="")
+    print(report(pd.DataFrame(SECTIONS["hot_path"](quick) + limit_cost(quick), columns=COLUMNS)), end="")
