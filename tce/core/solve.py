@@ -141,8 +141,8 @@ class ForceState:
     restraint_forces : (k,) ndarray or None
         The fill's passive restraint forces (kN; None without a restraint).
     solve_time : float
-        Wall time of the solves that selected this state after the optimum (s; 0 for the
-        optimum itself).
+        Wall time of the set-up and solves that selected this state after the optimum (s; 0
+        for the optimum itself).
     """
 
     forces: NDArray[np.float64]

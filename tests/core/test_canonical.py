@@ -191,3 +191,20 @@ def test_the_state_is_selected_when_read_and_is_the_same_whenever_read(arch) -> 
     assert np.abs(late.optimum.forces - late.forces).max() > 1e-6 * W
     copy = pickle.loads(pickle.dumps(path(0.1)))
     np.testing.assert_allclose(copy.forces, at_once.forces, rtol=0, atol=1e-9 * W)
+
+
+def test_a_load_path_decides_on_the_optimum_and_its_stored_steps_are_canonical(arch) -> None:
+    """Issue 38: the path's decisions (increments, bracket, bisection) read statuses only, so no
+    canonical state is selected on the way to lambda_max; every step read afterwards, as a study
+    stores it, is the canonical state with its uniqueness decided."""
+    from tce.analysis.loadpath import load_path
+
+    lp = load_path(Analysis(arch, Material(friction=0.8)), 0.0, SPREAD, step=0.05, atol=1e-6, mechanism=False)
+    assert lp.outcome == "limit"
+    assert [s.canonical_time for s in lp.steps] == [0.0] * len(lp.steps)
+    ok = [s for s in lp.steps if s.ok]
+    assert [s.unique for s in ok] == [False] * len(ok) and all(s.canonical_time > 0 for s in ok)
+    W = float(arch.weights[list(arch.free_indices)].sum())
+    fresh = Analysis(arch, Material(friction=0.8)).path(0.0, SPREAD)
+    for s in ok[::3]:
+        np.testing.assert_allclose(s.forces, fresh(s.lam).forces, rtol=0, atol=1e-9 * W)
