@@ -1,10 +1,13 @@
 """tce's solves against Clarabel driven by hand on the same data (development benchmark).
 
-``hot_path``: the load path's inner solve (:meth:`tce.core.analysis.Analysis.path`) against
-Clarabel's own ``update(b) + solve()`` on identical data, interleaved call by call.
+``hot_path``: ``tce bench --section hot_path`` (:mod:`tce.quality.bench`): the load path's
+inner solve, its status read and its canonical state read, against Clarabel's own
+``update(b) + solve()`` on identical data, interleaved call by call.
 ``limit_cost``: the direct lambda_max against one raw Clarabel set-up + solve of the same
-problem, and the load path against a bisection written by hand on a warm raw Clarabel solver,
-with and without the canonical state of every step; CPU time, interleaved, medians.
+problem, and the load path against a bisection written by hand on a warm raw Clarabel solver:
+to lambda_max (the states not read), and with the canonical state of every step read (as a
+study stores them) against the raw bisection solving the canonical QP of every admissible
+step; CPU time, interleaved, medians.
 
 It reaches into ``tce.core``'s internals (the problem builders, the warm solver): update it when
 they change. Usage: ``python benchmarks/solver_overhead.py [--quick]``.
@@ -26,46 +29,8 @@ from tce.core.limit import LimitSolver
 from tce.core.material import Material
 from tce.core.model import build_model
 from tce.core.solve import SolverOptions
-from tce.quality.bench import COLUMNS, FRICTION, LAMS, SETTLEMENT, report, row
+from tce.quality.bench import COLUMNS, FRICTION, SECTIONS, SETTLEMENT, report, row
 from tce.structures.arch import semicircular_arch
-
-
-def hot_path(quick: bool) -> list[dict[str, Any]]:
-    """tce's load-path solve against Clarabel's own update + solve, interleaved (module doc)."""
-    from tce.core.analysis import Analysis
-    from tce.core.problem import tce_b
-
-    arch = semicircular_arch().validate()
-    rows: list[dict[str, Any]] = []
-    reps = 150 if quick else 1000
-    for kind in ("spatial", "planar"):
-        an = Analysis(arch, Material(friction=FRICTION), model=kind)
-        solve = an.path(0.0, SETTLEMENT)
-        solve(LAMS[0])
-        solver = an.solver(kind)
-        raw = solver._warm._solver  # the very Clarabel object tce's solve drives
-        data = [tce_b(solver.formulation, solver.rhs(lam, 0.0)) for lam in LAMS]
-        t_tce, t_raw, statuses = [], [], set()
-        for i in range(reps):
-            lam = LAMS[i % len(LAMS)]
-            t0 = time.perf_counter()
-            statuses.add(solve(lam).status)
-            t1 = time.perf_counter()
-            raw.update(b=data[i % len(LAMS)])
-            raw.solve()
-            t2 = time.perf_counter()
-            t_tce.append(t1 - t0)
-            t_raw.append(t2 - t1)
-        m_tce, m_raw = statistics.median(t_tce), statistics.median(t_raw)
-        label = "3D SOCP" if kind == "spatial" else "planar LP"
-        common = dict(model=kind, n_blocks=len(arch.blocks), n_solves=reps)
-        rows.append(row("hot_path", f"arch 16 blocks, {label}", "tce load-path solve (Analysis.path)",
-                         time_s=m_tce, note=f"{m_tce / m_raw:.3f}x raw; statuses {sorted(statuses)}",
-                         **common))
-        rows.append(row("hot_path", f"arch 16 blocks, {label}", "clarabel update(b) + solve (raw)",
-                         time_s=m_raw, **common))
-    return rows
-
 
 
 def _raw_bisection(raw: Any, b0: np.ndarray, b1: np.ndarray, step: float, atol: float,
@@ -181,17 +146,18 @@ def limit_cost(quick: bool) -> list[dict[str, Any]]:
             rows.append(row("limit_cost", f"arch 16 blocks lambda_max, {label}", name, model=kind,
                              n_blocks=len(arch.blocks), n_solves=reps, time_s=med,
                              note=f"{med / raw:.3f}x raw (CPU, interleaved)"))
-    # the load path (direct bracket, no mechanism) against the hand-written bisection: without canonical
-    # states (the same work as the raw bisection: the target), and as it runs by default, with the
-    # canonical state of every optimal step, against the raw bisection doing that too, its QP solved
-    # with the raw solver's settings (no iterative refinement) and with tce's canonical settings
-    # (refined: the same solves as tce's; :func:`_raw_canonical`); the planar LP and the 3D SOCP
+    # the load path (direct bracket, no mechanism) against the hand-written bisection: to lambda_max
+    # (the states not read: the same work as the raw bisection, the target), and with the canonical
+    # state of every step read (as a study stores them) against the raw bisection solving the canonical
+    # QP of every admissible step with the raw solver's settings (no iterative refinement) and with
+    # tce's canonical settings (refined: the same solves as tce's; :func:`_raw_canonical`)
     U = np.zeros(6 * len(arch.support_names))
     i = 6 * arch.support_names.index("right")
     scenes = (("planar", "arch in plane, 1 mm spreading, step 0.02, atol 1e-6", SETTLEMENT, 0, 10 if quick else 60),
               ("spatial", "arch, 1 mm transversal motion (3D SOCP), step 0.02, atol 1e-6",
                {"right": [0.0, 0.001, 0.0, 0.0, 0.0, 0.0]}, 1, 2 if quick else 10))
     atol, step = 1e-6, 0.02
+    opts = SolverOptions()
     for kind, case, sett, component, repeats in scenes:
         model = build_model(arch, kind)
         U[:] = 0.0
@@ -200,47 +166,49 @@ def limit_cost(quick: bool) -> list[dict[str, Any]]:
         _, b_fixed, b_live = scene_vectors(model, 0.0)
         tp = tce_problem(f, tce_b(f, b_fixed), U)
         b0, b1 = tce_b(f, b_fixed), tce_b(f, b_fixed + b_live) - tce_b(f, b_fixed)
-        for canonical in (False, True):
-            opts = SolverOptions(canonical=canonical)
-            settings = opts.settings(refine=False, kkt=f.kkt)
-            raws = {"raw": settings, "raw, refined QP": opts.settings(kkt=f.kkt)} if canonical else {"raw": settings}
-            times: dict[str, list[float]] = {k: [] for k in ("tce", *raws)}
-            got: dict[str, Any] = {}
-            loads = [os.getloadavg()[0]]
-            for r in range(repeats):
+        settings = opts.settings(refine=False, kkt=f.kkt)
+        raws = {"raw": None, "raw, canonical QP": settings, "raw, refined canonical QP": opts.settings(kkt=f.kkt)}
+        times: dict[str, list[float]] = {k: [] for k in ("tce", "tce, states read", *raws)}
+        got: dict[str, Any] = {}
+        loads = [os.getloadavg()[0]]
+        for r in range(repeats):
+            names = list(times)
+            for name in (names if r % 2 else names[::-1]):
                 an = Analysis(arch, mat, model=kind, options=opts)
                 # both start from the built, scaled operators: the raw one from tp, whose A is its
                 # formulation's constraints (built on first use: 0.3-0.6 ms on the planar arch)
                 an.formulation(kind).constraints
-                names = list(times)
-                for name in (names if r % 2 else names[::-1]):
-                    t0 = clock()
-                    if name == "tce":
-                        got[name] = load_path(an, 0.0, sett, step=step, atol=atol, mechanism=False)
-                    else:
-                        raw = clarabel.DefaultSolver(tp.P, tp.q, tp.A, b0, _cones(tp), settings)
-                        after = _raw_canonical(f, b0, b1, tp.q, raws[name]) if canonical else None
-                        got[name] = _raw_bisection(raw, b0, b1, step, atol, after)
-                    times[name].append(clock() - t0)
-                loads.append(os.getloadavg()[0])
-            mt = statistics.median(times["tce"])
-            lp = got["tce"]
-            what = "with canonical states (the default)" if canonical else "no canonical states"
-            ratios = "; ".join(f"{mt / statistics.median(times[k]):.3f}x the {k} bisection" for k in raws)
-            rows.append(row("limit_cost", case, f"tce load path (direct bracket, no mechanism, {what})",
+                t0 = clock()
+                if name.startswith("tce"):
+                    got[name] = load_path(an, 0.0, sett, step=step, atol=atol, mechanism=False)
+                    if name == "tce, states read":
+                        for st in got[name].steps:
+                            st.forces  # noqa: B018 (selects the canonical state)
+                else:
+                    raw = clarabel.DefaultSolver(tp.P, tp.q, tp.A, b0, _cones(tp), settings)
+                    after = None if raws[name] is None else _raw_canonical(f, b0, b1, tp.q, raws[name])
+                    got[name] = _raw_bisection(raw, b0, b1, step, atol, after)
+                times[name].append(clock() - t0)
+            loads.append(os.getloadavg()[0])
+        lp = got["tce"]
+        against = {"tce": ("raw",), "tce, states read": ("raw, canonical QP", "raw, refined canonical QP")}
+        what = {"tce": "to lambda_max, states not read",
+                "tce, states read": "the canonical state of every step read, as a study stores them"}
+        for name, base in against.items():
+            mt = statistics.median(times[name])
+            ratios = "; ".join(f"{mt / statistics.median(times[k]):.3f}x the {k} bisection" for k in base)
+            rows.append(row("limit_cost", case, f"tce load path (direct bracket, no mechanism, {what[name]})",
                              model=kind, n_blocks=len(arch.blocks), n_solves=lp.n_solves, time_s=mt,
-                             note=f"{ratios} (CPU, interleaved, {repeats} runs, load average {min(loads):.1f}-{max(loads):.1f}); "
-                                  f"lambda_max {lp.lambda_max:.7f}, "
+                             note=f"{ratios} (CPU, interleaved, {repeats} runs, load average "
+                                  f"{min(loads):.1f}-{max(loads):.1f}); lambda_max {lp.lambda_max:.7f}, "
                                   f"{lp.n_solves} TCE solves + 1 direct"))
-            for k in raws:
-                lam_raw, n_raw = got[k]
-                raw_what = (("with the canonical QP of every admissible step" if k == "raw" else
-                             "with the canonical QP of every admissible step, refined as tce's")
-                            if canonical else "no canonical states")
-                rows.append(row("limit_cost", case, f"hand-written bisection on raw clarabel ({raw_what})",
-                                 model=kind, n_blocks=len(arch.blocks), n_solves=n_raw,
-                                 time_s=statistics.median(times[k]),
-                                 note=f"lambda_max {lam_raw:.7f}, {n_raw} solves"))
+        for k, qp in raws.items():
+            lam_raw, n_raw = got[k]
+            raw_what = {"raw": "no canonical states", "raw, canonical QP": "with the canonical QP of every admissible step",
+                        "raw, refined canonical QP": "with the canonical QP of every admissible step, refined as tce's"}[k]
+            rows.append(row("limit_cost", case, f"hand-written bisection on raw clarabel ({raw_what})",
+                             model=kind, n_blocks=len(arch.blocks), n_solves=n_raw,
+                             time_s=statistics.median(times[k]), note=f"lambda_max {lam_raw:.7f}, {n_raw} solves"))
     return rows
 
 
@@ -248,4 +216,4 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer repeats")
     quick = parser.parse_args().quick
-    print(report(pd.DataFrame(hot_path(quick) + limit_cost(quick), columns=COLUMNS)), end="")
+    print(report(pd.DataFrame(SECTIONS["hot_path"](quick) + limit_cost(quick), columns=COLUMNS)), end="")

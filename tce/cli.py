@@ -619,7 +619,7 @@ def _check(args: argparse.Namespace) -> int:
 
 
 #: sections of ``tce bench`` (:data:`tce.quality.bench.SECTIONS`; named here so that the parser imports no solver)
-BENCH_SECTIONS = ("solve", "limit", "load_path", "scaling")
+BENCH_SECTIONS = ("solve", "hot_path", "limit", "load_path", "scaling")
 
 
 def _bench(args: argparse.Namespace) -> int:

@@ -4,6 +4,14 @@
 and is re-exported here, where scripts import it from.
 """
 
-from ..core.analysis import Analysis
+from typing import Any
 
 __all__ = ["Analysis"]
+
+
+def __getattr__(name: str) -> Any:
+    if name == "Analysis":  # imported on first use: importing one analysis module does not build the solvers
+        from ..core.analysis import Analysis
+
+        return Analysis
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -24,16 +24,18 @@ import math
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.analysis import Analysis
-from ..core.limit import LimitResult
 from ..core.loads import LoadPattern, as_pattern
 from ..core.result import Result
-from ..core.solve import TCEResult
+
+if TYPE_CHECKING:
+    from ..core.analysis import Analysis
+    from ..core.limit import LimitResult
+    from ..core.solve import TCEResult
 
 __all__ = [
     "AUTO_INCREMENTS",

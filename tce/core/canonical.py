@@ -37,8 +37,10 @@ the optimum is unique (``unique = True``). The test is exact for a face of one p
 fails only when the analytic centre of a larger face happens to be its least-energy point
 (a symmetric face), which the comparison then reports as unique.
 
-Cost: one more conic problem per rigid optimal solve (the TCE problem's constraints and one
-row bounding the energy), with a warm solver per support motion.
+Cost: one more conic problem per rigid optimal state read (the TCE problem's constraints and
+one row bounding the energy), with a warm solver per support motion. A solve's status does not
+need it: :class:`tce.core.solve.TCEResult` selects its canonical state on the first read of the
+state (``docs/conventions.md``), so a load path's decisions do not pay for it.
 """
 
 from __future__ import annotations

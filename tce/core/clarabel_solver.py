@@ -51,7 +51,8 @@ class SolverOptions:
         ~1e-8 of lambda_max may be ``optimal`` without it.
     canonical : bool
         Report the canonical state of a rigid scene (:mod:`tce.core.canonical`: the optimal
-        state of least unit-stiffness strain energy) and decide its uniqueness.
+        state of least unit-stiffness strain energy) and decide its uniqueness, on the first
+        read of a result's state (:class:`tce.core.solve.TCEResult`); False: the solver's optimum.
     """
 
     tol: float = 1e-10

@@ -49,9 +49,9 @@ from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Mapping
-from dataclasses import dataclass, field
-from functools import cached_property
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field, replace
+from functools import cached_property, partial
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -74,6 +74,7 @@ __all__ = [
     "SOLVER_NAME",
     "STATUSES",
     "SolverOptions",
+    "ForceState",
     "TCEResult",
     "TCESolver",
     "check_settlements",
@@ -120,9 +121,49 @@ def settlement_vector(model: Model, settlements: Mapping[str, ArrayLike] | None)
     return U.ravel()
 
 
+@dataclass(frozen=True, eq=False)
+class ForceState:
+    """One force state of a solve and what it gives (NaN unless the solve is optimal).
+
+    Attributes
+    ----------
+    forces : (nc, dim) ndarray
+        Contact forces of the model in their interface frames (kN).
+    support_wrenches : (ns, 6) ndarray
+        ``(Fx, Fy, Fz, Mx, My, Mz)`` each support exerts on the structure, global frame,
+        about the support centroid (kN, kN m).
+    tce : float
+        Total complementary energy (kN m).
+    eq_residual, cone_residual : float
+        Relative equilibrium residual and contact-law violation.
+    unique : bool or None
+        Whether the optimum is unique (:attr:`TCEResult.unique`).
+    restraint_forces : (k,) ndarray or None
+        The fill's passive restraint forces (kN; None without a restraint).
+    solve_time : float
+        Wall time of the set-up and solves that selected this state after the optimum (s; 0
+        for the optimum itself).
+    """
+
+    forces: NDArray[np.float64]
+    support_wrenches: NDArray[np.float64]
+    tce: float
+    eq_residual: float
+    cone_residual: float
+    unique: bool | None
+    restraint_forces: NDArray[np.float64] | None
+    solve_time: float = 0.0
+
+
 @dataclass(frozen=True, eq=False, kw_only=True, repr=False)
 class TCEResult(Result):
     """Answer of one TCE solve (status words: :data:`tce.core.result.STATUSES`).
+
+    The status is decided by the solver's optimum (:attr:`optimum`); the state the result
+    reports (:attr:`state`: :attr:`forces` and the properties after it) is the canonical one
+    (:mod:`tce.core.canonical`) where the optimum of a rigid scene may not be unique. Both are
+    built on their first read, once: a caller that only reads the status (a load path's
+    decisions) pays for neither, and the result is a value all the same (``docs/conventions.md``).
 
     Attributes
     ----------
@@ -135,33 +176,16 @@ class TCEResult(Result):
         ``"spatial"`` or ``"planar"``: the model that ran.
     settlements : (6 ns,) ndarray
         Stacked support motions (m, rad), support order.
-    forces : (nc, dim) ndarray
-        Contact forces of the model in their interface frames (kN); NaN unless optimal.
-    support_wrenches : (ns, 6) ndarray
-        ``(Fx, Fy, Fz, Mx, My, Mz)`` each support exerts on the structure, global frame,
-        about the support centroid (kN, kN m); NaN unless optimal.
-    tce : float
-        Total complementary energy (kN m); NaN unless optimal.
-    eq_residual, cone_residual : float
-        Relative equilibrium residual and contact-law violation of the answer.
-    unique : bool or None
-        True with compliance (strictly convex). Rigid: decided by comparing the solver's
-        answer with the canonical state (:mod:`tce.core.canonical`), which is then the state
-        reported; None only when the canonical state could not be found (and a rigid scene
-        without support motion is then False: every admissible state is a minimiser).
     iterations : int
         Interior-point iterations (main problem).
     setup_time : float
         Wall time of the solver set-up and vector updates this answer needed (s);
-        ``solve_time`` is the solve calls alone.
+        ``solve_time`` is the solve calls alone (the canonical state's are
+        :attr:`canonical_time`).
     retry : str
         What decided the status when Clarabel's first answer was not clean ("" if nothing).
     interface_map : InterfaceMap
         The model's arrays that turn ``forces`` into vertex forces and resultants.
-    restraint_forces : (k,) ndarray or None
-        The fill's passive restraint forces ``0 <= p <= capacity`` of the state (kN, along
-        :class:`tce.core.passive.Restraint`'s directions, into the ring); None without a
-        restraint, NaN unless optimal.
     """
 
     HEADLINE = ("lam", "alpha", "model", "tce", "eq_residual", "cone_residual", "unique")
@@ -171,17 +195,81 @@ class TCEResult(Result):
     loads: LoadPattern = field(repr=False)
     model: str
     settlements: NDArray[np.float64] = field(repr=False)
-    forces: NDArray[np.float64] = field(repr=False)
-    support_wrenches: NDArray[np.float64] = field(repr=False)
-    tce: float = float("nan")
-    eq_residual: float = float("nan")
-    cone_residual: float = float("nan")
-    unique: bool | None = None
     iterations: int = 0
     setup_time: float = 0.0
     retry: str = ""
     interface_map: InterfaceMap = field(repr=False)
-    restraint_forces: NDArray[np.float64] | None = field(default=None, repr=False)
+    #: ``selector(canonical)``: the optimum's state (False) or the state reported (True), built
+    #: on first read; dropped (with the solver it holds) once both are
+    selector: Callable[[bool], ForceState] | None = field(repr=False)
+
+    @cached_property
+    def optimum(self) -> ForceState:
+        """The solver's own optimal state (NaN unless optimal; ``unique`` None where undecided)."""
+        assert self.selector is not None
+        return self.selector(False)
+
+    @cached_property
+    def state(self) -> ForceState:
+        """The state reported: the canonical state of a rigid optimum, else :attr:`optimum`."""
+        assert self.selector is not None
+        out = self.selector(True)
+        self.optimum  # noqa: B018 (built before the selector goes)
+        object.__setattr__(self, "selector", None)
+        return out
+
+    def __getstate__(self) -> dict[str, Any]:
+        """Pickled with its state selected (the selector holds a solver)."""
+        self.state  # noqa: B018 (selects the state)
+        return self.__dict__
+
+    @property
+    def forces(self) -> NDArray[np.float64]:
+        """Contact forces of the model in their interface frames (kN), ``(nc, dim)``; NaN unless optimal."""
+        return self.state.forces
+
+    @property
+    def support_wrenches(self) -> NDArray[np.float64]:
+        """``(Fx, Fy, Fz, Mx, My, Mz)`` each support exerts on the structure, global frame,
+        about the support centroid (kN, kN m), ``(ns, 6)``; NaN unless optimal."""
+        return self.state.support_wrenches
+
+    @property
+    def tce(self) -> float:
+        """Total complementary energy (kN m); NaN unless optimal."""
+        return self.state.tce
+
+    @property
+    def eq_residual(self) -> float:
+        """Relative equilibrium residual of the state."""
+        return self.state.eq_residual
+
+    @property
+    def cone_residual(self) -> float:
+        """Contact-law violation of the state, relative to the total weight."""
+        return self.state.cone_residual
+
+    @property
+    def unique(self) -> bool | None:
+        """Whether the optimum is unique: True with compliance (strictly convex). Rigid:
+        decided by comparing the solver's answer with the canonical state
+        (:mod:`tce.core.canonical`); None when the canonical state could not be found or was
+        not asked for (``SolverOptions(canonical=False)``; a rigid scene without support
+        motion is then False: every admissible state is a minimiser)."""
+        return self.state.unique
+
+    @property
+    def restraint_forces(self) -> NDArray[np.float64] | None:
+        """The fill's passive restraint forces ``0 <= p <= capacity`` of the state (kN, along
+        :class:`tce.core.passive.Restraint`'s directions, into the ring); None without a
+        restraint, NaN unless optimal."""
+        return self.state.restraint_forces
+
+    @property
+    def canonical_time(self) -> float:
+        """Wall time of the canonical state's solves (s; 0 until :attr:`state` is read, and
+        for a state that needs none)."""
+        return self.state.solve_time if "state" in self.__dict__ else 0.0
 
     @property
     def interfaces(self) -> tuple[int, ...]:
@@ -511,23 +599,42 @@ class TCESolver:
                     F2, p2, res = check(sol2.x)
                     if self._passes(res):
                         status, retry, F, p = "optimal", name, F2, p2
-        unique = None
         if status != "optimal":
             F = p = res = None
-        elif f.D is None and self.options.canonical:
-            x = (F if p is None else np.concatenate([F, p])) / self.scaling.force
-            can = self._canonical_solver().state(b, q, x, check, restraint)
-            stime += can.solve_time
-            setup += can.setup_time
-            if can.forces is not None and can.residuals is not None:
-                F, p, res, unique = can.forces, can.restraint_forces, can.residuals, can.unique
-            else:
-                notes.append("canonical state not found: the solver's state kept")
         if restraint is not None:
             notes.append(f"passive restraint: {restraint.size} bounded forces")
-            p = np.full(restraint.size, np.nan) if p is None else p
-        return self._result(status, lam, pattern, U, F, res, stime, setup, time.perf_counter() - t0,
-                            sol.iterations, retry, "; ".join(notes), unique, restraint_forces=p)
+        canon = (b, q, check) if status == "optimal" and f.D is None and self.options.canonical else None
+        if retry:
+            log.debug("solve at lam=%g of %s: %s decided by %s (%s)", lam, pattern, status, retry, "; ".join(notes))
+        return TCEResult(
+            status=status, message="; ".join(notes), solver=SOLVER_NAME, solve_time=stime,
+            wall_time=time.perf_counter() - t0, lam=float(lam), alpha=pattern.direction, loads=pattern,
+            model=self.model.kind, settlements=U, iterations=sol.iterations, setup_time=setup, retry=retry,
+            interface_map=self.model.interface_map, selector=partial(self._select, F, p, res, U, restraint, canon),
+        )
+
+    def _select(
+        self, F: NDArray[np.float64] | None, p: NDArray[np.float64] | None, res: tuple[float, float] | None,
+        U: NDArray[np.float64], restraint: Restraint | None,
+        canon: tuple[NDArray[np.float64], NDArray[np.float64], Check] | None, canonical: bool,
+    ) -> ForceState:
+        """:attr:`TCEResult.selector`: the state of the optimum (physical forces ``F``, restraint
+        forces ``p``, residuals ``res``; None: not optimal), or with ``canonical`` and ``canon``
+        (the scaled ``b``, ``q`` and check of a rigid optimum) its canonical state
+        (:meth:`tce.core.canonical.CanonicalSolver.state`); the optimum, uniqueness undecided,
+        where that cannot be found."""
+        if not canonical or canon is None:
+            return self._state(F, p, res, U, restraint)
+        assert F is not None
+        b, q, check = canon
+        x = (F if p is None else np.concatenate([F, p])) / self.scaling.force
+        can = self._canonical_solver().state(b, q, x, check, restraint)
+        if can.forces is None or can.residuals is None:
+            log.warning("canonical state not found: the solver's state kept (%s model)", self.model.kind)
+            state = self._state(F, p, res, U, restraint)
+        else:
+            state = self._state(can.forces, can.restraint_forces, can.residuals, U, restraint, can.unique)
+        return replace(state, solve_time=can.solve_time + can.setup_time)
 
     def _canonical_solver(self) -> CanonicalSolver:
         """The warm solver of canonical states (built on first use)."""
@@ -540,60 +647,25 @@ class TCESolver:
         tol = self.options.residual_tol
         return res[0] <= tol and res[1] <= tol
 
-    def _result(
-        self,
-        status: str,
-        lam: float,
-        loads: LoadPattern,
-        U: NDArray[np.float64],
-        F: NDArray[np.float64] | None,
-        res: tuple[float, float] | None,
-        solve_time: float,
-        setup_time: float,
-        wall: float,
-        iterations: int,
-        retry: str,
-        message: str,
-        unique: bool | None = None,
-        restraint_forces: NDArray[np.float64] | None = None,
-    ) -> TCEResult:
+    def _state(
+        self, F: NDArray[np.float64] | None, p: NDArray[np.float64] | None, res: tuple[float, float] | None,
+        U: NDArray[np.float64], restraint: Restraint | None, unique: bool | None = None,
+    ) -> ForceState:
+        """The :class:`ForceState` of physical forces ``F`` (None: not optimal, all NaN), restraint
+        forces ``p`` and residuals ``res``. ``unique`` is True with compliance, and False for a
+        rigid scene without support motion that left it undecided."""
         model = self.model
-        if F is None or res is None:
-            forces = np.full((model.n_contacts, model.dim), np.nan)
-            wrenches = np.full((len(model.assembly.support_indices), 6), np.nan)
-            tce = eq = cone = float("nan")
-        else:
-            forces = F.reshape(model.n_contacts, model.dim)
-            wrench = model.B_sup @ F
-            wrenches = wrench.reshape(-1, 6)
-            eq, cone = res
-            tce = self.formulation.energy(F, U, wrench)
         if self.formulation.D is not None:
             unique = True
         elif unique is None and not np.any(U):
-            unique = False  # undecided (no canonical state): every admissible state is a minimiser
-        if retry:
-            log.debug("solve at lam=%g of %s: %s decided by %s (%s)", lam, loads, status, retry, message)
-        return TCEResult(
-            status=status,
-            message=message,
-            solver=SOLVER_NAME,
-            solve_time=solve_time,
-            wall_time=wall,
-            lam=float(lam),
-            alpha=loads.direction,
-            loads=loads,
-            model=model.kind,
-            settlements=U,
-            forces=forces,
-            support_wrenches=wrenches,
-            tce=tce,
-            eq_residual=eq,
-            cone_residual=cone,
-            unique=unique,
-            iterations=iterations,
-            setup_time=setup_time,
-            retry=retry,
-            interface_map=model.interface_map,
-            restraint_forces=restraint_forces,
-        )
+            unique = False  # every admissible state is a minimiser
+        if restraint is not None and p is None:
+            p = np.full(restraint.size, np.nan)
+        if F is None or res is None:
+            nan = float("nan")
+            return ForceState(np.full((model.n_contacts, model.dim), nan),
+                              np.full((len(model.assembly.support_indices), 6), nan), nan, nan, nan, unique, p)
+        wrench = model.B_sup @ F
+        return ForceState(F.reshape(model.n_contacts, model.dim), wrench.reshape(-1, 6),
+                          self.formulation.energy(F, U, wrench), res[0], res[1], unique, p)
+

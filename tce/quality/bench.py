@@ -1,6 +1,6 @@
 """``tce bench``: the time of the solves a user runs against their error, on this machine.
 
-:func:`run_bench` measures four sections and returns one table (:data:`COLUMNS`), printed by
+The sections :func:`run_bench` measures, in one table (:data:`COLUMNS`) printed by
 :func:`report`:
 
 ``solve``
@@ -10,6 +10,11 @@
     and :class:`tce.core.cvx.CvxTCE` with each installed solver. ``error``: the largest
     in-plane support reaction ``(Fx, Fz, My)`` against tolerance 1e-12, over the total weight
     (the out-of-plane components carry a free self-stress in 3D).
+``hot_path``
+    A load path's solve of the same arch (:meth:`tce.core.analysis.Analysis.path`, friction
+    0.8) against Clarabel's own ``update(b) + solve()`` of the same solver object, interleaved
+    call by call, CPU time: the status read (what the path's decisions read) and the canonical
+    state read (what a stored step costs, ``docs/conventions.md``). ``error`` as in ``solve``.
 ``limit``
     :class:`tce.core.limit.LimitSolver` on the same arch, each model and law, at ``alpha`` 0
     and 90, against tolerance 1e-12; and the friction pyramids of ``k`` sides
@@ -17,14 +22,15 @@
     sliding governs (friction 0.5, ``alpha = 45``).
 ``load_path``
     :func:`tce.analysis.loadpath.load_path` (step 0.02) to each bisection tolerance, with the
-    direct bracket and with plain bisection: solves, time, error of lambda_max against the
-    direct limit at tolerance 1e-12.
+    direct bracket and with plain bisection: solves, time (to lambda_max: the steps' states
+    are not read), error of lambda_max against the direct limit at tolerance 1e-12.
 ``scaling``
     Arches and domes of about 100, 1,000 and 10,000 blocks, each in a fresh process: build
     and solve times, peak resident memory, fitted growth of the solve time.
 
-Times are medians of repeated calls after one warm-up (wall clock; s in the table, ms in the
-report).
+Times are medians of repeated calls after one warm-up (wall clock, ``hot_path`` CPU time; s
+in the table, ms in the report); a ``solve`` row's time includes reading the state it is judged
+by. The report's first line names the day, the commit and the load it was measured at.
 """
 
 from __future__ import annotations
@@ -103,6 +109,12 @@ def growth_exponent(n: Sequence[float], t: Sequence[float]) -> float:
 
 
 # ---------------------------------------------------------------- one TCE solve
+def _with_state(r: Any) -> Any:
+    """``r`` with its state read (a TCE result selects its canonical state on first read)."""
+    r.state  # noqa: B018
+    return r
+
+
 def _solve(quick: bool) -> list[dict[str, Any]]:
     """One TCE solve, each model and contact law, direct and through cvxpy (module doc)."""
     import cvxpy as cp
@@ -133,13 +145,64 @@ def _solve(quick: bool) -> list[dict[str, Any]]:
             for method, options in (("clarabel-direct", None),
                                     ("clarabel-direct, tol 1e-8", SolverOptions(tol=1e-8, residual_tol=1e-7))):
                 direct = TCESolver(model, mat, options)
-                add(method, lambda i, d=direct: d.solve(LAMS[i % len(LAMS)], 0.0, SETTLEMENT), reps)
+                add(method, lambda i, d=direct: _with_state(d.solve(LAMS[i % len(LAMS)], 0.0, SETTLEMENT)), reps)
             if law != "friction 0.8":
                 continue
             for name in [s for s in solvers if s != "HIGHS" or kind == "planar"]:
                 param = CvxTCE(model, mat)
                 add(f"cvxpy parametrised, {name}",
                     lambda i, p=param, s=name: p.solve(LAMS[i % len(LAMS)], 0.0, SETTLEMENT, solver=s), cvx_reps)
+    return rows
+
+
+# ---------------------------------------------------------------- against raw Clarabel
+def _hot_path(quick: bool) -> list[dict[str, Any]]:
+    """A load path's solve against Clarabel's own ``update(b) + solve()`` on the same data (module doc)."""
+    from ..core.analysis import Analysis
+    from ..core.problem import tce_b
+
+    arch = semicircular_arch().validate()
+    W = arch.total_weight
+    reps = 150 if quick else 1000
+    clock = time.process_time
+    rows: list[dict[str, Any]] = []
+    for kind, label in MODELS.items():
+        an = Analysis(arch, LAWS["friction 0.8"], model=kind)
+        solve = an.path(0.0, SETTLEMENT)
+        solve(LAMS[0]).forces  # noqa: B018 (sets up the warm solvers)
+        solver = an.solver(kind)
+        f = solver.formulation
+        raw = solver._warm._solver  # the very Clarabel object tce's solve drives
+        data = [tce_b(f, solver.rhs(lam, 0.0)) for lam in LAMS]
+        ref = [TCESolver(solver.model, solver.material, REFERENCE).solve(lam, 0.0, SETTLEMENT) for lam in LAMS]
+        times: dict[str, list[float]] = {"status": [], "state": [], "raw": []}
+        err = dict.fromkeys(times, 0.0)
+        for i in range(reps):
+            j = i % len(LAMS)
+            t0 = clock()
+            r = solve(LAMS[j])
+            ok = r.status == "optimal"
+            t1 = clock()
+            s = solve(LAMS[j])
+            s.forces  # noqa: B018 (selects the canonical state)
+            t2 = clock()
+            raw.update(b=data[j])
+            x = np.asarray(raw.solve().x)
+            t3 = clock()
+            for name, t in (("status", t1 - t0), ("state", t2 - t1), ("raw", t3 - t2)):
+                times[name].append(t)
+            wrench = {"status": r.optimum.support_wrenches if ok else np.inf, "state": s.support_wrenches,
+                      "raw": (solver.model.B_sup @ f.forces(x)).reshape(-1, 6)}
+            for name, w in wrench.items():
+                err[name] = max(err[name], float(np.abs(w - ref[j].support_wrenches)[:, IN_PLANE].max()) / W)
+        med = {k: statistics.median(v) for k, v in times.items()}
+        methods = {"status": "tce load-path solve, status read (its decisions)",
+                   "state": "tce load-path solve, canonical state read (a stored step)",
+                   "raw": "clarabel update(b) + solve (raw, same solver object)"}
+        for name, method in methods.items():
+            rows.append(row("hot_path", f"arch, {label}, friction 0.8", method, model=kind, n_blocks=len(arch.blocks),
+                             n_solves=reps, time_s=med[name], error=err[name], error_of="in-plane reactions / W",
+                             note=f"{med[name] / med['raw']:.2f}x raw (CPU time, interleaved)"))
     return rows
 
 
@@ -284,6 +347,7 @@ def _scaling(quick: bool) -> list[dict[str, Any]]:
 
 SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "solve": _solve,
+    "hot_path": _hot_path,
     "limit": _limit,
     "load_path": _load_path,
     "scaling": _scaling,
@@ -321,6 +385,18 @@ def _fmt(v: Any) -> str:
     return str(v)
 
 
+def _commit() -> str:
+    """The commit of the tce source tree measured (``git describe``), or tce's version outside a git checkout."""
+    from .. import __version__
+
+    try:
+        out = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True, text=True, timeout=10,
+                             cwd=os.path.dirname(__file__), check=True)
+    except (OSError, subprocess.SubprocessError):
+        return f"tce {__version__}"
+    return f"commit {out.stdout.strip()}"
+
+
 def report(df: pd.DataFrame) -> str:
     """The bench table as text: one table a section, times in ms, empty columns left out."""
     import platform
@@ -329,8 +405,9 @@ def report(df: pd.DataFrame) -> str:
 
     t = df.assign(time_ms=df.time_s * 1e3, build_ms=df.build_s * 1e3).drop(columns=["time_s", "build_s", "section"])
     cols = ["case", "method", "n_blocks", "n_solves", "build_ms", "time_ms", "error", "error_of", "peak_mem_mb", "note"]
-    lines = [f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, Python "
-             f"{platform.python_version()}, Clarabel {clarabel.__version__}; medians, wall time"]
+    lines = [f"measured {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at {_commit()}, load average "
+             f"{os.getloadavg()[0]:.1f}; machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
+             f"Python {platform.python_version()}, Clarabel {clarabel.__version__}; medians"]
     for section, g in df.groupby("section", sort=False):
         part = t.loc[g.index, cols].replace("", np.nan).dropna(axis=1, how="all")
         lines += ["", f"[{section}]", part.apply(lambda c: c.map(_fmt)).to_string(index=False)]

@@ -28,7 +28,6 @@ from ..core.material import Material
 from ..plot.data import assembly, geometry_groups, outcome_note, scenarios
 from ..study.positions import critical_positions
 from ..study.names import LAMBDA_TOL, same_lambda
-from ..study.schema import GEOMETRY_SWEEPS
 
 __all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "live_settlement_rows", "report_content",
            "small_displacement_note",
@@ -85,6 +84,8 @@ def _table(section: object) -> list[tuple[str, str]]:
 def _geometry(ds: xr.Dataset, names: list[str], section: dict) -> dict[str, Any]:
     """One structure of the study: the scenarios ``names`` solved on it, its ``[structure]``
     parameters with the swept ones at that structure's values, its counts, weight and extent."""
+    from ..study.schema import GEOMETRY_SWEEPS  # the study's parser: not needed by `tce show`
+
     asm = assembly(ds, names[0])
     k = ds.indexes["scenario"].get_loc(names[0])
     swept = [key for key in GEOMETRY_SWEEPS if key in ds.coords and ds[key].dims == ("scenario",)]

@@ -16,13 +16,15 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
-from ..analysis.critical import CriticalResult
-from ..core.limit import LimitResult
-from ..core.loads import LoadPattern
+if TYPE_CHECKING:
+    from ..analysis.critical import CriticalResult
+    from ..core.limit import LimitResult
+    from ..core.loads import LoadPattern
 
 __all__ = ["CriticalPosition", "critical_positions", "position_groups", "with_adequacy", "with_critical"]
 

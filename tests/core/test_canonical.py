@@ -167,3 +167,44 @@ def test_every_step_of_the_3d_arch_path_has_its_canonical_state() -> None:
     assert path.outcome == "limit" and len(ok) >= 14
     assert [s.lam for s in ok if s.unique is None] == []
     assert max(max(s.eq_residual, s.cone_residual) for s in ok) <= SolverOptions().residual_tol
+
+
+def test_the_state_is_selected_when_read_and_is_the_same_whenever_read(arch) -> None:
+    """Issue 38: a load path's decisions read only the status, so the canonical state is
+    selected on the first read of the state, not in the solve; read after other solves of the
+    same solver (other multipliers, another motion) it is the state read at once, and a result
+    pickles with its state."""
+    import pickle
+
+    an = Analysis(arch, Material(friction=0.8))
+    path = an.path(0.0, SPREAD)
+    late = path(0.1)
+    assert late.status == "optimal" and late.canonical_time == 0.0  # nothing selected yet
+    for lam in (0.0, 0.2, 0.15):
+        path(lam).status
+    an.solve(0.05, 0.0, TRANSVERSAL).forces
+    at_once = Analysis(arch, Material(friction=0.8)).path(0.0, SPREAD)(0.1)
+    W = float(arch.weights[list(arch.free_indices)].sum())
+    np.testing.assert_allclose(late.forces, at_once.forces, rtol=0, atol=1e-9 * W)
+    assert late.canonical_time > 0.0 and late.unique is at_once.unique is False
+    # the optimum the status came from is kept beside it: another point of the optimal face
+    assert np.abs(late.optimum.forces - late.forces).max() > 1e-6 * W
+    copy = pickle.loads(pickle.dumps(path(0.1)))
+    np.testing.assert_allclose(copy.forces, at_once.forces, rtol=0, atol=1e-9 * W)
+
+
+def test_a_load_path_decides_on_the_optimum_and_its_stored_steps_are_canonical(arch) -> None:
+    """Issue 38: the path's decisions (increments, bracket, bisection) read statuses only, so no
+    canonical state is selected on the way to lambda_max; every step read afterwards, as a study
+    stores it, is the canonical state with its uniqueness decided."""
+    from tce.analysis.loadpath import load_path
+
+    lp = load_path(Analysis(arch, Material(friction=0.8)), 0.0, SPREAD, step=0.05, atol=1e-6, mechanism=False)
+    assert lp.outcome == "limit"
+    assert [s.canonical_time for s in lp.steps] == [0.0] * len(lp.steps)
+    ok = [s for s in lp.steps if s.ok]
+    assert [s.unique for s in ok] == [False] * len(ok) and all(s.canonical_time > 0 for s in ok)
+    W = float(arch.weights[list(arch.free_indices)].sum())
+    fresh = Analysis(arch, Material(friction=0.8)).path(0.0, SPREAD)
+    for s in ok[::3]:
+        np.testing.assert_allclose(s.forces, fresh(s.lam).forces, rtol=0, atol=1e-9 * W)

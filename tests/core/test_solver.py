@@ -220,7 +220,8 @@ def test_a_result_is_a_value_no_later_solve_changes(arch):
     an = Analysis(arch, Material(0.8))
     path = an.path(0.0, {"right": [1e-3, 0, 0, 0, 0, 0]})
     r = path(0.1)
-    held = copy.deepcopy({f.name: getattr(r, f.name) for f in fields(r) if isinstance(getattr(r, f.name), np.ndarray)})
+    arrays = [f.name for f in fields(r)] + [f.name for f in fields(r.state)]
+    held = copy.deepcopy({k: getattr(r, k) for k in arrays if isinstance(getattr(r, k), np.ndarray)})
     assert {"forces", "support_wrenches", "settlements"} <= held.keys()
     path(0.2)
     an.solve(0.05, 0.0, {"right": [0, 0, -1e-3, 0, 0, 0]})
