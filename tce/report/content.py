@@ -350,8 +350,9 @@ def settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
     """The settlement path's answer per scenario (``[settlement_path]``), as ``tce show`` prints it.
 
     Each row holds, as text: ``scenario``; ``capacity`` (largest magnitude found standing, in
-    :func:`settlement_units`; ``NaN`` unless the outcome is collapse, snap_through or
-    contact_lost); ``upper`` (smallest magnitude found not standing); ``outcome`` (as stored);
+    :func:`settlement_units`; ``>= s`` with the last magnitude reached where the outcome is
+    no_collapse, ``NaN`` where nothing stood); ``upper`` (smallest magnitude found not standing,
+    ``–`` where none); ``outcome`` (as stored);
     ``snaps`` (number of magnitudes at which the structure snaps: falls to a new standing
     configuration);
     ``hinges`` (the joints that start rotating, close again or snap, in order, with the
@@ -369,14 +370,18 @@ def settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
         hinges = "; ".join(f"{where}: " + ", ".join(f"{event} {' '.join(joints)}" for event, joints in events)
                            for where, events in groups)
         snaps = sum(any(event == "snap" for event, _ in events) for _, events in groups)
+        outcome = str(ds["settlement_outcome"].values[k])
+        upper = float(ds["settlement_upper"].values[k])
+        if outcome == "no_collapse" and np.isfinite(mags).any():
+            capacity = float(np.nanmax(mags))  # stood at every magnitude, the last included
         lateral = "–"
         if "settlement_lambda_max" in ds and math.isfinite(capacity):
             at = np.flatnonzero(mags == capacity)
             there = float(ds["settlement_lambda_max"].values[k][at[-1]]) if at.size else math.nan
             lateral = fmt(there) if math.isfinite(there) else lateral
         rows.append({
-            "scenario": str(name), "capacity": fmt(capacity), "upper": fmt(float(ds["settlement_upper"].values[k])),
-            "outcome": str(ds["settlement_outcome"].values[k]), "snaps": str(snaps),
+            "scenario": str(name), "capacity": (f">= {fmt(capacity)}" if outcome == "no_collapse" else fmt(capacity)),
+            "upper": fmt(upper) if math.isfinite(upper) else "–", "outcome": outcome, "snaps": str(snaps),
             "hinges": hinges or "–", "lateral": lateral,
         })
     return rows

@@ -105,6 +105,7 @@ def test_show_and_report_state_the_answer(bridge, capsys):
     out = capsys.readouterr().out
     lam = ds["settlement_live_lambda"].values[0]
     assert "live loads after a finite settlement" in out
+    assert "pier_settles: no_collapse: capacity >= 0.04 (first not standing –)" in out  # stood to s_max
     assert f"s = 0.04 (path step 0.04): optimal: lambda_max {lam[1]:.6g}" in out
     content = report_content(ds, path)
     assert [r["lambda"] for r in content.settlement["live"]] == [f"{v:.6g}" for v in lam]
