@@ -120,6 +120,29 @@ def friction_curve() -> None:
     _save(fig, "validation_friction.png")
 
 
+def centreline_convergence() -> None:
+    """The CR2020 cases' values with CR2020's weights on the centreline (the atlas' check
+    takes 160 voussoirs) against the voussoirs and the continuous LP with the same weights:
+    the table of docs/validation.md and the discretisation errors stated in CASES."""
+    ns = [20, 40, 160, 320, 640]
+    rows = {key: [] for key in ("t/R", "h", "mu_rm", "mu_ms", "t/R at mu_ms", "h at mu_ms")}
+    for n in ns:
+        eta = min_ratio(n, None, "radial", 1e-6, "centreline")
+        mu_ms = friction_bound(0.25, n, 0.29, 0.33)
+        eta_ms = min_ratio(n, mu_ms + 1e-7, "radial", 1e-6, "centreline")
+        for key, value in zip(rows, (
+            eta, crown_thrust(eta * (1 + 1e-6), n, weights="centreline"),
+            friction_bound(eta * (1 + 1e-6), n, 0.3, 0.5, weights="centreline"), mu_ms, eta_ms,
+            crown_thrust(eta_ms * (1 + 1e-6), n, mu_ms + 1e-7, weights="centreline"),
+        )):
+            rows[key].append(value)
+    print("voussoirs (centreline weights)", ns)
+    for key, values in rows.items():
+        print(f"{key:<13}", [f"{v:.7f}" for v in values])
+    cont = ref.minimum_thickness("radial", m=2000, tol=1e-9, weight="centreline")
+    print("continuous LP (centreline, 2000 cuts): t/R", f"{cont:.8f}")
+
+
 def paper_cases() -> None:
     """lambda_0max and lambda_90max of the paper's arch against the number of voussoirs."""
     ns = [6, 8, 10, 14, 20, 28, 40]
@@ -358,8 +381,8 @@ def lact3_tilt() -> None:
     _save(fig, "validation_lact3_wall.png")
 
 
-STEPS = (thickness_convergence, friction_curve, paper_cases, stress_block, dome_convergence, lateral_capacity, crushing_arch,
-         gilbert_arch, lact3_tilt, lact3_arch)
+STEPS = (thickness_convergence, friction_curve, centreline_convergence, paper_cases, stress_block, dome_convergence,
+         lateral_capacity, crushing_arch, gilbert_arch, lact3_tilt, lact3_arch)
 
 if __name__ == "__main__":
     np.set_printoptions(linewidth=160)
