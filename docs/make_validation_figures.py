@@ -263,7 +263,7 @@ def gilbert_arch() -> None:
     """The 27-block arch of Gilbert, Casapulla & Ahmed 2006: least t/R against mu, the points
     read off their figure, tce's non-associative values at 27 voussoirs (the associative least
     thickness, its bracket checked closed) and at 160."""
-    from tce.quality.validation import GCA_VOUSSOIRS, NONASSOC_CASES, nonassoc_min_ratio
+    from tce.quality.validation import GCA_MODE_III_LINE, GCA_VOUSSOIRS, NONASSOC_CASES, nonassoc_min_ratio
 
     read = {c.name: c.published for c in NONASSOC_CASES}
     pts_mu = [read["gca_mu_rm"], 0.375, 0.35, 0.325, 0.3109]
@@ -281,7 +281,7 @@ def gilbert_arch() -> None:
     ax.plot(mus, na27, "-", color="C0", label=f"tce, {GCA_VOUSSOIRS} voussoirs, non-associative (bracket closed)")
     ax.plot(mus, as160, "--", color="C2", lw=0.9, label="tce, 160 voussoirs")
     ax.plot(pts_mu, pts_t, "kD", ms=6, label="Gilbert et al. 2006, read off their figure (+-0.0011)")
-    ax.axvline(read["gca_mu_ms"], color="k", ls=":", lw=0.9, label=f"their mode III line ({read['gca_mu_ms']})")
+    ax.axvline(GCA_MODE_III_LINE, color="k", ls=":", lw=0.9, label=f"their mode III line ({GCA_MODE_III_LINE})")
     ax.axvline(mu_ms, color="C0", ls=":", lw=0.9, label=f"tce's least mu, 27 voussoirs ({mu_ms:.4f})")
     ax.set_ylim(0.09, 0.21)
     _decorate(ax, "friction coefficient mu", "least thickness t/R",

@@ -478,18 +478,16 @@ NONASSOC_CASES: tuple[ValidationCase, ...] = (
     ValidationCase(
         "gca_mu_rm", _GCA, _GCA_WHERE, "friction below which sliding joins the hinges (mode I / II), 27 blocks",
         0.3958, lambda: friction_bound(min_ratio(GCA_VOUSSOIRS) * (1 + 1e-5), n=GCA_VOUSSOIRS, lo=0.3, hi=0.5),
-        _GCA_ARCH, 1e-3,
-        "read off the vertical line between modes I and II (+-0.0007); tce 0.395275 at 27 voussoirs "
+        _GCA_ARCH, 7e-4,
+        "read off the vertical line between modes I and II (+-0.0007, the tolerance); tce 0.395275 at 27 voussoirs "
         "(CR2020: 0.395832 with the weights on the centreline)",
     ),
-    ValidationCase(
-        "gca_mu_ms", _GCA, _GCA_WHERE, "least friction with any equilibrium (mode II / III), 27 blocks", 0.3108,
-        lambda: friction_bound(0.25, n=GCA_VOUSSOIRS, lo=0.29, hi=0.33), f"{_GCA_ARCH}, t/R = 0.25", 2.5e-3,
-        "explained: the figure's vertical line stands at their leftmost computed point (0.3109, t/R "
-        "0.1954); the 27-voussoir arch still stands down to tce's 0.308988 (t/R 0.1973 there, "
-        "rising 1.5 per unit of mu), and the continuous ring to 0.309215 (CR2020)",
-    ),
 )
+
+#: the figure's vertical line between modes II and III, read off (+-0.0007): it stands at their
+#: leftmost computed point (mu 0.3109, t/R 0.1954: the case gca_eta_0311), not at a least friction,
+#: so it is drawn beside tce's (docs/make_validation_figures.py) and not compared
+GCA_MODE_III_LINE = 0.3108
 
 CASES = CASES + NONASSOC_CASES
 
