@@ -1,10 +1,14 @@
 """The validation atlas: tce against published values, case by case (``tce check --validation``).
 
 Each :class:`ValidationCase` names its source, the published value and where it is printed,
-computes tce's value at a coarse discretisation (a few seconds a case), and states the
-tolerance and why. The convergence with the discretisation is in ``docs/validation.md``
-(drawn by ``docs/make_validation_figures.py``); ``tests/validation/literature/`` checks
-every case.
+the reference (the publication's own model and assumptions computed without tce: a continuous
+LP, a closed form, a mechanism by hand), computes tce's value under the same assumptions at a
+coarse discretisation (a few seconds a case), and states its discretisation error against the
+reference, the tolerance (at most twice that error, or the precision of the comparison where
+tce's blocks are the publication's) and why. It also states whether the reference rounds to
+the published value at its printed digits. The convergence with the discretisation is in
+``docs/validation.md`` (drawn by ``docs/make_validation_figures.py``);
+``tests/validation/literature/`` checks every case and these rules.
 
 Sources:
 
