@@ -37,7 +37,8 @@ def lam_at(p: LoadPattern, x: float) -> float:
     return AN.limit(loads=p.moved(x)).lambda_max
 
 
-def brute_force(p: LoadPattern, lo: float, hi: float, h: float = 0.01, finest: float = 2e-5) -> list[tuple[float, float]]:
+def brute_force(p: LoadPattern, lo: float, hi: float, h: float = 0.01,
+                finest: float = 2e-5) -> list[tuple[float, float]]:
     """``(lambda, x)`` of every local minimum of ``lambda_max(x)`` on a grid of step ``h`` over
     ``[lo, hi]`` within 1e-3 of the least, each zoomed by grids of 21 points ten times finer
     down to ``finest`` (m); sorted by lambda."""

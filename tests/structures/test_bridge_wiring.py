@@ -108,7 +108,8 @@ def test_springings_piers_and_foundations_where_the_dimensions_put_them(spans):
         for pair, x in (((left, f"s{s}v01"), c - SPAN / 2), ((f"s{s}v03", right), c + SPAN / 2)):
             springing = by_pair[pair]
             low = springing[springing[:, 2] < 1e-12]
-            assert len(low) == 2 and np.allclose(low[:, 0], x) and np.allclose(sorted(low[:, 1]), [-DEPTH / 2, DEPTH / 2])
+            assert len(low) == 2 and np.allclose(low[:, 0], x)
+            assert np.allclose(sorted(low[:, 1]), [-DEPTH / 2, DEPTH / 2])
     for k in range(1, spans):
         base = by_pair[f"pier{k}", f"foundation{k}"]
         x0 = centres[k - 1] + SPAN / 2
