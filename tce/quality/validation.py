@@ -173,6 +173,8 @@ def centreline_weights(arch: Assembly) -> LoadPattern:
 
 
 def _solve(t: float, n: int, mu: float | None, joints: str = "radial", weights: str = "ring") -> Result:
+    if weights not in WEIGHTS or (weights == "centreline" and joints != "radial"):
+        raise ValueError(f"weights must be one of {WEIGHTS} (centreline with radial joints), got {weights!r}")
     arch = _arch(t, n, joints)
     loads = centreline_weights(arch) if weights == "centreline" else None
     return Analysis(arch, Material(friction=mu)).solve(0.0, loads=loads)

@@ -80,3 +80,12 @@ def test_the_table_lists_every_case_with_its_tolerance():
         cells = TABLE[case.name].split("|")
         assert float(cells[8]) == case.tolerance, case.name  # the tolerance column
     assert not re.search(r"\| cr_\w+ .*shift", DOC)
+
+
+def test_weights_are_named_and_centreline_goes_with_radial_joints():
+    from tce.quality.validation import min_ratio
+
+    with pytest.raises(ValueError, match="weights must be one of"):
+        min_ratio(8, weights="rings")
+    with pytest.raises(ValueError, match="centreline with radial joints"):
+        min_ratio(8, joints="vertical", weights="centreline")
