@@ -481,10 +481,30 @@ class _Scales:
             _, res, tq = arrays.state(st)
             fmax = max(fmax, float(np.nanmax(np.linalg.norm(res, axis=1), initial=0.0)))
             tmax = max(tmax, float(np.nanmax(np.abs(tq), initial=0.0)))
-        force = draw.nice(ARROW_FRACTION * size / fmax) if fmax > 0 else 0.0
-        sig = tmax > TORQUE_TOL * fmax * size
-        torque = draw.nice(TORQUE_FRACTION * size / tmax) if sig and tmax > 0 else 0.0
-        return cls(force, torque, fmax)
+        return cls(*arrow_scales(fmax, tmax, size), fmax)
+
+
+def arrow_scales(fmax: float, tmax: float, size: float) -> tuple[float, float]:
+    """The arrow scale (m per kN) and the torque-arc scale (m per kN m) of forces up to ``fmax``
+    (kN) and torques up to ``tmax`` (kN m) on a structure of ``size`` (m): 0 when there is no
+    force, or no torque above ``TORQUE_TOL * fmax * size``."""
+    force = draw.nice(ARROW_FRACTION * size / fmax) if fmax > 0 else 0.0
+    torque = draw.nice(TORQUE_FRACTION * size / tmax) if tmax > max(TORQUE_TOL * fmax * size, 0.0) else 0.0
+    return force, torque
+
+
+def displaced(asm: Assembly, vel: NDArray[np.float64]) -> tuple[list[NDArray[np.float64]], float]:
+    """Each block's vertices moved by the mechanism ``vel`` (a row ``(v, w)`` per block),
+    exaggerated so that the largest displacement is :data:`MECHANISM_FRACTION` of the
+    assembly size, and that displacement (m; 0 for a mechanism that moves nothing).
+
+    A vertex ``p`` of a block with centroid ``c`` moves to ``p + s (v + w x (p - c))``.
+    """
+    verts = [np.asarray(b.shape.vertices, float) for b in asm.blocks]
+    disp = [vel[k, :3] + np.cross(vel[k, 3:], v - c) for k, (v, c) in enumerate(zip(verts, asm.centroids))]
+    dmax = max(float(np.linalg.norm(d, axis=1).max()) for d in disp)
+    scale = MECHANISM_FRACTION * asm.size / dmax if dmax > 0 else 0.0
+    return [v + scale * d for v, d in zip(verts, disp)], scale * dmax
 
 
 class _Arrays:
@@ -852,9 +872,7 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
     The title says "every scenario drawn" when ``names`` are all of ``drawn`` (default: every
     scenario of ``ds``; passed because a worker receives only the scenarios a figure reads).
 
-    A vertex ``p`` of a block with centroid ``c`` and velocities ``(v, w)`` moves to
-    ``p + s (v + w x (p - c))``; ``s`` makes the largest vertex displacement
-    :data:`MECHANISM_FRACTION` of the assembly size and the title states it.
+    The blocks are :func:`displaced`; the title states the largest displacement drawn.
 
     Returns
     -------
@@ -865,18 +883,12 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
     names = list(names)
     s0 = names[0]
     asm = one_geometry(ds, names)
-    vel = block_rows(ds, "mechanism", s0, asm)
-    verts = [np.asarray(b.shape.vertices, float) for b in asm.blocks]
-    cen = asm.centroids
-    disp = [vel[k, :3] + np.cross(vel[k, 3:], v - cen[k]) for k, v in enumerate(verts)]
-    dmax = max(float(np.linalg.norm(d, axis=1).max()) for d in disp)
-    scale = MECHANISM_FRACTION * asm.size / dmax if dmax > 0 else 0.0
-    moved = [v + scale * d for v, d in zip(verts, disp)]
+    moved, shown = displaced(asm, block_rows(ds, "mechanism", s0, asm))
     planar = is_planar(ds, s0)
     if planar:
         camera = draw.Camera.elevation()
     else:
-        d = np.vstack(disp)
+        d = np.vstack(moved) - np.vstack([b.shape.vertices for b in asm.blocks])
         camera = draw.Camera.for_assembly(asm, across=bool(np.abs(d[:, 1]).sum() > np.abs(d[:, 0]).sum()))
     ghost = draw.BlockArt.of(asm, camera, ghost=True)
     art = draw.BlockArt.of(asm, camera, verts=moved)
@@ -891,7 +903,7 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
     drawn = list(drawn) if drawn is not None else scenarios(ds)
     who = "every scenario drawn" if len(names) > 1 and set(names) == set(drawn) else join_names(names, 4)
     title = (_wrap(f"collapse mechanism at {lam}, shared by {who}", width) +
-             f"\n(exaggerated: largest displacement drawn {scale * dmax:.2f} m)")
+             f"\n(exaggerated: largest displacement drawn {shown:.2f} m)")
     sheet = _Sheet(1, 1, lo, hi, width, 0.16 * (title.count("\n") + 1) + 0.1,
                    _legend_height([h.get_label() for h in handles], width), camera)
     off = sheet.offset(0, 0)
