@@ -210,15 +210,6 @@ class PlotSpec:
     kinds: tuple[str, ...]
 
 
-def critical_scenarios(ds: xr.Dataset) -> list[str]:
-    """The critical scenario of every group of a load-position sweep, in dataset order (the
-    first position of a group without a finite lambda_max)."""
-    from ..study.positions import critical_positions  # the solvers: imported for a load-position sweep only
-
-    chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}
-    return [str(s) for s in ds["scenario"].values if str(s) in chosen]
-
-
 def plot_spec(
     ds: xr.Dataset,
     steps: Sequence[Target] | None = None,
@@ -265,7 +256,10 @@ def plot_spec(
                             f"{' ...' if len(names) > 8 else ''}")
     drawn = section.select(names)
     if section.scenarios is None and "load_x" in ds.coords:  # a load-position sweep: its critical positions
-        drawn = critical_scenarios(ds)
+        from ..study.positions import critical_positions  # the solvers: imported for a load-position sweep only
+
+        chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}  # no finite limit: the first
+        drawn = [s for s in names if s in chosen]
     return PlotSpec(
         steps=tuple(section.steps),
         scenarios=tuple(drawn),

@@ -671,7 +671,9 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
     common = {s: _common_note([states[(s, t)] for t in targets if (s, t) in states]) for s in names}
     heads = {s: s + ("\n" + _wrap(common[s], width) if common[s] else "") for s in names} if many else {}
     header_lines = max((h.count("\n") + 1 for h in heads.values()), default=0)
-    cell_notes = {k: _rest(st.note, common[k[0]] if many else "") for k, st in states.items() if st.step is not None}
+    # a panel's own note: what its scenario's header does not already say
+    cell_notes = {k: "" if many and st.note == common[k[0]] else st.note for k, st in states.items()
+                  if st.step is not None}
     cell_lines = 1 + max((_wrap(n, width).count("\n") + 1 for n in cell_notes.values() if n), default=0)
     has_loads = any(declared_loads(ds, s) is not None for s in names)
     handles = _state_handles(scales, chain is not None, any(t == "max" for t in targets), has_loads,
@@ -712,11 +714,6 @@ def _common_note(states: Sequence[State]) -> str:
     """The note every drawn state of a scenario shares ("" if they differ or have none)."""
     notes = {st.note for st in states if st.step is not None}
     return notes.pop() if len(notes) == 1 else ""
-
-
-def _rest(note: str, common: str) -> str:
-    """``note`` without what the scenario's header already says."""
-    return "" if note == common else note
 
 
 # ---------------------------------------------------------------------------- lines of thrust
