@@ -246,20 +246,19 @@ class _Doc:
         text = json.dumps(value) if isinstance(value, (str, int, float, bool, type(None))) else repr(value)
         return text if len(text) <= 40 else text[:37] + "..."
 
-    def obj(self, key: str, value: Any) -> Mapping:
-        if not isinstance(value, Mapping):
-            raise self.fail(key, f"must be an object {{...}}, got {self._got(value)}")
+    def _typed(self, key: str, value: Any, kind: type, words: str) -> Any:
+        if not isinstance(value, kind):
+            raise self.fail(key, f"must be {words}, got {self._got(value)}")
         return value
+
+    def obj(self, key: str, value: Any) -> Mapping:
+        return self._typed(key, value, Mapping, "an object {...}")
 
     def array(self, key: str, value: Any) -> list:
-        if not isinstance(value, list):
-            raise self.fail(key, f"must be a list [...], got {self._got(value)}")
-        return value
+        return self._typed(key, value, list, "a list [...]")
 
     def flag(self, key: str, value: Any) -> bool:
-        if not isinstance(value, bool):
-            raise self.fail(key, f"must be true or false, got {self._got(value)}")
-        return value
+        return self._typed(key, value, bool, "true or false")
 
     def number(self, key: str, value: Any, positive: bool = False) -> float:
         """A finite JSON number (not a boolean, not a quoted number); ``> 0`` when ``positive``."""
