@@ -208,17 +208,11 @@ class _Styles:
     def handles(self, linewidth: float = 1.4) -> list:
         """Legend entries: one per colour value, then one per line style."""
         out: list = [Line2D([], [], color=c, linewidth=linewidth, label=k) for k, c in self.colour_values.items()]
-        if self.colour_by == "settlement":
-            out += [Line2D([], [], color=COLOURS[0] if len(self.style_values) == 1 else self._case_colour(c),
-                           linestyle=st, linewidth=linewidth, label=c) for c, st in self.style_values.items()]
-        else:
-            out += [Line2D([], [], color="#555555", linestyle=st, linewidth=linewidth, label=c)
-                    for c, st in self.style_values.items()]
-        return out
-
-    def _case_colour(self, case: str) -> str:
-        k = list(self.style_values).index(case)
-        return _palette(len(self.style_values))[k]
+        # coloured by settlement case: each case in its colour; else grey, the colour is another parameter's
+        n = len(self.style_values)
+        palette = _palette(n) if self.colour_by == "settlement" else ["#555555"] * n
+        return out + [Line2D([], [], color=colour, linestyle=st, linewidth=linewidth, label=c)
+                      for colour, (c, st) in zip(palette, self.style_values.items())]
 
 
 def _palette(n: int) -> list[str]:
@@ -332,8 +326,7 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
     lines = [0, *np.cumsum([n.count("\n") + 1 for n in notes])]  # note lines below each note
     below = _legend_height([h.get_label() for h in handles], width) + 0.16 * lines[-1]
     grid = _Grid(nrows, ncols, w, 2.3, left=0.8, wspace=0.85, hspace=0.8, top=0.8, bottom=0.45, below=below)
-    lmax = limits
-    xmax = 1.08 * max([*lmax, *(float(np.max(v)) for v in lams.values() if v.size)], default=1.0)
+    xmax = 1.08 * max([*limits, *(float(np.max(v)) for v in lams.values() if v.size)], default=1.0)
     for r, (facet, members) in enumerate(facets):
         for c, comp in enumerate(comps):
             ax = grid.axes[c // 2][c % 2] if square else grid.axes[r][c]
@@ -353,7 +346,7 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
                         markevery=(0.03 * (j % 2), 0.1), gid=f"reaction:{comp}:{s}:{sup}", **style(s, j))
                 if len(g) > 1:
                     same.append([keys[i] for i in g])
-            for v in lmax:  # named in the legend, not over the curves
+            for v in limits:  # named in the legend, not over the curves
                 ax.axvline(v, color="#555555", linestyle=":", linewidth=1.0, gid="lambda_max")
             _min_span(ax, allv)
             ax.grid(True, linewidth=0.3, alpha=0.6)
