@@ -45,6 +45,7 @@ from .data import (
     chain_interfaces,
     find_state,
     group_identical,
+    groups_of,
     hinge_segments,
     is_planar,
     join_names,
@@ -1061,14 +1062,7 @@ def summary_figure(ds: xr.Dataset) -> Figure:
     # cases with identical answers for every parameter set share a row
     sig = {c: tuple(sorted((tuple(par[s][p] for p in params), round(lmax[s], 9) if math.isfinite(lmax[s]) else outcome[s])
                            for s in names if case[s] == c)) for c in cases}
-    rows: list[list[str]] = []
-    for c in cases:
-        for r in rows:
-            if sig[r[0]] == sig[c]:
-                r.append(c)
-                break
-        else:
-            rows.append([c])
+    rows = [[cases[i] for i in g] for g in groups_of(cases, lambda a, b: sig[a] == sig[b])]
     w, h = 3.4, 2.3
     legends = len(params) > 1 or any(o != "limit" for o in outcome.values())  # else no room kept for one
     grid = _Grid(len(rows), len(params), w, h, left=0.75, right=2.3 if legends else 0.3,
