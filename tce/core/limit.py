@@ -247,7 +247,6 @@ class LimitSolver:
         self.options = SolverOptions(tol=tol, max_iter=500)
         #: Clarabel settings without and with iterative refinement (the retry)
         self._settings = tuple(self.options.settings(refine=r, kkt=self.formulation.kkt) for r in (False, True))
-        self._vectors_last: tuple[object, tuple[LoadPattern, NDArray[np.float64], NDArray[np.float64]]] | None = None
 
     def solve(self, alpha: float | None = None, loads: LoadPattern | None = None, mechanism: bool = True) -> LimitResult:
         """Largest multiplier of the live part of the pattern ``loads`` (default: the lateral
@@ -259,14 +258,7 @@ class LimitSolver:
         ValueError
             A pattern that cannot be applied, or that leaves a planar model's plane.
         """
-        # the last call's vectors, when it had the same direction alone or the same pattern
-        key = ("alpha", 0.0 if alpha is None else alpha) if loads is None else loads
-        last = self._vectors_last
-        if last is not None and (last[0] is key or last[0] == key):
-            pattern, b_fixed, b_live = last[1]
-        else:
-            pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
-            self._vectors_last = (key, (pattern, b_fixed, b_live))
+        pattern, b_fixed, b_live = scene_vectors(self.model, alpha, loads)
         return self.solve_loads(b_fixed, b_live, pattern.direction, pattern, mechanism=mechanism,
                                 restraint=passive_restraint(self.model, pattern.fill))
 

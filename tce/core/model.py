@@ -43,7 +43,6 @@ __all__ = [
     "build_model",
     "find_plane",
     "motions_in_plane",
-    "scene_in_plane",
 ]
 
 ModelKind = Literal["spatial", "planar"]
@@ -303,15 +302,6 @@ class Model:
         area = np.maximum(self.contact_area * factor, np.finfo(float).tiny)
         k = np.array([normal_stiffness] + [shear_stiffness] * (self.dim - 1))
         return (1.0 / (area[:, None] * k[None, :])).ravel()
-
-
-def scene_in_plane(plane: Plane, alpha: float, settlements: dict[str, np.ndarray] | None, tol: float = 1e-12) -> bool:
-    """True when the lateral direction ``alpha`` and every support motion lie in ``plane``
-    (:func:`motions_in_plane`; other loads: :meth:`tce.core.loads.AppliedLoads.in_plane`)."""
-    d = lateral_direction(alpha)
-    if abs(d @ plane.m) > 1e-12:
-        return False
-    return motions_in_plane(plane, settlements, tol)
 
 
 def motions_in_plane(plane: Plane, settlements: dict[str, np.ndarray] | None, tol: float = 1e-12) -> bool:

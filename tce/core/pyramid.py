@@ -90,19 +90,6 @@ def pyramid_rows(model: Model, friction: float | None, k: int, kind: PyramidKind
     return ConeRows(sp.vstack([normal, facets]).tocsr(), 0, nc * (k + 1), 0)
 
 
-def _pyramid_solver(model: Model, friction: float | None, k: int, kind: PyramidKind, tol: float) -> LimitSolver:
-    """:class:`LimitSolver` on pyramid rows instead of the cone.
-
-    Its residual check runs on the pyramid's own rows; the mechanism's admissibility is
-    measured against the cone the pyramid is inscribed in (``mu / cos(pi / k)`` for a
-    circumscribed pyramid, ``mu`` otherwise).
-    """
-    check = friction
-    if friction is not None and kind == "circumscribed" and model.dim == 3:
-        check = float(friction) / np.cos(np.pi / int(k))
-    return LimitSolver(model, Material(friction=check), tol, rows=pyramid_rows(model, friction, k, kind))
-
-
 def pyramid_lambda_max(
     model: Model,
     friction: float | None,
@@ -134,7 +121,12 @@ def pyramid_lambda_max(
         As :meth:`tce.core.limit.LimitSolver.solve`; ``lambda_max`` is the bound. Its mechanism's
         ``admissibility`` is measured against the (possibly enlarged) cone, not the pyramid.
     """
-    return _pyramid_solver(model, friction, k, kind, tol).solve(alpha)
+    # residuals are checked on the pyramid's own rows, the mechanism against the cone the
+    # pyramid is inscribed in (mu / cos(pi / k) for a circumscribed pyramid, mu otherwise)
+    check = friction
+    if friction is not None and kind == "circumscribed" and model.dim == 3:
+        check = float(friction) / np.cos(np.pi / int(k))
+    return LimitSolver(model, Material(friction=check), tol, rows=pyramid_rows(model, friction, k, kind)).solve(alpha)
 
 
 def pyramid_bracket(model: Model, friction: float | None, alpha: float = 0.0, k: int = 8) -> tuple[float, float]:

@@ -49,7 +49,6 @@ def _vector(value: ArrayLike, n: int, key: str, unit: str) -> tuple[float, ...]:
     return tuple(float(x) for x in v)
 
 
-
 # ---------------------------------------------------------------------------- top surface
 @dataclass(frozen=True, eq=False)
 class _Faces:
@@ -120,8 +119,7 @@ def _on_top(assembly: Assembly, xy: tuple[float, float]) -> tuple[int, NDArray[n
     x, y = xy
     hit = np.flatnonzero(shapely.intersects_xy(faces.plan, x, y))
     if hit.size == 0:
-        lo = np.min([b.shape.vertices.min(axis=0) for b in assembly.blocks], axis=0)
-        hi = np.max([b.shape.vertices.max(axis=0) for b in assembly.blocks], axis=0)
+        lo, hi = assembly.face_table.lo.min(axis=0), assembly.face_table.hi.max(axis=0)
         raise LoadError(
             "on_top", f"[{x:g}, {y:g}] is outside the plan of the structure: no block lies under it (the plan spans "
             f"x from {lo[0]:.4g} to {hi[0]:.4g} m, y from {lo[1]:.4g} to {hi[1]:.4g} m)",

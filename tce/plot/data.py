@@ -25,9 +25,10 @@ import json
 import math
 import re
 import tomllib
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -48,6 +49,7 @@ __all__ = [
     "geometry",
     "geometry_groups",
     "group_identical",
+    "groups_of",
     "hinge_segments",
     "join_names",
     "mechanism_groups",
@@ -210,15 +212,6 @@ class PlotSpec:
     kinds: tuple[str, ...]
 
 
-def critical_scenarios(ds: xr.Dataset) -> list[str]:
-    """The critical scenario of every group of a load-position sweep, in dataset order (the
-    first position of a group without a finite lambda_max)."""
-    from ..study.positions import critical_positions  # the solvers: imported for a load-position sweep only
-
-    chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}
-    return [str(s) for s in ds["scenario"].values if str(s) in chosen]
-
-
 def plot_spec(
     ds: xr.Dataset,
     steps: Sequence[Target] | None = None,
@@ -265,7 +258,10 @@ def plot_spec(
                             f"{' ...' if len(names) > 8 else ''}")
     drawn = section.select(names)
     if section.scenarios is None and "load_x" in ds.coords:  # a load-position sweep: its critical positions
-        drawn = critical_scenarios(ds)
+        from ..study.positions import critical_positions  # the solvers: imported for a load-position sweep only
+
+        chosen = {c.scenario or c.scenarios[0] for c in critical_positions(ds)}  # no finite limit: the first
+        drawn = [s for s in names if s in chosen]
     return PlotSpec(
         steps=tuple(section.steps),
         scenarios=tuple(drawn),
@@ -410,15 +406,8 @@ def mechanism_groups(ds: xr.Dataset, names: Sequence[str]) -> list[list[str]]:
         v = np.asarray(value(ds, "mechanism", s, ["block", "dof"]), float)
         if np.all(np.isfinite(v)) and np.any(v):
             mech.append((s, v, value(ds, "interface_mode", s).astype(str)))
-    groups: list[list[int]] = []
-    for i, (_, v, m) in enumerate(mech):
-        for g in groups:
-            _, v0, m0 = mech[g[0]]
-            if np.allclose(v0, v, rtol=1e-6, atol=1e-9 * np.abs(v0).max()) and np.array_equal(m0, m):
-                g.append(i)
-                break
-        else:
-            groups.append([i])
+    groups = groups_of(mech, lambda a, b: np.allclose(a[1], b[1], rtol=1e-6, atol=1e-9 * np.abs(a[1]).max())
+                       and np.array_equal(a[2], b[2]))
     return [[mech[i][0] for i in g] for g in groups]
 
 
@@ -631,17 +620,20 @@ def group_identical(curves: Sequence[tuple[NDArray, NDArray]], atol: float) -> l
 
     Returns indices into ``curves``, each group and the groups in input order.
     """
+    return groups_of(curves, lambda a, b: len(a[0]) == len(b[0]) and np.allclose(a[0], b[0], rtol=0, atol=1e-12)
+                     and np.allclose(a[1], b[1], rtol=0, atol=atol, equal_nan=True))
+
+
+def groups_of(items: Sequence[Any], same: Callable[[Any, Any], bool]) -> list[list[int]]:
+    """Indices of ``items`` in groups: each item joins the first group whose first item is
+    ``same`` as it, else starts one (groups and their members in input order)."""
     groups: list[list[int]] = []
-    for i, (x, y) in enumerate(curves):
-        for g in groups:
-            x0, y0 = curves[g[0]]
-            if len(x0) == len(x) and np.allclose(x0, x, rtol=0, atol=1e-12) and np.allclose(
-                y0, y, rtol=0, atol=atol, equal_nan=True
-            ):
-                g.append(i)
-                break
-        else:
+    for i, item in enumerate(items):
+        group = next((g for g in groups if same(items[g[0]], item)), None)
+        if group is None:
             groups.append([i])
+        else:
+            group.append(i)
     return groups
 
 

@@ -20,6 +20,7 @@ from matplotlib.colors import to_rgb
 from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
+from ..structures.geometry import PolygonTable
 
 __all__ = ["BlockArt", "Camera", "arrows", "nice", "torque_arcs"]
 
@@ -109,20 +110,19 @@ class BlockArt:
         right, up, eye = camera.basis
         light = eye + 0.6 * up - 0.3 * right
         light /= np.linalg.norm(light)
+        faces = [(b, v, v[list(face)]) for b, v in zip(asm.blocks, verts) for face in b.shape.faces]
+        normals = PolygonTable.of([p for _, _, p in faces]).newell
+        normals /= np.maximum(np.linalg.norm(normals, axis=1), 1e-300)[:, None]
         polys, depth, colours = [], [], []
-        for b, v in zip(asm.blocks, verts):
-            centre = v.mean(axis=0)
+        for (b, v, p), n in zip(faces, normals):
+            if (p.mean(axis=0) - v.mean(axis=0)) @ n < 0:
+                n = -n
+            if n @ eye <= 1e-9 and not ghost:  # back face (or seen edge-on)
+                continue
             base = np.array(to_rgb(SUPPORT_COLOUR if b.support else BLOCK_COLOUR))
-            for face in b.shape.faces:
-                p = v[list(face)]
-                n = _newell(p)
-                if (p.mean(axis=0) - centre) @ n < 0:
-                    n = -n
-                if n @ eye <= 1e-9 and not ghost:  # back face (or seen edge-on)
-                    continue
-                polys.append(camera.project(p))
-                depth.append(float(camera.depth(p).mean()))
-                colours.append((*np.clip(base * (0.62 + 0.38 * abs(n @ light)), 0, 1), 0.62))
+            polys.append(camera.project(p))
+            depth.append(float(camera.depth(p).mean()))
+            colours.append((*np.clip(base * (0.62 + 0.38 * abs(n @ light)), 0, 1), 0.62))
         order = np.argsort(depth, kind="stable")
         return cls([polys[k] for k in order], [colours[k] for k in order], camera.project(np.vstack(verts)), ghost)
 
@@ -141,17 +141,6 @@ class BlockArt:
         coll.set_gid(f"{gid}-ghost" if self.ghost else gid)
         ax.add_collection(coll)
         return self.points + off
-
-
-def _newell(p: NDArray[np.float64]) -> NDArray[np.float64]:
-    q = np.roll(p, -1, axis=0)
-    n = np.array([
-        ((p[:, 1] - q[:, 1]) * (p[:, 2] + q[:, 2])).sum(),
-        ((p[:, 2] - q[:, 2]) * (p[:, 0] + q[:, 0])).sum(),
-        ((p[:, 0] - q[:, 0]) * (p[:, 1] + q[:, 1])).sum(),
-    ])
-    norm = np.linalg.norm(n)
-    return n / norm if norm > 0 else n
 
 
 def arrows(

@@ -45,6 +45,7 @@ from .data import (
     chain_interfaces,
     find_state,
     group_identical,
+    groups_of,
     hinge_segments,
     is_planar,
     join_names,
@@ -208,17 +209,11 @@ class _Styles:
     def handles(self, linewidth: float = 1.4) -> list:
         """Legend entries: one per colour value, then one per line style."""
         out: list = [Line2D([], [], color=c, linewidth=linewidth, label=k) for k, c in self.colour_values.items()]
-        if self.colour_by == "settlement":
-            out += [Line2D([], [], color=COLOURS[0] if len(self.style_values) == 1 else self._case_colour(c),
-                           linestyle=st, linewidth=linewidth, label=c) for c, st in self.style_values.items()]
-        else:
-            out += [Line2D([], [], color="#555555", linestyle=st, linewidth=linewidth, label=c)
-                    for c, st in self.style_values.items()]
-        return out
-
-    def _case_colour(self, case: str) -> str:
-        k = list(self.style_values).index(case)
-        return _palette(len(self.style_values))[k]
+        # coloured by settlement case: each case in its colour; else grey, the colour is another parameter's
+        n = len(self.style_values)
+        palette = _palette(n) if self.colour_by == "settlement" else ["#555555"] * n
+        return out + [Line2D([], [], color=colour, linestyle=st, linewidth=linewidth, label=c)
+                      for colour, (c, st) in zip(palette, self.style_values.items())]
 
 
 def _palette(n: int) -> list[str]:
@@ -332,8 +327,7 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
     lines = [0, *np.cumsum([n.count("\n") + 1 for n in notes])]  # note lines below each note
     below = _legend_height([h.get_label() for h in handles], width) + 0.16 * lines[-1]
     grid = _Grid(nrows, ncols, w, 2.3, left=0.8, wspace=0.85, hspace=0.8, top=0.8, bottom=0.45, below=below)
-    lmax = limits
-    xmax = 1.08 * max([*lmax, *(float(np.max(v)) for v in lams.values() if v.size)], default=1.0)
+    xmax = 1.08 * max([*limits, *(float(np.max(v)) for v in lams.values() if v.size)], default=1.0)
     for r, (facet, members) in enumerate(facets):
         for c, comp in enumerate(comps):
             ax = grid.axes[c // 2][c % 2] if square else grid.axes[r][c]
@@ -353,7 +347,7 @@ def thrust_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Figure:
                         markevery=(0.03 * (j % 2), 0.1), gid=f"reaction:{comp}:{s}:{sup}", **style(s, j))
                 if len(g) > 1:
                     same.append([keys[i] for i in g])
-            for v in lmax:  # named in the legend, not over the curves
+            for v in limits:  # named in the legend, not over the curves
                 ax.axvline(v, color="#555555", linestyle=":", linewidth=1.0, gid="lambda_max")
             _min_span(ax, allv)
             ax.grid(True, linewidth=0.3, alpha=0.6)
@@ -481,10 +475,30 @@ class _Scales:
             _, res, tq = arrays.state(st)
             fmax = max(fmax, float(np.nanmax(np.linalg.norm(res, axis=1), initial=0.0)))
             tmax = max(tmax, float(np.nanmax(np.abs(tq), initial=0.0)))
-        force = draw.nice(ARROW_FRACTION * size / fmax) if fmax > 0 else 0.0
-        sig = tmax > TORQUE_TOL * fmax * size
-        torque = draw.nice(TORQUE_FRACTION * size / tmax) if sig and tmax > 0 else 0.0
-        return cls(force, torque, fmax)
+        return cls(*arrow_scales(fmax, tmax, size), fmax)
+
+
+def arrow_scales(fmax: float, tmax: float, size: float) -> tuple[float, float]:
+    """The arrow scale (m per kN) and the torque-arc scale (m per kN m) of forces up to ``fmax``
+    (kN) and torques up to ``tmax`` (kN m) on a structure of ``size`` (m): 0 when there is no
+    force, or no torque above ``TORQUE_TOL * fmax * size``."""
+    force = draw.nice(ARROW_FRACTION * size / fmax) if fmax > 0 else 0.0
+    torque = draw.nice(TORQUE_FRACTION * size / tmax) if tmax > max(TORQUE_TOL * fmax * size, 0.0) else 0.0
+    return force, torque
+
+
+def displaced(asm: Assembly, vel: NDArray[np.float64]) -> tuple[list[NDArray[np.float64]], float]:
+    """Each block's vertices moved by the mechanism ``vel`` (a row ``(v, w)`` per block),
+    exaggerated so that the largest displacement is :data:`MECHANISM_FRACTION` of the
+    assembly size, and that displacement (m; 0 for a mechanism that moves nothing).
+
+    A vertex ``p`` of a block with centroid ``c`` moves to ``p + s (v + w x (p - c))``.
+    """
+    verts = [np.asarray(b.shape.vertices, float) for b in asm.blocks]
+    disp = [vel[k, :3] + np.cross(vel[k, 3:], v - c) for k, (v, c) in enumerate(zip(verts, asm.centroids))]
+    dmax = max(float(np.linalg.norm(d, axis=1).max()) for d in disp)
+    scale = MECHANISM_FRACTION * asm.size / dmax if dmax > 0 else 0.0
+    return [v + scale * d for v, d in zip(verts, disp)], scale * dmax
 
 
 class _Arrays:
@@ -651,7 +665,9 @@ def states_figure(ds: xr.Dataset, panels: Sequence[tuple[str, object]], title: s
     common = {s: _common_note([states[(s, t)] for t in targets if (s, t) in states]) for s in names}
     heads = {s: s + ("\n" + _wrap(common[s], width) if common[s] else "") for s in names} if many else {}
     header_lines = max((h.count("\n") + 1 for h in heads.values()), default=0)
-    cell_notes = {k: _rest(st.note, common[k[0]] if many else "") for k, st in states.items() if st.step is not None}
+    # a panel's own note: what its scenario's header does not already say
+    cell_notes = {k: "" if many and st.note == common[k[0]] else st.note for k, st in states.items()
+                  if st.step is not None}
     cell_lines = 1 + max((_wrap(n, width).count("\n") + 1 for n in cell_notes.values() if n), default=0)
     has_loads = any(declared_loads(ds, s) is not None for s in names)
     handles = _state_handles(scales, chain is not None, any(t == "max" for t in targets), has_loads,
@@ -692,11 +708,6 @@ def _common_note(states: Sequence[State]) -> str:
     """The note every drawn state of a scenario shares ("" if they differ or have none)."""
     notes = {st.note for st in states if st.step is not None}
     return notes.pop() if len(notes) == 1 else ""
-
-
-def _rest(note: str, common: str) -> str:
-    """``note`` without what the scenario's header already says."""
-    return "" if note == common else note
 
 
 # ---------------------------------------------------------------------------- lines of thrust
@@ -852,9 +863,7 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
     The title says "every scenario drawn" when ``names`` are all of ``drawn`` (default: every
     scenario of ``ds``; passed because a worker receives only the scenarios a figure reads).
 
-    A vertex ``p`` of a block with centroid ``c`` and velocities ``(v, w)`` moves to
-    ``p + s (v + w x (p - c))``; ``s`` makes the largest vertex displacement
-    :data:`MECHANISM_FRACTION` of the assembly size and the title states it.
+    The blocks are :func:`displaced`; the title states the largest displacement drawn.
 
     Returns
     -------
@@ -865,18 +874,12 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
     names = list(names)
     s0 = names[0]
     asm = one_geometry(ds, names)
-    vel = block_rows(ds, "mechanism", s0, asm)
-    verts = [np.asarray(b.shape.vertices, float) for b in asm.blocks]
-    cen = asm.centroids
-    disp = [vel[k, :3] + np.cross(vel[k, 3:], v - cen[k]) for k, v in enumerate(verts)]
-    dmax = max(float(np.linalg.norm(d, axis=1).max()) for d in disp)
-    scale = MECHANISM_FRACTION * asm.size / dmax if dmax > 0 else 0.0
-    moved = [v + scale * d for v, d in zip(verts, disp)]
+    moved, shown = displaced(asm, block_rows(ds, "mechanism", s0, asm))
     planar = is_planar(ds, s0)
     if planar:
         camera = draw.Camera.elevation()
     else:
-        d = np.vstack(disp)
+        d = np.vstack(moved) - np.vstack([b.shape.vertices for b in asm.blocks])
         camera = draw.Camera.for_assembly(asm, across=bool(np.abs(d[:, 1]).sum() > np.abs(d[:, 0]).sum()))
     ghost = draw.BlockArt.of(asm, camera, ghost=True)
     art = draw.BlockArt.of(asm, camera, verts=moved)
@@ -891,7 +894,7 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
     drawn = list(drawn) if drawn is not None else scenarios(ds)
     who = "every scenario drawn" if len(names) > 1 and set(names) == set(drawn) else join_names(names, 4)
     title = (_wrap(f"collapse mechanism at {lam}, shared by {who}", width) +
-             f"\n(exaggerated: largest displacement drawn {scale * dmax:.2f} m)")
+             f"\n(exaggerated: largest displacement drawn {shown:.2f} m)")
     sheet = _Sheet(1, 1, lo, hi, width, 0.16 * (title.count("\n") + 1) + 0.1,
                    _legend_height([h.get_label() for h in handles], width), camera)
     off = sheet.offset(0, 0)
@@ -1059,14 +1062,7 @@ def summary_figure(ds: xr.Dataset) -> Figure:
     # cases with identical answers for every parameter set share a row
     sig = {c: tuple(sorted((tuple(par[s][p] for p in params), round(lmax[s], 9) if math.isfinite(lmax[s]) else outcome[s])
                            for s in names if case[s] == c)) for c in cases}
-    rows: list[list[str]] = []
-    for c in cases:
-        for r in rows:
-            if sig[r[0]] == sig[c]:
-                r.append(c)
-                break
-        else:
-            rows.append([c])
+    rows = [[cases[i] for i in g] for g in groups_of(cases, lambda a, b: sig[a] == sig[b])]
     w, h = 3.4, 2.3
     legends = len(params) > 1 or any(o != "limit" for o in outcome.values())  # else no room kept for one
     grid = _Grid(len(rows), len(params), w, h, left=0.75, right=2.3 if legends else 0.3,

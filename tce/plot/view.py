@@ -31,7 +31,7 @@ from ..structures.geometry import lateral_direction
 from .data import (
     NOT_UNIQUE, assembly, block_rows, geometry, hinge_segments, optimal_steps, outcome_note, scenarios, value,
 )
-from .figures import ARROW_FRACTION, MECHANISM_FRACTION, TORQUE_FRACTION, TORQUE_TOL
+from .figures import TORQUE_TOL, arrow_scales, displaced
 from .load_arrows import declared_loads
 
 __all__ = ["plotly_js", "view_html"]
@@ -126,9 +126,7 @@ def _scales(ds: xr.Dataset, names: Sequence[str], size: float) -> tuple[float, f
         tq = np.asarray(value(ds, "torque", s, ["step", "interface"]), float)[ok]
         fmax = max(fmax, float(np.nanmax(np.linalg.norm(res, axis=-1), initial=0.0)))
         tmax = max(tmax, float(np.nanmax(np.abs(tq), initial=0.0)))
-    force = draw.nice(ARROW_FRACTION * size / fmax) if fmax > 0 else 0.0
-    torque = draw.nice(TORQUE_FRACTION * size / tmax) if tmax > TORQUE_TOL * fmax * size and tmax > 0 else 0.0
-    return force, torque
+    return arrow_scales(fmax, tmax, size)
 
 
 def _split(rows: NDArray[np.float64], counts: NDArray[np.int64], per: int) -> list[dict[str, list]]:
@@ -181,14 +179,10 @@ def _mechanism(ds: xr.Dataset, s: str) -> dict:
     vel = block_rows(ds, "mechanism", s, asm)
     if not (np.all(np.isfinite(vel)) and np.any(vel)):
         return dict(edges=_lines([]), hinges=_lines([]), text="no collapse mechanism")
-    cen = asm.centroids
-    verts = [np.asarray(b.shape.vertices, float) for b in asm.blocks]
-    disp = [vel[k, :3] + np.cross(vel[k, 3:], v - cen[k]) for k, v in enumerate(verts)]
-    dmax = max(float(np.linalg.norm(d, axis=1).max()) for d in disp)
-    sc = MECHANISM_FRACTION * asm.size / dmax
-    edges = [(v + sc * d)[list(f) + [f[0]]] for b, v, d in zip(asm.blocks, verts, disp) for f in b.shape.faces]
+    moved, shown = displaced(asm, vel)
+    edges = [v[list(f) + [f[0]]] for b, v in zip(asm.blocks, moved) for f in b.shape.faces]
     return dict(edges=_lines(edges), hinges=_lines(list(hinge_segments(ds, s, asm))),
-                text=f"mechanism exaggerated: largest displacement drawn {sc * dmax:.2f} m")
+                text=f"mechanism exaggerated: largest displacement drawn {shown:.2f} m")
 
 
 def _structure(asm: Assembly, force: float) -> dict:

@@ -36,29 +36,16 @@ def run_checks(cases: Sequence[HardCase] = CASES, select: str | None = None) -> 
     chosen = [case for case in cases if not select or select.lower() in case.name.lower()]
     for case in track(chosen, "hard cases", unit="case", label=lambda c: c.name):
         run = run_case(case)
-        rows.append(
-            {
-                "case": case.name,
-                "expected": "|".join(case.expected),
-                "status": "|".join(run.statuses),
-                "residual": run.residual,
-                "retry": ", ".join(run.retries),
-                "solves": run.n_solves,
-                "time_s": run.time,
-                "ok": run.ok,
-                "errors": "; ".join(run.errors),
-            }
-        )
+        rows.append({"case": case.name, "expected": "|".join(case.expected), "status": "|".join(run.statuses),
+                     "residual": run.residual, "retry": ", ".join(run.retries), "solves": run.n_solves,
+                     "time_s": run.time, "ok": run.ok, "errors": "; ".join(run.errors)})
     return pd.DataFrame(rows, columns=COLUMNS)
 
 
 def format_table(table: pd.DataFrame) -> str:
     """The table as plain text (residuals in %.1e, times in %.3f s)."""
-    return table.to_string(
-        index=False,
-        formatters={"residual": "{:.1e}".format, "time_s": "{:.3f}".format},
-        justify="left",
-    )
+    return table.to_string(index=False, formatters={"residual": "{:.1e}".format, "time_s": "{:.3f}".format},
+                           justify="left")
 
 
 def check_command(args: argparse.Namespace | None = None) -> int:

@@ -212,13 +212,11 @@ def _units(length: float, force: float, stiffness: float | None = None) -> Calla
     def run() -> Outcome:
         out = Outcome()
         for material, kind in ((HEYMAN, "planar"), (FRICTION, "spatial")):
+            scaled = material
             if stiffness is not None:
-                material = Material(material.friction, stiffness)
+                material, scaled = Material(material.friction, stiffness), Material(material.friction, stiffness * force / length**3)
             ref = Analysis(_arch(), material, model=kind)  # type: ignore[arg-type]
-            scaled_mat = material
-            if stiffness is not None:
-                scaled_mat = Material(material.friction, stiffness * force / length**3)
-            an = Analysis(_arch().scaled(length, force), scaled_mat, model=kind)  # type: ignore[arg-type]
+            an = Analysis(_arch().scaled(length, force), scaled, model=kind)  # type: ignore[arg-type]
             lim, lim0 = an.limit(0.0), ref.limit(0.0)
             if lim.status != "optimal":
                 out.errors.append(f"{kind} limit: {lim.status}")

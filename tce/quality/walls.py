@@ -23,6 +23,7 @@ import math
 from dataclasses import replace
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from ..core.analysis import Analysis
 from ..core.material import Material
@@ -105,8 +106,7 @@ def tilted(assembly: Assembly, degrees: float) -> Assembly:
     """``assembly`` on a table tilted by ``degrees`` about the y axis (vertices, interface
     points and normals rotated), positive lowering the +x end so that gravity pulls towards
     +x along the table, as LACT3 tilts its table."""
-    t = math.radians(degrees)
-    q = np.array([[math.cos(t), 0.0, math.sin(t)], [0.0, 1.0, 0.0], [-math.sin(t), 0.0, math.cos(t)]])
+    q = Rotation.from_euler("y", degrees, degrees=True).as_matrix()
     blocks = tuple(replace(b, shape=Polyhedron(b.shape.vertices @ q.T, b.shape.faces)) for b in assembly.blocks)
     faces = tuple(replace(f, points=np.asarray(f.points) @ q.T, normal=np.asarray(f.normal) @ q.T)
                   for f in assembly.interfaces)

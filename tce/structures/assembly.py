@@ -9,6 +9,7 @@ Lengths in m, unit weights in kN/m^3, weights in kN.
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
@@ -346,12 +347,9 @@ class Assembly:
         names = list(names)
         unknown = [n for n in names if n not in self.index]
         if unknown:
-            raise AssemblyError(
-                f"unknown support block(s) {unknown}; blocks are {list(self.names)}"
-            )
+            raise AssemblyError(f"unknown support block(s) {unknown}; blocks are {list(self.names)}")
         chosen = set(names)
-        blocks = tuple(replace(b, support=b.name in chosen) for b in self.blocks)
-        return replace(self, blocks=blocks)
+        return replace(self, blocks=tuple(replace(b, support=b.name in chosen) for b in self.blocks))
 
     def with_interfaces(self, interfaces: Sequence[Interface]) -> Assembly:
         """A copy with the given interfaces (for example, found by contact detection)."""
@@ -362,17 +360,9 @@ class Assembly:
 
         Unit weights scale by ``force / length**3``.
         """
-        blocks = tuple(
-            replace(
-                b,
-                shape=Polyhedron(b.shape.vertices * length, b.shape.faces),
-                unit_weight=b.unit_weight * force / length**3,
-            )
-            for b in self.blocks
-        )
-        interfaces = tuple(
-            Interface(i.a, i.b, i.points * length, i.normal, i.stiffness) for i in self.interfaces
-        )
+        blocks = tuple(replace(b, shape=Polyhedron(b.shape.vertices * length, b.shape.faces),
+                               unit_weight=b.unit_weight * force / length**3) for b in self.blocks)
+        interfaces = tuple(Interface(i.a, i.b, i.points * length, i.normal, i.stiffness) for i in self.interfaces)
         return replace(self, blocks=blocks, interfaces=interfaces)
 
     # ------------------------------------------------------------------ serialisation
@@ -380,29 +370,11 @@ class Assembly:
         """Plain-data form (tce's block format): blocks with ``name``, ``vertices`` (m),
         ``faces``, ``support``, ``unit_weight`` (kN/m^3); interfaces with block names
         ``a``, ``b``, ``points`` (m) and ``normal``; and ``meta``."""
-        return {
-            "blocks": [
-                {
-                    "name": b.name,
-                    "vertices": b.shape.vertices.tolist(),
-                    "faces": [list(f) for f in b.shape.faces],
-                    "support": bool(b.support),
-                    "unit_weight": float(b.unit_weight),
-                }
-                for b in self.blocks
-            ],
-            "interfaces": [
-                {
-                    "a": self.names[i.a],
-                    "b": self.names[i.b],
-                    "points": i.points.tolist(),
-                    "normal": i.normal.tolist(),
-                    "stiffness": float(i.stiffness),
-                }
-                for i in self.interfaces
-            ],
-            "meta": dict(self.meta),
-        }
+        blocks = [{"name": b.name, "vertices": b.shape.vertices.tolist(), "faces": [list(f) for f in b.shape.faces],
+                   "support": bool(b.support), "unit_weight": float(b.unit_weight)} for b in self.blocks]
+        interfaces = [{"a": self.names[i.a], "b": self.names[i.b], "points": i.points.tolist(),
+                       "normal": i.normal.tolist(), "stiffness": float(i.stiffness)} for i in self.interfaces]
+        return {"blocks": blocks, "interfaces": interfaces, "meta": dict(self.meta)}
 
     @classmethod
     def from_dict(cls, data: dict) -> Assembly:
@@ -443,10 +415,7 @@ class Assembly:
     @cached_property
     def _validated(self) -> Assembly:
         if len(set(self.names)) != len(self.names):
-            counts: dict[str, int] = {}
-            for n in self.names:
-                counts[n] = counts.get(n, 0) + 1
-            raise AssemblyError(f"duplicate block names {sorted(n for n, c in counts.items() if c > 1)}")
+            raise AssemblyError(f"duplicate block names {sorted(n for n, c in Counter(self.names).items() if c > 1)}")
         # blocks in order: a block's unit weight is checked before its geometry
         uw = self.unit_weights
         bad_weight = np.flatnonzero(~(np.isfinite(uw) & (uw > 0)))

@@ -246,20 +246,19 @@ class _Doc:
         text = json.dumps(value) if isinstance(value, (str, int, float, bool, type(None))) else repr(value)
         return text if len(text) <= 40 else text[:37] + "..."
 
-    def obj(self, key: str, value: Any) -> Mapping:
-        if not isinstance(value, Mapping):
-            raise self.fail(key, f"must be an object {{...}}, got {self._got(value)}")
+    def _typed(self, key: str, value: Any, kind: type, words: str) -> Any:
+        if not isinstance(value, kind):
+            raise self.fail(key, f"must be {words}, got {self._got(value)}")
         return value
+
+    def obj(self, key: str, value: Any) -> Mapping:
+        return self._typed(key, value, Mapping, "an object {...}")
 
     def array(self, key: str, value: Any) -> list:
-        if not isinstance(value, list):
-            raise self.fail(key, f"must be a list [...], got {self._got(value)}")
-        return value
+        return self._typed(key, value, list, "a list [...]")
 
     def flag(self, key: str, value: Any) -> bool:
-        if not isinstance(value, bool):
-            raise self.fail(key, f"must be true or false, got {self._got(value)}")
-        return value
+        return self._typed(key, value, bool, "true or false")
 
     def number(self, key: str, value: Any, positive: bool = False) -> float:
         """A finite JSON number (not a boolean, not a quoted number); ``> 0`` when ``positive``."""
@@ -692,18 +691,16 @@ def _file_interfaces(
     out = []
     for k, it in enumerate(items):
         label = it.get("label", f"interface {k}")
+        # the readers checked the types: points are finite [x, y, z], a normal 3 finite numbers
         try:
-            a, b = index[str(it["a"])], index[str(it["b"])]
-            pts = np.asarray(it["points"], dtype=float) * scale
-            n = it.get("normal")
+            a, b = index[it["a"]], index[it["b"]]
         except KeyError as exc:
-            raise _err(path, f"{label}: unknown block or missing key {exc}") from None
-        except (TypeError, ValueError):
-            raise _err(path, f"{label}: 'points' must be a list of [x, y, z]") from None
+            raise _err(path, f"{label}: unknown block {exc}") from None
         if a > b:
             raise _err(path, f"{label}: 'a' must be the block listed first (normal from a into b)")
         name = f"{label} ({blocks[a].name}|{blocks[b].name})"
-        if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) < 3 or not np.all(np.isfinite(pts)):
+        pts, n = np.asarray(it["points"], dtype=float).reshape(-1, 3) * scale, it.get("normal")
+        if len(pts) < 3:
             raise _err(path, f"{name}: needs at least 3 finite points [x, y, z]")
         size = max(blocks[a].shape.size, blocks[b].shape.size)
         nv = newell_normal(pts)
@@ -715,7 +712,7 @@ def _file_interfaces(
             raise _err(path, f"{name}: not planar (a point lies {off:.3g} m off its plane)")
         if n is not None:
             n = np.asarray(n, dtype=float)
-            if n.shape != (3,) or not np.all(np.isfinite(n)) or np.linalg.norm(n) == 0.0:
+            if not np.all(np.isfinite(n)) or np.linalg.norm(n) == 0.0:  # a COMPAS frame's xaxis x yaxis
                 raise _err(path, f"{name}: its normal (frame z axis) must be 3 finite numbers, not all 0")
             n = n / np.linalg.norm(n)
             tilt = np.linalg.norm(np.cross(n, nv))
@@ -914,20 +911,6 @@ def load_assembly(
 
 
 # ---------------------------------------------------------------------- writer
-def _jsonable(obj: Any) -> Any:
-    if isinstance(obj, Mapping):
-        return {str(k): _jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, (np.integer, np.floating, np.bool_)):
-        return obj.item()
-    if obj is None or isinstance(obj, (str, int, float, bool)):
-        return obj
-    return str(obj)
-
-
 def save_assembly_json(assembly: Assembly, path: str | Path, interfaces: bool = True) -> Path:
     """Write ``assembly`` in the tce JSON format (m, kN), readable by :func:`load_assembly`:
     :meth:`Assembly.to_dict` with the most common unit weight as the file's default.
@@ -957,10 +940,12 @@ def save_assembly_json(assembly: Assembly, path: str | Path, interfaces: bool = 
         "units": {"length": "m", "force": "kN"},
         "unit_weight": float(default),
         "blocks": blocks,
-        "meta": _jsonable(data["meta"]),
+        "meta": data["meta"],
     }
     if interfaces:
         doc["interfaces"] = data["interfaces"]
     with atomic_write(path) as tmp:
-        tmp.write_text(json.dumps(doc, indent=1), encoding="utf-8")
+        # numpy values of the meta as numbers and lists, anything else JSON lacks as text
+        text = json.dumps(doc, indent=1, default=lambda v: v.tolist() if isinstance(v, (np.ndarray, np.generic)) else str(v))
+        tmp.write_text(text, encoding="utf-8")
     return path
