@@ -47,6 +47,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 import scipy.sparse as sp
@@ -216,22 +217,29 @@ class CanonicalSolver:
     def _solvers(
         self, b: NDArray[np.float64], q: NDArray[np.float64], bound: float, restraint: Restraint | None, fresh: bool
     ) -> Iterator[ClarabelSolver]:
-        """The warm solver set to ``(b, q, bound)``; then, with ``fresh`` (the last slack) or
-        when it was set up for another ``q`` or restraint, a new one (the warm solver keeps
-        the equilibration of its first problem); last, with ``fresh``, one with robust
-        settings."""
+        """The warm solver set to ``(b, q, bound)``, set up anew when it was for another ``q``
+        or restraint; then, with ``fresh`` (the last slack), a new one (the warm solver keeps
+        the equilibration of its first problem) and last one with robust settings.
+
+        The warm solver refines its KKT solves as the warm TCE solver does
+        (``options.refine``) where no support moves (``q = 0``: the face is the whole
+        admissible set, and the answer's residuals are those of the TCE solve's), and always
+        on the thin face of a motion (unrefined, its equilibrium residual reaches 1e-10);
+        the fresh one always refines."""
         f = self.f
+        if restraint is None:
+            problem = partial(canonical_problem, f, b, q, bound)
+        else:
+            problem = partial(restrained_canonical_problem, f, b[: -2 * restraint.size], q, bound, restraint.G,
+                              restraint.capacity)
         if self._warm is not None and np.array_equal(self._q, q) and self._restraint is restraint:
             self._warm.update(b=canonical_b(f, b, bound))
             yield self._warm
-            if not fresh:
-                return
-        if restraint is None:
-            problem = canonical_problem(f, b, q, bound)
         else:
-            problem = restrained_canonical_problem(f, b[: -2 * restraint.size], q, bound, restraint.G, restraint.capacity)
-        self._warm = ClarabelSolver(problem, self.options.settings(kkt=f.kkt))
-        self._q, self._restraint = q, restraint
-        yield self._warm
+            refine = self.options.refine or bool(np.any(q))
+            self._warm = ClarabelSolver(problem(), self.options.settings(refine=refine, kkt=f.kkt))
+            self._q, self._restraint = q, restraint
+            yield self._warm
         if fresh:
-            yield ClarabelSolver(problem, self.options.settings(robust=True, kkt=f.kkt))
+            yield ClarabelSolver(problem(), self.options.settings(kkt=f.kkt))
+            yield ClarabelSolver(problem(), self.options.settings(robust=True, kkt=f.kkt))
