@@ -41,7 +41,7 @@ contact point whose gap is within ``contact_gap`` (m) carry compression (a gap c
 motion that limit analysis neglects; ``contact_gap = 0``: only the closed points, the
 structure as it stands; ``docs/settlements.md``). It is withheld (NaN, and the ``message``
 says where) on a configuration where it needs tangential forces above :data:`SHEAR_CAP` times
-the weight (:func:`_limit`): the no-sliding model's unbounded tangential forces then carry
+the load (:func:`_limit`): the no-sliding model's unbounded tangential forces then carry
 the load through a near self-stress that grows as the inverse of the geometry's change, a
 spurious strength (a spread dome's lunes, whose meridian joints are no longer parallel, lock
 by no sliding alone the mechanism of the undeformed dome).
@@ -123,11 +123,13 @@ _FEAS = 1e-9  # relative tolerance of the equilibrium residual and of "velocity 
 _TIKHONOV = 1e-10
 _REFINE = 4
 
-#: Largest tangential force at one contact point (times the weight of the free blocks) that
-#: the lateral capacity of a settled structure may use (:func:`_limit`); a capacity that
-#: needs more is withheld. The undeformed dome of ``studies/dome_spreading.toml`` reaches its
-#: 1.718 within 0.3; 1 cm of spread later its program climbs with the bound (1.740 at 1, 1.849
-#: at 10, 2.130 from 100): a strength bought with forces that no friction provides.
+#: Largest tangential force at one contact point, in multiples of the load (the free blocks'
+#: weight and the fixed forces' magnitudes), that the lateral capacity of a settled structure
+#: may use (:func:`_limit`); a capacity that needs more is withheld (a structure whose lateral
+#: load alone needs more, lambda_max of tens, would be withheld too). The
+#: undeformed dome of ``studies/dome_spreading.toml`` reaches its 1.718 within 0.3 times its
+#: weight; 1 cm of spread later its program climbs with the bound (1.740 at 1, 1.849 at 10,
+#: 2.130 from 100 times the weight): a strength bought with forces that no friction provides.
 SHEAR_CAP = 10.0
 
 #: status word (``docs/conventions.md``) of each :func:`scipy.optimize.linprog` status; any
@@ -482,7 +484,8 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
     A's copies of their points (:func:`_operators`).
 
     Solved twice: as stated, and with every tangential force within :data:`SHEAR_CAP` times
-    the weight. Where the capped program gives less (relative 1e-7), the capacity rests on
+    the load (the free blocks' weight and the fixed forces' magnitudes; not the lateral load
+    found, which the spurious strength inflates). Where the capped program gives less (relative 1e-7), the capacity rests on
     tangential forces that no friction provides, a near self-stress of a geometry that lost
     the symmetry of the reference: the status is ``withheld`` (NaN)."""
     Gn, Gt, *_ = _operators(sc, cf, closed, on_a=True)
@@ -499,7 +502,9 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
     if status != "optimal":
         return status, float("nan")
     lam = float(res.x[-1])
-    capped_status, capped = _linprog(c, A_eq=A, b_eq=-b, bounds=bounds[:nn] + [(-SHEAR_CAP, SHEAR_CAP)] * nt + bounds[-1:])
+    dead = 0.0 if sc.dead is None else float(np.linalg.norm(sc.dead[2], axis=1).sum())
+    cap = SHEAR_CAP * (1.0 + dead / sc.weights[sc.free].sum())  # forces in units of the weight
+    capped_status, capped = _linprog(c, A_eq=A, b_eq=-b, bounds=bounds[:nn] + [(-cap, cap)] * nt + bounds[-1:])
     if capped_status != "optimal" or capped.x[-1] < lam - 1e-7 * max(1.0, abs(lam)):
         return "withheld", float("nan")
     return status, lam
@@ -972,7 +977,7 @@ def settlement_path(
             if st != "optimal":
                 missing.setdefault(st, []).append(c.s)
         why = {
-            "withheld": f"it needs tangential forces above {SHEAR_CAP:g} times the weight, a spurious strength of "
+            "withheld": f"it needs tangential forces above {SHEAR_CAP:g} times the load, a spurious strength of "
             "the no-sliding model on a geometry that lost the reference's symmetry",
         }
         for st, at in missing.items():
