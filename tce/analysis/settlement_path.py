@@ -126,10 +126,10 @@ _REFINE = 4
 #: Largest tangential force at one contact point, in multiples of the load (the free blocks'
 #: weight and the fixed forces' magnitudes), that the lateral capacity of a settled structure
 #: may use (:func:`_limit`); a capacity that needs more is withheld (a structure whose lateral
-#: load alone needs more, lambda_max of tens, would be withheld too). The
-#: undeformed dome of ``studies/dome_spreading.toml`` reaches its 1.718 within 0.3 times its
-#: weight; 1 cm of spread later its program climbs with the bound (1.740 at 1, 1.849 at 10,
-#: 2.130 from 100 times the weight): a strength bought with forces that no friction provides.
+#: load alone needs more, lambda_max of tens, would be withheld too). The undeformed dome of
+#: ``studies/dome_spreading.toml`` reaches its 1.718 within 0.3 times its weight; 1 cm of
+#: spread later its program climbs with the bound (1.740 at 1, 1.849 at 10, 2.130 from 100
+#: times the weight): a strength bought with forces that no friction provides.
 SHEAR_CAP = 10.0
 
 #: status word (``docs/conventions.md``) of each :func:`scipy.optimize.linprog` status; any
@@ -485,9 +485,10 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
 
     Solved twice: as stated, and with every tangential force within :data:`SHEAR_CAP` times
     the load (the free blocks' weight and the fixed forces' magnitudes; not the lateral load
-    found, which the spurious strength inflates). Where the capped program gives less (relative 1e-7), the capacity rests on
-    tangential forces that no friction provides, a near self-stress of a geometry that lost
-    the symmetry of the reference: the status is ``withheld`` (NaN)."""
+    found, which the spurious strength inflates). Where the capped program gives less
+    (relative 1e-7), the capacity rests on tangential forces that no friction provides, a
+    near self-stress of a geometry that lost the symmetry of the reference: the status is
+    ``withheld`` (NaN)."""
     Gn, Gt, *_ = _operators(sc, cf, closed, on_a=True)
     b, weight = _weights(sc, cf), _weights(sc)
     blat = np.zeros_like(b)
