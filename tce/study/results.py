@@ -138,7 +138,8 @@ META: dict[str, tuple[str, str]] = {
     "settlement_reaction": ("kN, kN m", "wrench each support exerts on the structure at each magnitude, global "
                             "frame, about the support's current centroid"),
     "settlement_lambda_max": ("1", "lambda_max of the lateral pattern on the deformed structure (NaN unless "
-                              "lambda = true)"),
+                              "lambda = true, and where withheld as a spurious strength or HiGHS failed: "
+                              "settlement_message says where)"),
     "settlement_hinge": ("-", "1 for the interfaces that rotate in the mechanism at each magnitude"),
     "settlement_open": ("-", "number of open ends (0, 1 or 2) of each interface at each magnitude"),
     "settlement_displacement": ("m, rad", "displacement (ux, uy, uz) of each block's centroid and its rotation "

@@ -24,20 +24,17 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.critical import critical_position
-from ..analysis.settlement_path import SettlementPathResult, settlement_path
+from ..analysis.settlement_path import CONTACT_GAP, SettlementPathResult, settlement_path
 from ..core.analysis import Analysis
 from ..core.loads import AppliedLoads, LoadPattern, PointLoad, resolve
 from ..core.material import Material
 from ..structures.assembly import Assembly, Interface
 from .schema import Scenario
 
-__all__ = ["CONTACT_GAP", "HINGE_WIDTH", "NO_MOTION", "deformed_assembly", "fixed_part", "live_after_settlement", "settlement_vars"]
+__all__ = ["HINGE_WIDTH", "NO_MOTION", "deformed_assembly", "fixed_part", "live_after_settlement", "settlement_vars"]
 
 #: outcome of a scenario that moves no support (nothing to follow)
 NO_MOTION = "no_motion"
-
-#: default ``contact_gap``, relative to the structure's size (its bounding box's diagonal)
-CONTACT_GAP = 1e-3
 
 #: a partly open interface keeps its closed contact points; its open ones are moved to this
 #: fraction of their distance from the nearest closed point (its contact stays a polygon,
@@ -136,7 +133,8 @@ def live_after_settlement(
     wanted = np.asarray(opts["live_at"], dtype=float)
     pattern = sc.loads_pattern
     fill = None if pattern.fill is None else replace(pattern.fill, weight=False, k0=0.0)  # carried as point loads
-    gap = opts.get("contact_gap") or CONTACT_GAP * assembly.size
+    gap = opts.get("contact_gap")
+    gap = CONTACT_GAP * assembly.size if gap is None else gap
     out = {k: np.full(len(wanted), np.nan) for k in ("at", "lambda", "x", "gap")}
     out["status"] = np.full(len(wanted), "not_standing", dtype=object)
     tol = 1e-9 * max(1.0, float(np.abs(path.magnitudes).max(initial=0.0)))
@@ -185,6 +183,7 @@ def settlement_vars(sc: Scenario, assembly: Assembly, material: Material) -> xr.
             atol=opts.get("tolerance"),
             lam=bool(opts.get("lam")),
             alpha=sc.alpha,
+            contact_gap=opts.get("contact_gap"),
             dead=dead if dead is not None and len(dead.blocks) else None,
         )
         rotating = np.zeros((len(r.magnitudes), ni))  # float: padded with NaN when merged

@@ -136,10 +136,10 @@ def test_sinking_support_and_deformed_shape():
 def test_lateral_capacity_of_a_settled_arch_closes_its_small_gaps():
     """Issue 37 item 5. A segmental arch whose right support spreads 1 mm opens three hinges by
     about 1e-4 rad (gaps of 0.14-0.29 mm). Its lateral capacity with every contact point within
-    ``lateral_gap`` (default 1e-3 of the size, 2.5 mm) carrying compression stays within 0.3 %
+    ``contact_gap`` (default 1e-3 of the size, 2.5 mm) carrying compression stays within 0.3 %
     of the undeformed arch's at 1 mm and 0.5 % at 2 mm; it was 0.0896 against 1.337 when only
     the closed points carried it (the joints opened by 1e-4 rad could never close again).
-    ``lateral_gap = 0`` is that rule: the structure as it stands. More points carrying
+    ``contact_gap = 0`` is that rule: the structure as it stands. More points carrying
     compression never lower it, and halving the increment does not change it (the geometry
     of a configuration is exact)."""
     from tce.structures.arch import segmental_arch
@@ -151,10 +151,10 @@ def test_lateral_capacity_of_a_settled_arch_closes_its_small_gaps():
     lam0 = r.lambda_max[0]
     assert lam0 == pytest.approx(1.3368655, rel=1e-6)  # tce's direct limit of the undeformed arch
     assert r.lambda_max[1] == pytest.approx(lam0, rel=3e-3) and r.lambda_max[2] == pytest.approx(lam0, rel=5e-3)
-    as_it_stands = settlement_path(a, right, increment=0.001, s_max=0.002, lam=True, lateral_gap=0.0)
+    as_it_stands = settlement_path(a, right, increment=0.001, s_max=0.002, lam=True, contact_gap=0.0)
     assert as_it_stands.lambda_max[0] == pytest.approx(lam0, rel=1e-9)
     assert (as_it_stands.lambda_max[1:] < 0.1 * lam0).all()
-    small = settlement_path(a, right, increment=0.001, s_max=0.002, lam=True, lateral_gap=1e-4)  # 0.25 mm: between the gaps
+    small = settlement_path(a, right, increment=0.001, s_max=0.002, lam=True, contact_gap=1e-4 * a.size)  # 0.25 mm: between the gaps
     assert (as_it_stands.lambda_max <= small.lambda_max + 1e-9).all()
     assert (small.lambda_max <= r.lambda_max + 1e-9).all()
     finer = settlement_path(a, right, increment=0.0005, s_max=0.002, lam=True)
@@ -162,13 +162,24 @@ def test_lateral_capacity_of_a_settled_arch_closes_its_small_gaps():
 
 
 def test_lateral_capacity_beyond_the_gap_is_the_closed_rule():
-    """Once every opening exceeds ``lateral_gap`` the two rules agree (the same contact points
+    """Once every opening exceeds ``contact_gap`` the two rules agree (the same contact points
     carry compression): a gap of 2.5e-6 of the size (6 um) is passed within the first millimetre."""
     from tce.structures.arch import segmental_arch
 
     a, right = segmental_arch(), {"right": [1.0, 0, 0, 0, 0, 0]}
-    tiny = settlement_path(a, right, increment=0.001, s_max=0.002, lam=True, lateral_gap=2.5e-6)
-    closed = settlement_path(a, right, increment=0.001, s_max=0.002, lam=True, lateral_gap=0.0)
+    tiny = settlement_path(a, right, increment=0.001, s_max=0.002, lam=True, contact_gap=2.5e-6 * a.size)
+    closed = settlement_path(a, right, increment=0.001, s_max=0.002, lam=True, contact_gap=0.0)
     np.testing.assert_allclose(tiny.lambda_max, closed.lambda_max, rtol=1e-9)
-    with pytest.raises(ValueError, match="lateral_gap"):
-        settlement_path(a, right, increment=0.001, lam=True, lateral_gap=-1.0)
+    with pytest.raises(ValueError, match="contact_gap"):
+        settlement_path(a, right, increment=0.001, lam=True, contact_gap=-1.0)
+
+
+def test_the_path_ends_at_s_max_once():
+    """Ten increments of 0.005 sum to 0.049999999999999996: the path used to take one more
+    step of 7e-18 and record s_max (nearly) twice; it ends on s_max exactly, once."""
+    from tce.structures.arch import segmental_arch
+
+    r = settlement_path(segmental_arch(), {"right": [1.0, 0, 0, 0, 0, 0]}, increment=0.005, s_max=0.05)
+    assert r.status == "no_collapse"
+    assert len(r.magnitudes) == 11 and r.magnitudes[-1] == 0.05
+    assert (np.diff(r.magnitudes) > 1e-3).all()

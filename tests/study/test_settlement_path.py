@@ -100,3 +100,27 @@ def test_study_equals_the_function(dataset):
     got = dataset.settlement_reaction.sel(scenario="spread").values[: len(r.magnitudes)]
     np.testing.assert_allclose(got[:, :, [0, 2]], r.reactions[:, :, :2], rtol=1e-12)
     np.testing.assert_allclose(got[:, :, 4], -r.reactions[:, :, 2], rtol=1e-12)
+
+
+@pytest.mark.parametrize("gap", [None, 1e-9])
+def test_contact_gap_reaches_the_lateral_capacity(gap, tmp_path: Path):
+    """``contact_gap`` (m) is the lateral capacity's gap too: the study's lambda_max along the
+    path is settlement_path's with the same ``contact_gap``, and a gap below the closed
+    tolerance (the structure as it stands) gives far less than the default once the joints
+    have opened."""
+    text = STUDY.replace("increment = 0.01", "increment = 0.001\ns_max = 0.002")
+    if gap is not None:
+        text += f"contact_gap = {gap}\n"
+    path = tmp_path / "study.toml"
+    path.write_text(text, encoding="utf-8")
+    ds = xr.open_dataset(run_study(load_study(path), out=tmp_path / "results", jobs=1, plots=False).results)
+    got = ds.settlement_lambda_max.sel(scenario="spread").values[:3]
+    a = semicircular_arch(inner_radius=0.9, thickness=0.2, voussoirs=12)
+    spread = {"left": [-1.0, 0, 0, 0, 0, 0], "right": [1.0, 0, 0, 0, 0, 0]}
+    mine = settlement_path(a, spread, increment=0.001, s_max=0.002, lam=True, contact_gap=gap)
+    np.testing.assert_allclose(got, mine.lambda_max, rtol=1e-12)
+    closed = settlement_path(a, spread, increment=0.001, s_max=0.002, lam=True, contact_gap=0.0)
+    if gap is None:
+        assert (got[1:] > 2 * closed.lambda_max[1:]).all()
+    else:
+        np.testing.assert_allclose(got, closed.lambda_max, rtol=1e-12)

@@ -120,6 +120,29 @@ def test_dome_radial_spread_cracks_symmetrically_and_converges():
     np.testing.assert_allclose(crown, 5.25, atol=1e-9)  # extrados
 
 
+def test_dome_lateral_capacity_is_never_a_spurious_strength():
+    """Issue 37 item 5. At s = 0 the path's lateral capacity is tce's direct lambda_max of the
+    undeformed dome (1.718). Once the base has spread, the no-sliding rows of the lunes' joints
+    lock motions that the reference allows; the lateral program then read 2.13 at 1 cm of
+    spread, carried by tangential forces of hundreds of times the dome's weight. Every value
+    after s = 0 is NaN (the message says why: withheld as a spurious strength, or HiGHS
+    failed) or within O(spread) of the undeformed one, for both contact rules, a spread of
+    1e-6 m included; at 1 cm the gap rule's value is withheld."""
+    d = dome()
+    U = radial_settlement(d, 1.0)
+    direct = Analysis(d).limit(alpha=0.0)
+    assert direct.status == "optimal" and direct.lambda_max == pytest.approx(1.7184, abs=1e-4)
+    paths = [settlement_path(d, U, lam=True, **kwargs) for kwargs in (
+        dict(increment=0.01, s_max=0.03), dict(increment=0.01, s_max=0.03, contact_gap=0.0), dict(increment=1e-6, s_max=1e-6))]
+    for r in paths:
+        assert r.lambda_max[0] == pytest.approx(direct.lambda_max, rel=1e-7)
+        later, s = r.lambda_max[1:], r.magnitudes[1:]
+        known = np.isfinite(later)
+        assert (later[known] <= direct.lambda_max * (1 + 10 * s[known] / d.size)).all(), later
+        assert known.all() or "lateral capacity NaN" in r.message, r.message
+    assert np.isnan(paths[0].lambda_max[1]) and "spurious strength" in paths[0].message
+
+
 @pytest.mark.parametrize(
     "study, outcomes, standing",
     [("dome_spreading.toml", ("collapse", "numerical"), 0.74781), ("arch_file_spreading.toml", ("collapse",), 0.22825)],
