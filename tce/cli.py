@@ -460,6 +460,8 @@ def _show_settlement(ds) -> None:
     for r in settlement_rows(ds):
         print(f"  {r['scenario']}: {r['outcome']}: capacity {r['capacity']} (first not standing {r['upper']}), "
               f"{r['snaps']} snap(s), lateral {r['lateral']}; hinges {r['hinges']}")
+        if r["message"]:
+            print(f"    {r['message']}")
     live = live_settlement_rows(ds)
     if live:
         print("live loads after a finite settlement (lambda_max on the deformed structure, the fixed loads carried; "

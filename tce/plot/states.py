@@ -14,15 +14,17 @@ import logging
 import tomllib
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
 
-from ..core.analysis import Analysis
-from ..study.results import steps_dataset
-from ..study.runner import missing_lambdas
-from ..study.schema import GEOMETRY_SWEEPS, Study, StudyFile, build_material
+from ..study.names import missing_lambdas
 from .data import assembly, optimal_steps, scenarios, value
+
+if TYPE_CHECKING:
+    from ..core.analysis import Analysis
+    from ..study.schema import Study
 
 __all__ = ["missing_states", "solve_states"]
 
@@ -31,7 +33,7 @@ log = logging.getLogger(__name__)
 
 def missing_states(ds: xr.Dataset, names: Sequence[str], lams: Sequence[float]) -> dict[str, list[float]]:
     """Multipliers of ``lams`` not solved for each scenario of ``names`` that may be admissible
-    (:func:`tce.study.runner.missing_lambdas`; none for a scenario without an optimal step)."""
+    (:func:`tce.study.names.missing_lambdas`; none for a scenario without an optimal step)."""
     out = {}
     for s in names:
         if not optimal_steps(ds, s).size:
@@ -47,6 +49,8 @@ def missing_states(ds: xr.Dataset, names: Sequence[str], lams: Sequence[float]) 
 def _study(ds: xr.Dataset) -> Study:
     """The study stored in ``ds``, the stored assembly standing for its structure (a block
     file's relative path would not resolve from here)."""
+    from ..study.schema import GEOMETRY_SWEEPS, Study, StudyFile  # the parser: only when states are solved
+
     text = str(ds.attrs.get("study", ""))
     if not text:
         raise ValueError("the dataset holds no study text ('study' attr): states cannot be solved again")
@@ -74,6 +78,10 @@ def solve_states(ds: xr.Dataset, todo: Mapping[str, Sequence[float]]) -> xr.Data
     todo = {s: list(v) for s, v in todo.items() if v}
     if not todo:
         return ds
+    from ..core.analysis import Analysis  # the solvers: only when states are solved
+    from ..study.results import steps_dataset
+    from ..study.schema import build_material
+
     study = _study(ds)
     scenarios_ = {sc.name: sc for sc in study.scenarios()}
     analyses: dict[str, Analysis] = {}

@@ -358,7 +358,9 @@ def settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
     ``hinges`` (the joints that start rotating, close again or snap, in order, with the
     magnitude); ``lateral`` (lambda_max of the lateral pattern on the deformed structure at the
     capacity's step; ``–`` without a capacity, where not computed (``lambda = false``) or where
-    its linear program did not end optimal). Empty without ``[settlement_path]``.
+    its linear program did not end optimal); ``message`` (what decided the outcome, and why a
+    lateral capacity is withheld; empty when nothing needs saying). Empty without
+    ``[settlement_path]``.
     """
     if "settlement_capacity" not in ds:
         return []
@@ -383,6 +385,7 @@ def settlement_rows(ds: xr.Dataset) -> list[dict[str, str]]:
             "scenario": str(name), "capacity": (f">= {fmt(capacity)}" if outcome == "no_collapse" else fmt(capacity)),
             "upper": fmt(upper) if math.isfinite(upper) else "–", "outcome": outcome, "snaps": str(snaps),
             "hinges": hinges or "–", "lateral": lateral,
+            "message": str(ds["settlement_message"].values[k]) if "settlement_message" in ds else "",
         })
     return rows
 

@@ -62,7 +62,7 @@ from ..analysis.critical import CriticalResult, critical_position
 from ..core.loads import LoadPattern
 from . import keys
 from .jobs import choose_jobs
-from .names import same_lambda
+from .names import missing_lambdas, same_lambda
 from .positions import with_adequacy, with_critical
 from .results import (
     FolderLocked,
@@ -85,7 +85,6 @@ __all__ = [
     "RunError",
     "RunFault",
     "RunReport",
-    "missing_lambdas",
     "run_study",
     "solve_scenario",
     "with_drawn_states",
@@ -244,20 +243,6 @@ def _search(sc: Scenario, analysis: Analysis, pattern: LoadPattern) -> CriticalR
     while len(_SEARCHES) > _KEEP:
         _SEARCHES.pop(next(iter(_SEARCHES)))
     return crit
-
-
-def missing_lambdas(solved: Sequence[float], wanted: Sequence[float], upper: float) -> list[float]:
-    """The multipliers of ``wanted`` that are not ``solved`` and may be admissible.
-
-    A multiplier is missing when no solved one is :func:`same_lambda` as it. Those at or
-    above ``upper`` (the smallest multiplier found inadmissible; NaN: none) are left out: the
-    admissible multipliers form an interval (the admissible set of ``(lambda, F)`` is convex
-    and holds ``lambda = 0`` or nothing).
-    """
-    return [
-        float(w) for w in wanted
-        if not any(same_lambda(w, s) for s in solved) and not (math.isfinite(upper) and w >= upper)
-    ]
 
 
 def with_drawn_states(analysis: Analysis, lp: LoadPathResult, lams: Sequence[float]) -> LoadPathResult:

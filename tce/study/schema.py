@@ -571,9 +571,10 @@ class SettlementPathSection(_Strict):
     (:func:`tce.analysis.settlement_path.settlement_path`, ``docs/settlements.md``), carrying
     the fixed loads; ``live_at``: the magnitudes at which the live loads' ``lambda_max`` is
     computed on the deformed structure (its critical position searched again with
-    ``[loads] critical_position``; :mod:`tce.study.settlement`), the contacts open by at most
-    ``contact_gap`` (m; default ``1e-3`` of the structure's size) carrying compression: a joint
-    opened by less closes under a motion that the limit analysis neglects."""
+    ``[loads] critical_position``; :mod:`tce.study.settlement`). ``contact_gap`` (m; default
+    ``1e-3`` of the structure's size): on the deformed structure, for the live loads and for the
+    lateral capacity (``lambda = true``), the contacts open by at most this much carry
+    compression: a joint opened by less closes under a motion that the limit analysis neglects."""
 
     model_config = ConfigDict(populate_by_name=True)  # merged with _Strict's
 

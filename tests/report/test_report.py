@@ -297,6 +297,7 @@ def test_the_settlement_path_has_its_section(run, tmp_path: Path, capsys) -> Non
             "s=0: v02|v03 hinge; s=0: v06|v07 hinge",
             "s=0: v02|v03 hinge; s=0.0454687: v07|v08 snap; s=0.0454687: v06|v07 hinge",
             "s=0: v01|v02 hinge", ""][:n], dtype=object)),
+        settlement_message=("scenario", np.array(["", "", "lateral capacity NaN at 2 magnitudes", ""][:n], dtype=object)),
         settlement_magnitude=(("scenario", "settlement_step"), mags),
         settlement_lambda_max=(("scenario", "settlement_step"), lam),
     )
@@ -307,6 +308,7 @@ def test_the_settlement_path_has_its_section(run, tmp_path: Path, capsys) -> Non
     assert "collapse: capacity 0.662969 (first not standing 0.663125), 1 snap(s), lateral 0.0168379; " \
            "hinges s=0: hinge v02|v03; s=0.0454687: snap v07|v08, hinge v06|v07" in show
     assert "numerical: capacity NaN (first not standing 0.747969), 0 snap(s), lateral –" in show
+    assert "    lateral capacity NaN at 2 magnitudes\n" in show  # why the path says what it says
     assert main(["report", str(path), "--no-pdf"]) == 0
     text, page = _page(tmp_path)
     numbers, missing = _missing(show, page)
@@ -316,3 +318,4 @@ def test_the_settlement_path_has_its_section(run, tmp_path: Path, capsys) -> Non
     assert [int(k) for _, k in heads] == list(range(1, len(heads) + 1))
     assert "s=0: hinge v02|v03; s=0.0454687: snap v07|v08, hinge v06|v07" in page.cells
     assert "0.0168379" in page.cells
+    assert "lateral capacity NaN at 2 magnitudes" in text
