@@ -530,6 +530,8 @@ def _lock(stack: contextlib.ExitStack, directory: Path) -> None:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise RunError(str(storage_error(folder, exc))) from None
+    if folder.is_symlink():  # tce writes only into the folder it made
+        raise RunError(f"{folder}: a link, not a folder; fix: remove the link, then run the same command again")
     try:
         stack.enter_context(folder_lock(directory))
     except (FolderLocked, StorageError) as exc:
