@@ -527,7 +527,7 @@ def _spec(ds, **given):
 
 
 def _plot(args: argparse.Namespace) -> int:
-    from .plot.data import slug
+    from .study.names import slug
     from .plot.output import write_figures
 
     ds = _open_results(args.results)

@@ -4,7 +4,9 @@ without pydantic, xarray or the solvers: the command line's parser imports this,
 
 from __future__ import annotations
 
-__all__ = ["LAMBDA_TOL", "PLOT_KINDS", "same_lambda"]
+import re
+
+__all__ = ["LAMBDA_TOL", "PLOT_KINDS", "same_lambda", "slug"]
 
 #: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
 PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "transversal", "base", "mechanism", "summary", "bracket",
@@ -16,3 +18,10 @@ LAMBDA_TOL = 1e-9
 def same_lambda(a: float, b: float) -> bool:
     """Whether two load multipliers are the same step (within :data:`LAMBDA_TOL`)."""
     return abs(a - b) <= LAMBDA_TOL * max(1.0, abs(a), abs(b))
+
+
+def slug(name: str) -> str:
+    """``name`` made safe for one file name: runs of characters other than letters, digits and
+    ``_.=-`` become ``_``, leading and trailing ``_`` and ``.`` are dropped (never ``..``).
+    Two names may share a slug (``a b``, ``a_b``): a study refuses such scenario names."""
+    return re.sub(r"[^A-Za-z0-9_.=-]+", "_", name).strip("_.") or "scenario"

@@ -57,7 +57,7 @@ from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
 from ..structures.vault import barrel_vault, groin_vault
 from . import guards
 from .guards import StudyError
-from .names import PLOT_KINDS
+from .names import PLOT_KINDS, slug
 
 __all__ = [
     "MAX_BLOCKS",
@@ -620,6 +620,15 @@ class StudyFile(_Strict):
     assessment: AssessmentSection | None = None
     settlement_path: SettlementPathSection | None = None
 
+    @field_validator("scenarios")
+    @classmethod
+    def _case_names(cls, v: dict[str, dict[str, list[float]]]) -> dict[str, dict[str, list[float]]]:
+        for name in v:  # a case name starts each scenario's name and its file names
+            if "/" in name or "\\" in name or not name.strip("."):
+                raise ValueError(f"the settlement case {name!r} holds a path separator or is only dots; fix: name it "
+                                 "with letters, digits and '_'")
+        return v
+
     @field_validator("sweep")
     @classmethod
     def _no_empty_list(cls, v: SweepSection) -> SweepSection:
@@ -951,7 +960,7 @@ def _check_scenarios(study: Study) -> None:
                 f"{study.path}: structure: cannot build it{f' with {swept}' if swept else ''}: {exc}; "
                 f"fix: {_build_fix(spec.structure, exc, swept)}"
             ) from None
-    names: set[str] = set()
+    names: dict[str, str] = {}  # slug -> scenario name: each names its own files (tce export)
     for sc in study.scenarios():
         try:
             build_material(sc.material)
@@ -973,12 +982,10 @@ def _check_scenarios(study: Study) -> None:
             )
         if any(not math.isfinite(u) for v in sc.settlements.values() for u in v):
             raise StudyError(f"{study.path}: scenarios.{sc.settlement}: a displacement overflows; fix: smaller values")
-        if sc.name in names:
-            raise StudyError(
-                f"{study.path}: scenarios.{sc.settlement}: two scenarios are named {sc.name!r}; "
-                "fix: rename the settlement case"
-            )
-        names.add(sc.name)
+        twin = names.setdefault(slug(sc.name), sc.name)
+        if twin is not sc.name:
+            same = f"are named {sc.name!r}" if twin == sc.name else f"{twin!r} and {sc.name!r} share the file name {slug(sc.name)!r}"
+            raise StudyError(f"{study.path}: scenarios.{sc.settlement}: two scenarios {same}; fix: rename the settlement case")
         _check_loads(study, sc, study.assembly(sc.structure))
 
 
