@@ -89,11 +89,48 @@ class _Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True, strict=True)
 
 
-Positive = Annotated[float, Field(gt=0)]
-NonNegative = Annotated[float, Field(ge=0)]
-Vector6 = Annotated[list[float], Field(min_length=6, max_length=6)]
-Vector3 = Annotated[list[float], Field(min_length=3, max_length=3)]
-Vector2 = Annotated[list[float], Field(min_length=2, max_length=2)]
+# Bounds of every quantity a study gives (SI: m, kN, kN/m^2, kN/m^3): beyond them a problem is
+# meaningless for masonry or overflows the solver's arithmetic, and the value is refused naming its key.
+#: lengths of a structure (m, > 0) and coordinates (within +-MAX_LENGTH): ten kilometres
+MAX_LENGTH = 1e4
+#: a force component or an axle load (kN)
+MAX_FORCE = 1e6
+#: cohesion, strengths and pressures (kN/m^2; 1e7 is ten times steel's yield stress)
+MAX_STRESS = 1e7
+#: unit weights (kN/m^3; steel's is 78.5)
+MAX_UNIT_WEIGHT = 1e3
+#: contact stiffnesses (kN/m^3): stiffer contacts are rigid to the last digit
+MAX_STIFFNESS = 1e20
+#: friction coefficient: beyond, no joint slides (leave friction out for Heyman's unlimited friction)
+MAX_FRICTION = 100.0
+#: dimensionless multipliers: load multipliers (lambda_step, lambda_cap, tolerance), settlement magnitudes
+MAX_MULTIPLIER = 1e6
+#: partial factors of [assessment]
+MIN_FACTOR, MAX_FACTOR = 0.01, 100.0
+
+
+def _within(limit: float) -> Any:
+    """A number in [-limit, limit]."""
+    return Annotated[float, Field(ge=-limit, le=limit)]
+
+
+def _vector(n: int, limit: float) -> Any:
+    """A list of ``n`` numbers in [-limit, limit]."""
+    return Annotated[list[_within(limit)], Field(min_length=n, max_length=n)]
+
+
+Length = Annotated[float, Field(gt=0, le=MAX_LENGTH)]
+Depth = Annotated[float, Field(ge=0, le=MAX_LENGTH)]
+Coordinate = _within(MAX_LENGTH)
+UnitWeight = Annotated[float, Field(gt=0, le=MAX_UNIT_WEIGHT)]
+Stress = Annotated[float, Field(ge=0, le=MAX_STRESS)]
+Strength = Annotated[float, Field(gt=0, le=MAX_STRESS)]
+Stiffness = Annotated[float, Field(gt=0, le=MAX_STIFFNESS)]
+Friction = Annotated[float, Field(ge=0, le=MAX_FRICTION)]
+Multiplier = Annotated[float, Field(gt=0, le=MAX_MULTIPLIER)]
+Factor = Annotated[float, Field(ge=MIN_FACTOR, le=MAX_FACTOR)]
+Angle = _within(360.0)
+Vector6 = _vector(6, MAX_LENGTH)
 
 
 class StudySection(_Strict):
@@ -118,7 +155,7 @@ class _Generated(_Strict):
     every generator takes the unit weight (kN/m^3)."""
 
     builder: ClassVar[Callable[..., Assembly]]
-    unit_weight: Positive = 20.0
+    unit_weight: UnitWeight = 20.0
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
@@ -129,11 +166,11 @@ class ArchStructure(_Generated):
     """``[structure] type = "semicircular_arch"``: :func:`tce.structures.arch.semicircular_arch`."""
 
     type: Literal["semicircular_arch"]
-    inner_radius: Positive = 1.0
-    thickness: Positive = 0.2
-    depth: Positive = 0.25
+    inner_radius: Length = 1.0
+    thickness: Length = 0.2
+    depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
-    support_height: Positive | None = None
+    support_height: Length | None = None
     joints: Literal["radial", "vertical"] = "radial"
 
     builder = semicircular_arch
@@ -143,13 +180,13 @@ class PointedArchStructure(_Generated):
     """``[structure] type = "pointed_arch"``: :func:`tce.structures.arch.pointed_arch`."""
 
     type: Literal["pointed_arch"]
-    span: Positive = 2.0
-    rise: Positive | None = None
-    centre_offset: NonNegative | None = None
-    thickness: Positive = 0.2
-    depth: Positive = 0.25
+    span: Length = 2.0
+    rise: Length | None = None
+    centre_offset: Depth | None = None
+    thickness: Length = 0.2
+    depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=2)] = 14
-    pier_height: Positive | None = None
+    pier_height: Length | None = None
 
     builder = pointed_arch
 
@@ -158,12 +195,12 @@ class SegmentalArchStructure(_Generated):
     """``[structure] type = "segmental_arch"``: :func:`tce.structures.arch.segmental_arch`."""
 
     type: Literal["segmental_arch"]
-    span: Positive = 2.0
-    rise: Positive = 0.5
-    thickness: Positive = 0.2
-    depth: Positive = 0.25
+    span: Length = 2.0
+    rise: Length = 0.5
+    thickness: Length = 0.2
+    depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 12
-    pier_height: Positive | None = None
+    pier_height: Length | None = None
 
     builder = segmental_arch
 
@@ -172,11 +209,11 @@ class ArchOnPiersStructure(_Generated):
     """``[structure] type = "arch_on_piers"``: :func:`tce.structures.arch.semicircular_arch_on_piers`."""
 
     type: Literal["arch_on_piers"]
-    inner_radius: Positive = 1.0
-    thickness: Positive = 0.2
-    depth: Positive = 0.25
+    inner_radius: Length = 1.0
+    thickness: Length = 0.2
+    depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 14
-    pier_height: Positive = 1.0
+    pier_height: Length = 1.0
 
     builder = semicircular_arch_on_piers
 
@@ -186,13 +223,13 @@ class ArchBridgeStructure(_Generated):
 
     type: Literal["arch_bridge"]
     spans: Annotated[int, Field(ge=1)] = 1
-    span: Positive = 6.0
-    rise: Positive = 1.5
-    thickness: Positive = 0.4
-    depth: Positive = 3.0
+    span: Length = 6.0
+    rise: Length = 1.5
+    thickness: Length = 0.4
+    depth: Length = 3.0
     voussoirs: Annotated[int, Field(ge=1)] = 12
-    pier_width: Positive = 1.0
-    pier_height: Positive = 3.0
+    pier_width: Length = 1.0
+    pier_height: Length = 3.0
     piers: Literal["free", "fixed"] = "free"
 
     builder = arch_bridge
@@ -202,13 +239,13 @@ class BarrelVaultStructure(_Generated):
     """``[structure] type = "barrel_vault"``: :func:`tce.structures.vault.barrel_vault`."""
 
     type: Literal["barrel_vault"]
-    inner_radius: Positive = 1.0
-    thickness: Positive = 0.2
-    depth: Positive = 1.5
+    inner_radius: Length = 1.0
+    thickness: Length = 0.2
+    depth: Length = 1.5
     voussoirs: Annotated[int, Field(ge=1)] = 12
     courses: Annotated[int, Field(ge=1)] = 6
     bond: Literal["stack", "running"] = "stack"
-    support_height: Positive | None = None
+    support_height: Length | None = None
     supports: Literal["walls", "courses"] = "walls"
 
     builder = barrel_vault
@@ -218,11 +255,11 @@ class GroinVaultStructure(_Generated):
     """``[structure] type = "groin_vault"``: :func:`tce.structures.vault.groin_vault`."""
 
     type: Literal["groin_vault"]
-    span_x: Positive = 2.0
-    span_y: Positive | None = None
-    thickness: Positive = 0.2
+    span_x: Length = 2.0
+    span_y: Length | None = None
+    thickness: Length = 0.2
     voussoirs: Annotated[int, Field(ge=2, multiple_of=2)] = 8
-    support_height: Positive | None = None
+    support_height: Length | None = None
     supports: Literal["corners", "springings"] = "corners"
 
     builder = groin_vault
@@ -232,12 +269,12 @@ class DomeStructure(_Generated):
     """``[structure] type = "dome"``: :func:`tce.structures.dome.hemispherical_dome`."""
 
     type: Literal["dome"]
-    radius: Positive = 5.0
-    thickness: Positive = 0.3
+    radius: Length = 5.0
+    thickness: Length = 0.3
     sectors: Annotated[int, Field(ge=3)] = 16
     courses: Annotated[int, Field(ge=1)] = 8
     oculus: Annotated[float, Field(ge=0, lt=90)] = 0.0
-    support_height: Positive | None = None
+    support_height: Length | None = None
 
     builder = hemispherical_dome
 
@@ -252,7 +289,7 @@ class FileStructure(_Strict):
     type: Literal["file"]
     path: str = Field(min_length=1)
     supports: list[str] | None = None
-    unit_weight: Positive | None = None
+    unit_weight: UnitWeight | None = None
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
@@ -281,12 +318,12 @@ class MaterialSection(_Strict):
     """``[material]``: friction (absent: Heyman, unlimited), optional stiffnesses, cohesion,
     tensile and compressive strength (kN/m^2) and the flow rule (``docs/materials.md``)."""
 
-    friction: NonNegative | None = None
-    normal_stiffness: Positive | None = None
-    shear_stiffness: Positive | None = None
-    cohesion: NonNegative = 0.0
-    tensile_strength: NonNegative = 0.0
-    compressive_strength: Positive | None = None
+    friction: Friction | None = None
+    normal_stiffness: Stiffness | None = None
+    shear_stiffness: Stiffness | None = None
+    cohesion: Stress = 0.0
+    tensile_strength: Stress = 0.0
+    compressive_strength: Strength | None = None
     flow: Literal["associative", "non-associative"] = "associative"
 
     def build(self) -> Material:
@@ -299,9 +336,9 @@ class PointLoadSection(_Strict):
     surface above a plan point (``on_top``); :class:`tce.core.loads.PointLoad`."""
 
     block: str | None = None
-    at: Vector3 | None = None
-    on_top: Vector2 | None = None
-    force: Vector3
+    at: _vector(3, MAX_LENGTH) | None = None
+    on_top: _vector(2, MAX_LENGTH) | None = None
+    force: _vector(3, MAX_FORCE)
     scaled: bool = True
 
 
@@ -309,9 +346,9 @@ class DistributedLoadSection(_Strict):
     """``[[loads.distributed]]``: a pressure (kN/m^2 of plan area, downwards) over a plan
     rectangle; :class:`tce.core.loads.DistributedLoad`."""
 
-    x: Vector2
-    y: Vector2 | None = None
-    pressure: float
+    x: _vector(2, MAX_LENGTH)
+    y: _vector(2, MAX_LENGTH) | None = None
+    pressure: _within(MAX_STRESS)
     scaled: bool = True
 
 
@@ -322,11 +359,11 @@ class VehicleSection(_Strict):
     :class:`tce.core.vehicles.Vehicle`."""
 
     standard: Literal[tuple(STANDARD)] | None = None  # type: ignore[valid-type]
-    axles: list[Vector2] | None = None
-    wheels: list[float] | None = None
-    patch: Vector2 | None = None
-    x: float | None = None
-    y: float | None = None
+    axles: list[_vector(2, MAX_FORCE)] | None = None
+    wheels: list[Coordinate] | None = None
+    patch: _vector(2, MAX_LENGTH) | None = None
+    x: Coordinate | None = None
+    y: Coordinate | None = None
     name: str | None = None
     scaled: bool | None = None
 
@@ -351,12 +388,12 @@ class FillSection(_Strict):
     the coefficient at rest ``k0``, the passive coefficient ``kp``: 0, the default, switches
     the passive restraint off); :class:`tce.core.fill.Fill`."""
 
-    depth: NonNegative
-    unit_weight: Positive
+    depth: Depth
+    unit_weight: UnitWeight
     weight: bool = True
     dispersion: Annotated[float, Field(ge=0, le=60)] | Literal["boussinesq"] = DISPERSION_2_TO_1
     k0: Annotated[float, Field(ge=0, lt=1)] = 0.0
-    kp: NonNegative = 0.0
+    kp: Annotated[float, Field(ge=0, le=1e3)] = 0.0
 
     @field_validator("kp")
     @classmethod
@@ -376,17 +413,17 @@ class LoadsSection(_Strict):
     lambda_max (:func:`tce.analysis.critical.critical_position`), from the positions
     ``positions`` (m) besides its own."""
 
-    alpha: float | list[float] = 0.0
+    alpha: Angle | list[Angle] = 0.0
     lateral: bool | None = None
     point: list[PointLoadSection] = Field(default_factory=list)
     distributed: list[DistributedLoadSection] = Field(default_factory=list)
     vehicle: list[VehicleSection] = Field(default_factory=list)
     fill: FillSection | None = None
     critical_position: bool = False
-    positions: list[float] | None = None
-    lambda_step: Positive | None = None
-    tolerance: Positive | None = None
-    lambda_cap: Positive | None = None
+    positions: list[Coordinate] | None = None
+    lambda_step: Multiplier | None = None
+    tolerance: Multiplier | None = None
+    lambda_cap: Multiplier | None = None
 
     @property
     def alphas(self) -> list[float]:
@@ -465,16 +502,16 @@ def _distinct(key: str, values: list[float]) -> None:
 class SweepSection(_Strict):
     """``[sweep]``: lists of values; the study runs the cartesian product."""
 
-    friction: list[NonNegative] | None = None
-    cohesion: list[NonNegative] | None = None
-    tensile_strength: list[NonNegative] | None = None
-    compressive_strength: list[Positive] | None = None
-    magnitude: list[float] | None = None
-    inner_radius: list[Positive] | None = None
-    thickness: list[Positive] | None = None
-    depth: list[Positive] | None = None
-    radius: list[Positive] | None = None
-    load_x: list[float] | None = None
+    friction: list[Friction] | None = None
+    cohesion: list[Stress] | None = None
+    tensile_strength: list[Stress] | None = None
+    compressive_strength: list[Strength] | None = None
+    magnitude: list[_within(MAX_MULTIPLIER)] | None = None
+    inner_radius: list[Length] | None = None
+    thickness: list[Length] | None = None
+    depth: list[Length] | None = None
+    radius: list[Length] | None = None
+    load_x: list[Coordinate] | None = None
 
     def items(self) -> list[tuple[str, list[float]]]:
         """``(parameter, values)`` of the parameters swept, in declaration order."""
@@ -553,8 +590,8 @@ class AssessmentSection(_Strict):
     The dead load of an arch is favourable: ``dead_factor`` is the favourable factor, at most
     1 (:data:`tce.analysis.assessment.DEAD_FACTOR_RULE`)."""
 
-    dead_factor: Positive = 1.0
-    live_factor: Positive = 1.0
+    dead_factor: Factor = 1.0
+    live_factor: Factor = 1.0
 
     @field_validator("dead_factor")
     @classmethod
@@ -577,9 +614,9 @@ class SettlementPathSection(_Strict):
 
     model_config = ConfigDict(populate_by_name=True)  # merged with _Strict's
 
-    increment: Positive = 0.001
-    s_max: Positive = 1.0
-    tolerance: Positive | None = None
+    increment: Multiplier = 0.001
+    s_max: Multiplier = 1.0
+    tolerance: Multiplier | None = None
     lam: bool = Field(default=False, alias="lambda")
     live_at: list[Annotated[float, Field(ge=0.0, allow_inf_nan=False)]] | None = None
     contact_gap: Positive | None = None
@@ -588,6 +625,9 @@ class SettlementPathSection(_Strict):
     def _not_too_many_increments(self) -> SettlementPathSection:
         from ..analysis.settlement_path import MAX_STEPS
 
+        if self.increment > self.s_max:
+            raise ValueError(f"increment = {self.increment!r} is larger than s_max = {self.s_max!r}: the path would "
+                             "take no step; fix: an increment below s_max")
         if self.s_max / self.increment > MAX_STEPS:
             raise ValueError(
                 f"s_max / increment = {self.s_max / self.increment:.3g} increments, more than {MAX_STEPS}; "
