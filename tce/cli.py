@@ -237,6 +237,7 @@ def _out_folder(out: Path, option: str = "--out") -> Path:
     full disk)."""
     import shutil
 
+    from .study.results import storage_error
     from .study.runner import MIN_FREE
 
     fix = f"fix: give another {option}"
@@ -247,8 +248,10 @@ def _out_folder(out: Path, option: str = "--out") -> Path:
     try:
         out.mkdir(parents=True, exist_ok=True)
         out.resolve(strict=True)
-    except (OSError, RuntimeError) as exc:  # RuntimeError: a loop of links above it
-        raise UsageError(f"{option}: cannot write {out} ({getattr(exc, 'strerror', None) or exc}); {fix}") from None
+    except OSError as exc:
+        raise UsageError(f"{option}: {storage_error(out, exc)}") from None
+    except RuntimeError:  # a loop of links above it
+        raise UsageError(f"{option}: cannot write {out}: a loop of links; {fix}") from None
     if not os.access(out, os.W_OK | os.X_OK):
         raise UsageError(f"{option}: cannot write {out} (read-only or not permitted); {fix}")
     free = shutil.disk_usage(out).free
@@ -317,8 +320,8 @@ def _run(args: argparse.Namespace) -> int:
         study = load_study(args.study)
     except StudyError as exc:
         raise UsageError(str(exc)) from None
-    _out_folder(args.out)
-    _out_folder(args.out / study.name, "--out (the study's folder)")
+    _out_folder(args.out / study.name)
+    log.info("%s: %s", study.name, study.work())
     kept = f"finished scenarios are kept in {args.out / study.name / 'scenarios'}"
     bar = _Bar(study.name)
     try:

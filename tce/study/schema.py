@@ -134,10 +134,12 @@ Vector6 = _vector(6, MAX_LENGTH)
 
 
 class StudySection(_Strict):
-    """``[study]``: the study's name (also its results folder) and an optional description."""
+    """``[study]``: the study's name (also its results folder), an optional description and the
+    most solves the study may ask for (:func:`tce.study.guards.work`, stated before a run)."""
 
     name: str = Field(min_length=1, max_length=100, pattern=r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
     description: str = ""
+    max_solves: Annotated[int, Field(ge=1)] = guards.MAX_SOLVES
 
     @field_validator("name")
     @classmethod
@@ -518,6 +520,9 @@ class SweepSection(_Strict):
         return [(k, list(v)) for k, v in self if v is not None]
 
 
+#: limits solved to refine one minimum of a critical-position search (bounded Brent search to xtol)
+SEARCH_REFINE_SOLVES = 50
+
 #: studies with more scenarios draw per-scenario figures only for those ``[plots] scenarios`` names
 MAX_DRAWN_SCENARIOS = 12
 
@@ -807,6 +812,24 @@ class Study:
         return display.call("Study", {}, head=f"{self.name!r}, {self.path}, {len(scenarios)} scenarios "
                             f"{display.names([sc.name for sc in scenarios], 3)}")
 
+    def search_solves(self) -> int:
+        """Most direct-limit solves of one critical-position search (0 without one): the
+        positions it scans on the first structure, and :data:`SEARCH_REFINE_SOLVES` for each
+        minimum it refines."""
+        if not self.spec.loads.critical_position:
+            return 0
+        from ..analysis.critical import REFINED, scan_positions, search_bounds
+
+        sc = next(self._expand())
+        pattern, assembly = sc.loads_pattern, self.assembly(sc.structure)
+        scanned = scan_positions(pattern, assembly, *search_bounds(pattern, assembly), sc.loads["positions"])
+        return len(scanned) + REFINED * SEARCH_REFINE_SOLVES
+
+    def work(self) -> str:
+        """The most solves the study asks for, in words (:func:`tce.study.guards.work`)."""
+        return f"{guards.work(self.spec, self.search_solves())[1]} (the study's cap: [study] max_solves = " \
+               f"{self.spec.study.max_solves})"
+
     def assembly(self, structure: dict[str, Any]) -> Assembly:
         """The built assembly of a scenario's ``structure`` section: built once (when the
         study is validated), then the same object for the run, its workers and its results."""
@@ -934,7 +957,8 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
             )
     study = Study(path, text, spec)
     _check_scenarios(study)
-    guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])))
+    guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])),
+                      search_solves=study.search_solves())
     _check_plots(study)
     _check_settlement_path(study)
     _check_passive(study)
