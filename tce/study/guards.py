@@ -182,8 +182,9 @@ def work(spec: Any, search_solves: int = 0) -> tuple[int, str]:
     path = spec.settlement_path
     if path is not None:
         increments = math.ceil(path.s_max / path.increment)
-        terms.append(f"a settlement path of {increments} increments (s_max / increment)")
-        each += increments
+        lives = len(path.live_at or []) * (1 + search_solves)
+        terms.append(f"a settlement path of {increments} increments (s_max / increment) and {lives} live-load limits")
+        each += increments + lives
     return count * each, f"{count} scenarios x ({' + '.join(terms)}) = {count * each} solves at most"
 
 

@@ -623,8 +623,8 @@ class SettlementPathSection(_Strict):
     s_max: Multiplier = 1.0
     tolerance: Multiplier | None = None
     lam: bool = Field(default=False, alias="lambda")
-    live_at: list[Annotated[float, Field(ge=0.0, allow_inf_nan=False)]] | None = None
-    contact_gap: Positive | None = None
+    live_at: list[Annotated[float, Field(ge=0.0, le=MAX_MULTIPLIER)]] | None = None
+    contact_gap: Length | None = None
 
     @model_validator(mode="after")
     def _not_too_many_increments(self) -> SettlementPathSection:

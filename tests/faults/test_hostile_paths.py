@@ -208,8 +208,9 @@ MOVED = {
 SETTLING = {
     "study": {"name": "s"},
     "structure": {"type": "semicircular_arch", "voussoirs": 8},
+    "loads": {"point": [{"on_top": [0.3, 0.0], "force": [0.0, 0.0, -1.0]}]},
     "scenarios": {"out": {"right": [0.001, 0.0, 0.0, 0.0, 0.0, 0.0]}},
-    "settlement_path": {"increment": 0.01, "s_max": 0.1, "tolerance": 1e-3},
+    "settlement_path": {"increment": 0.01, "s_max": 0.1, "tolerance": 1e-3, "live_at": [0.05], "contact_gap": 1e-3},
 }
 #: section (dotted place in the study) -> (the study that gives it, its model)
 SECTIONS: dict[str, tuple[dict, type[BaseModel]]] = {
@@ -379,3 +380,22 @@ def test_a_run_states_its_work_before_it_starts(tmp_path: Path, capsys) -> None:
     work = next(k for k, line in enumerate(err.splitlines()) if "solves at most" in line)
     running = next(k for k, line in enumerate(err.splitlines()) if line.startswith("tce: running"))
     assert work < running and "max_solves = 20000000" in err.splitlines()[work]
+
+
+def test_a_disk_that_fills_while_the_report_is_written(finished: Path, tmp_path: Path, monkeypatch, capsys) -> None:
+    """One line naming the path, exit 3, no temporary left (it was a traceback and .report.html.tmp)."""
+    import errno
+
+    from tce import report
+
+    def full(self, *args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device", str(self))
+
+    monkeypatch.setattr(Path, "write_text", full)
+    monkeypatch.setattr(report, "study_figures", lambda ds, folder, scratch: [])
+    assert main(["report", str(finished), "--no-pdf", "--out", str(tmp_path)]) == 3
+    err = capsys.readouterr().err
+    clean(err)
+    (line,) = errors(err)
+    assert "no space left on the device" in line and str(tmp_path) in line
+    assert list(tmp_path.iterdir()) == []
