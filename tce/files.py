@@ -27,8 +27,9 @@ def atomic_write(path: Path | str) -> Iterator[Path]:
     """Write ``path`` whole or not at all.
 
     Yields the temporary path ``.<name>.<token>.<pid>.tmp`` beside ``path`` (its folder is
-    created), an empty file this call created, for the caller to write by any means. When the block ends normally, the file is fsynced,
-    renamed onto ``path`` and the folder fsynced; when it raises, the file is removed.
+    created), an empty file this call created, for the caller to write by any means. When the
+    block ends normally, the file is fsynced, renamed onto ``path`` and the folder fsynced;
+    when it raises, the file is removed.
 
     Raises
     ------

@@ -1048,8 +1048,11 @@ def _check_scenarios(study: Study) -> None:
             raise StudyError(f"{study.path}: scenarios.{sc.settlement}: a displacement overflows; fix: smaller values")
         twin = names.setdefault(slug(sc.name), sc.name)
         if twin is not sc.name:
-            same = f"are named {sc.name!r}" if twin == sc.name else f"{twin!r} and {sc.name!r} share the file name {slug(sc.name)!r}"
-            raise StudyError(f"{study.path}: scenarios.{sc.settlement}: two scenarios {same}; fix: rename the settlement case")
+            same = (f"are named {sc.name!r}" if twin == sc.name
+                    else f"{twin!r} and {sc.name!r} share the file name {slug(sc.name)!r}")
+            raise StudyError(
+                f"{study.path}: scenarios.{sc.settlement}: two scenarios {same}; fix: rename the settlement case"
+            )
         _check_loads(study, sc, study.assembly(sc.structure))
 
 
