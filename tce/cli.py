@@ -218,6 +218,9 @@ def _open_results(path: Path, needs: Sequence[str] = RESULTS_VARS):
             f"{path}: not a results file written by tce (no tce_version attribute or scenario dimension); "
             "fix: give the results.nc written by 'tce run'"
         )
+    if not ds.attrs.get("study"):
+        raise UsageError(f"{path}: its study attribute (the study file it ran) is missing: a damaged results file; "
+                         "fix: run the study again")
     missing = [v for v in needs if v not in ds.variables]
     if missing:
         raise UsageError(
@@ -228,21 +231,29 @@ def _open_results(path: Path, needs: Sequence[str] = RESULTS_VARS):
 
 
 def _out_folder(out: Path, option: str = "--out") -> Path:
-    """``out`` as a folder to write into, created if needed (:class:`UsageError` if it cannot
-    be written)."""
-    import os
+    """``out`` as a folder to write into, created if needed: checked once, before anything is
+    computed, for every command that writes (:class:`UsageError` naming the path if it cannot be
+    written: a file, a path under a file, a link to nothing or a loop of links, a read-only or
+    full disk)."""
     import shutil
 
+    from .study.results import storage_error
     from .study.runner import MIN_FREE
 
+    fix = f"fix: give another {option}"
+    if out.is_symlink() and not out.exists():
+        raise UsageError(f"{option}: {out} is a link to nothing (or a loop of links); {fix} (or remove the link)")
     if out.exists() and not out.is_dir():
         raise UsageError(f"{option}: {out} is a file, not a folder; fix: give a folder (or remove the file)")
     try:
         out.mkdir(parents=True, exist_ok=True)
+        out.resolve(strict=True)
     except OSError as exc:
-        raise UsageError(f"{option}: cannot write {out} ({exc.strerror}); fix: give another {option}") from None
+        raise UsageError(f"{option}: {storage_error(out, exc)}") from None
+    except RuntimeError:  # a loop of links above it
+        raise UsageError(f"{option}: cannot write {out}: a loop of links; {fix}") from None
     if not os.access(out, os.W_OK | os.X_OK):
-        raise UsageError(f"{option}: cannot write {out} (read-only or not permitted); fix: give another {option}")
+        raise UsageError(f"{option}: cannot write {out} (read-only or not permitted); {fix}")
     free = shutil.disk_usage(out).free
     if free < MIN_FREE:
         raise UsageError(f"{option}: cannot write {out}: {free} bytes free; fix: free some space or give another {option}")
@@ -309,6 +320,8 @@ def _run(args: argparse.Namespace) -> int:
         study = load_study(args.study)
     except StudyError as exc:
         raise UsageError(str(exc)) from None
+    _out_folder(args.out / study.name)
+    log.info("%s: %s", study.name, study.work())
     kept = f"finished scenarios are kept in {args.out / study.name / 'scenarios'}"
     bar = _Bar(study.name)
     try:
@@ -529,7 +542,7 @@ def _spec(ds, **given):
 
 
 def _plot(args: argparse.Namespace) -> int:
-    from .plot.data import slug
+    from .study.names import slug
     from .plot.output import write_figures
 
     ds = _open_results(args.results)
@@ -610,7 +623,9 @@ def _report_lines(files, how_to_print: str = "") -> None:
 
 def _report(args: argparse.Namespace) -> int:
     _open_results(args.results).close()  # a missing or unreadable file: one message, exit 2
-    _report_lines(_write_report(args.results, args.out, pdf=not args.no_pdf))
+    out = _out_folder(args.out or args.results.parent)
+    with _writing(out):
+        _report_lines(_write_report(args.results, out, pdf=not args.no_pdf))
     return 0
 
 

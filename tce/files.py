@@ -3,8 +3,11 @@
 A reader (or a machine that loses power) sees the old file or the complete new one, never a
 part: the writer writes a temporary file in the same folder, which is flushed to the disk
 (fsync), renamed onto its name (:func:`os.replace`, atomic within a file system) and made
-durable by an fsync of the folder. A writer that fails or is interrupted leaves no temporary
-behind; one killed mid-write leaves ``.<name>.<pid>.tmp``, which :func:`temporaries` finds.
+durable by an fsync of the folder. The temporary is created by this module with ``O_EXCL`` and
+``O_NOFOLLOW`` under a name no one can guess, so that a link planted where tce writes is never
+followed (the rename replaces a link at the final name, not its target). A writer that fails or
+is interrupted leaves no temporary behind; one killed mid-write leaves
+``.<name>.<token>.<pid>.tmp``, which :func:`temporaries` finds.
 This module imports nothing of tce: every floor may use it.
 """
 
@@ -12,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import secrets
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -22,20 +26,21 @@ __all__ = ["atomic_write", "temporaries"]
 def atomic_write(path: Path | str) -> Iterator[Path]:
     """Write ``path`` whole or not at all.
 
-    Yields the temporary path ``.<name>.<pid>.tmp`` beside ``path`` (its folder is created),
-    for the caller to write by any means. When the block ends normally, the file is fsynced,
-    renamed onto ``path`` and the folder fsynced; when it raises, the file is removed.
+    Yields the temporary path ``.<name>.<token>.<pid>.tmp`` beside ``path`` (its folder is
+    created), an empty file this call created, for the caller to write by any means. When the
+    block ends normally, the file is fsynced, renamed onto ``path`` and the folder fsynced;
+    when it raises, the file is removed.
 
     Raises
     ------
     OSError
-        The folder cannot be created, or the file cannot be flushed or renamed (a full disk).
-    FileNotFoundError
-        The block wrote nothing at the temporary path.
+        The folder cannot be created (or is a file), or the file cannot be created, flushed or
+        renamed (a full disk).
     """
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.{os.getpid()}.tmp")
+    os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o666))
     try:
         yield tmp
         _fsync(tmp)

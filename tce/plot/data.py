@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import json
 import math
-import re
 import tomllib
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
@@ -36,7 +35,7 @@ from numpy.typing import NDArray
 
 from ..structures.assembly import Assembly
 from ..study.outcomes import outcome_words, status_words
-from ..study.names import PLOT_KINDS, same_lambda
+from ..study.names import PLOT_KINDS, same_lambda, slug
 
 __all__ = [
     "PlotSpec",
@@ -153,11 +152,6 @@ def block_rows(ds: xr.Dataset, name: str, scenario: str, asm: Assembly) -> NDArr
 def text(ds: xr.Dataset, name: str, scenario: str, default: str = "") -> str:
     """A per-scenario string variable (``default`` when absent)."""
     return str(value(ds, name, scenario)) if name in ds else default
-
-
-def slug(name: str) -> str:
-    """``name`` made safe for a file name."""
-    return re.sub(r"[^A-Za-z0-9_.=-]+", "_", name).strip("_") or "scenario"
 
 
 def is_planar(ds: xr.Dataset, scenario: str) -> bool:

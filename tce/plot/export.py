@@ -37,7 +37,8 @@ from numpy.typing import NDArray
 
 from ..files import atomic_write
 from ..structures.assembly import Assembly
-from .data import assembly, geometry, optimal_steps, scenarios, slug
+from ..study.names import slug
+from .data import assembly, geometry, optimal_steps, scenarios
 
 __all__ = ["export_vtk"]
 

@@ -6,8 +6,9 @@ to one) of at most :data:`MAX_STUDY_BYTES` whose path holds no NUL. :func:`check
 :func:`check_tree` refuse nesting deeper than :data:`MAX_TOML_DEPTH` (before and after
 parsing), and :func:`check_tree` any key or text value holding a control character (which
 would break every file name made from it). :func:`check_work` bounds the scenarios
-(:data:`MAX_SCENARIOS`), worst-case solves (:data:`MAX_SOLVES`: every load path to
-``lambda_cap`` plus its drawn states) and drawn states (:data:`MAX_DRAWN_STATES`) before the
+(:data:`MAX_SCENARIOS`), worst-case solves (:func:`work`: every load path to ``lambda_cap``
+plus its drawn states, critical-position searches and settlement paths; at most ``[study]
+max_solves``, :data:`MAX_SOLVES` by default) and drawn states (:data:`MAX_DRAWN_STATES`) before the
 scenarios are expanded, each message giving the estimate and the keys that set it.
 
 Every refusal is a :class:`tce.study.schema.StudyError` naming the file and the key.
@@ -33,6 +34,7 @@ __all__ = [
     "check_tree",
     "check_work",
     "read_study_text",
+    "work",
 ]
 
 #: Largest study file read (bytes): a study is a page of text; sweeps are lists, not files.
@@ -41,7 +43,8 @@ MAX_STUDY_BYTES = 2**20
 MAX_TOML_DEPTH = 16
 #: Most scenarios in a study (settlement cases x directions x sweep values).
 MAX_SCENARIOS = 10_000
-#: Most solves a study may ask for in the worst case (every load path to lambda_cap).
+#: Most solves a study may ask for in the worst case (every load path to lambda_cap, search and
+#: settlement path), unless its ``[study] max_solves`` says otherwise.
 MAX_SOLVES = 20_000_000
 #: Most drawn states (per-scenario figures' scenarios x ``[plots] steps``).
 MAX_DRAWN_STATES = 200
@@ -161,17 +164,43 @@ def _control(text: str) -> bool:
     return any(ord(c) < 32 or ord(c) == 127 for c in text)
 
 
-def check_work(path: Path, spec: Any, drawn_scenarios: int | None = None) -> None:
-    """Refuse a study that asks for more than :data:`MAX_SCENARIOS` scenarios or
-    :data:`MAX_SOLVES` worst-case solves, or, given the number of scenarios drawn, more than
-    :data:`MAX_DRAWN_STATES` drawn states. ``spec`` is the parsed
-    :class:`tce.study.schema.StudyFile` (not imported: the schema imports these guards)."""
-    cases = len(spec.scenarios)
-    alphas = len(spec.loads.alphas)
-    sweeps = spec.sweep.items()
-    factors = [("scenarios", cases, "settlement case(s)"), ("loads.alpha", alphas, "direction(s)")]
-    factors += [(f"sweep.{k}", len(v), "values") for k, v in sweeps]
-    count = math.prod(n for _, n, _ in factors)
+def work(spec: Any, search_solves: int = 0) -> tuple[int, str]:
+    """The most solves a study asks for and how they are counted: every scenario's load path to
+    ``lambda_cap`` with its drawn states, its critical-position search (``search_solves``
+    limits each) and its settlement path (``s_max / increment`` increments). ``spec`` is the
+    parsed :class:`tce.study.schema.StudyFile` (not imported: the schema imports these guards)."""
+    count = _scenarios(spec)[0]
+    loads = spec.loads
+    steps = _worst_steps(loads.lambda_step, loads.lambda_cap)
+    states = len(spec.plots.lambdas)
+    terms = [f"{steps} load steps to lambda_cap = {loads.lambda_cap} by lambda_step = {loads.lambda_step} + 2 + "
+             f"{states} drawn"]
+    each = steps + 2 + states
+    if loads.critical_position:
+        terms.append(f"a critical-position search of {search_solves} limits")
+        each += search_solves
+    path = spec.settlement_path
+    if path is not None:
+        increments = math.ceil(path.s_max / path.increment)
+        lives = len(path.live_at or []) * (1 + search_solves)
+        terms.append(f"a settlement path of {increments} increments (s_max / increment) and {lives} live-load limits")
+        each += increments + lives
+    return count * each, f"{count} scenarios x ({' + '.join(terms)}) = {count * each} solves at most"
+
+
+def _scenarios(spec: Any) -> tuple[int, list[tuple[str, int, str]]]:
+    """The number of scenarios of a study and its factors ``(key, count, what)``."""
+    factors = [("scenarios", len(spec.scenarios), "settlement case(s)"), ("loads.alpha", len(spec.loads.alphas),
+                                                                          "direction(s)")]
+    factors += [(f"sweep.{k}", len(v), "values") for k, v in spec.sweep.items()]
+    return math.prod(n for _, n, _ in factors), factors
+
+
+def check_work(path: Path, spec: Any, drawn_scenarios: int | None = None, search_solves: int = 0) -> None:
+    """Refuse a study that asks for more than :data:`MAX_SCENARIOS` scenarios or more solves
+    than its cap ``[study] max_solves`` (:func:`work`), or, given the number of scenarios
+    drawn, more than :data:`MAX_DRAWN_STATES` drawn states."""
+    count, factors = _scenarios(spec)
     if count > MAX_SCENARIOS:
         how = " x ".join(f"{n} {what} of {key}" for key, n, what in factors)
         key = max(factors, key=lambda f: f[1])[0]
@@ -179,15 +208,13 @@ def check_work(path: Path, spec: Any, drawn_scenarios: int | None = None) -> Non
             f"{path}: {key}: {how} = {count} scenarios, more than MAX_SCENARIOS = {MAX_SCENARIOS}; "
             "fix: sweep fewer values, or split the study"
         )
-    loads = spec.loads
-    steps = _worst_steps(loads.lambda_step, loads.lambda_cap)
-    states = len(spec.plots.lambdas)
-    solves = count * (steps + 2 + states)
-    if solves > MAX_SOLVES:
+    solves, how = work(spec, search_solves)
+    cap = spec.study.max_solves
+    if solves > cap:
         raise _error(
-            f"{path}: loads: {count} scenarios x ({steps} load steps to lambda_cap = {loads.lambda_cap} "
-            f"by lambda_step = {loads.lambda_step} + 2 + {states} drawn) = {solves} solves at most, more than "
-            f"MAX_SOLVES = {MAX_SOLVES}; fix: a larger lambda_step, a smaller lambda_cap or fewer scenarios"
+            f"{path}: study.max_solves: {how}, more than the study's cap max_solves = {cap} (by default MAX_SOLVES); "
+            "fix: a larger loads.lambda_step or settlement_path.increment, a smaller loads.lambda_cap or "
+            "settlement_path.s_max, fewer scenarios, or raise [study] max_solves"
         )
     if drawn_scenarios is not None and drawn_scenarios * len(spec.plots.steps) > MAX_DRAWN_STATES:
         n = drawn_scenarios * len(spec.plots.steps)

@@ -5,9 +5,10 @@ without pydantic, xarray or the solvers: the command line's parser imports this,
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Sequence
 
-__all__ = ["LAMBDA_TOL", "PLOT_KINDS", "missing_lambdas", "same_lambda"]
+__all__ = ["LAMBDA_TOL", "PLOT_KINDS", "missing_lambdas", "same_lambda", "slug"]
 
 #: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
 PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "transversal", "base", "mechanism", "summary", "bracket",
@@ -33,3 +34,10 @@ def missing_lambdas(solved: Sequence[float], wanted: Sequence[float], upper: flo
         float(w) for w in wanted
         if not any(same_lambda(w, s) for s in solved) and not (math.isfinite(upper) and w >= upper)
     ]
+
+
+def slug(name: str) -> str:
+    """``name`` made safe for one file name: runs of characters other than letters, digits and
+    ``_.=-`` become ``_``, leading and trailing ``_`` and ``.`` are dropped (never ``..``).
+    Two names may share a slug (``a b``, ``a_b``): a study refuses such scenario names."""
+    return re.sub(r"[^A-Za-z0-9_.=-]+", "_", name).strip("_.") or "scenario"

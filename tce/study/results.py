@@ -581,7 +581,7 @@ def folder_lock(directory: Path) -> Iterator[Path]:
     path = directory / LOCK_NAME
     while True:
         try:
-            fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)  # a planted link is refused
         except OSError as exc:
             raise storage_error(path, exc) from None
         try:

@@ -19,14 +19,17 @@ Faults (``docs/studies.md``, "Faults and resuming"):
   without saying which one killed it. The pool holds at most ``jobs + 1`` scenarios (one
   queued), the suspects: the others go on in a new pool and each suspect is solved again
   alone. A suspect that breaks the pool alone is reported and not retried; a worker death
-  that every suspect survives is a warning. A results folder that cannot be written stops the
-  dispatch (the running scenarios finish). A lost or failed scenario ends the run with
-  :class:`RunFault` (exit code 3 in the CLI) after every other scenario is kept;
-  ``results.nc`` is not replaced, and a rerun solves only what is missing.
-- Workers start with Ctrl-C ignored (:mod:`tce.signals`). Each holds the read end of a pipe
-  whose only write end is the parent's: when the parent closes it (Ctrl-C, SIGTERM) or ends
-  (``kill -9``), each worker ends at once, after the scenario file it may be writing. The
-  parent then removes the temporary files and re-raises.
+  that every suspect survives is a warning. A results folder that cannot be written, or a fork
+  server that ends while it starts a worker, stops the dispatch (the running scenarios finish).
+  A lost or failed scenario ends the run with :class:`RunFault` (exit code 3 in the CLI)
+  after every other scenario is kept; ``results.nc`` is not replaced, and a rerun solves
+  only what is missing.
+- Workers start with Ctrl-C ignored (:mod:`tce.signals`; forked from a fork server that
+  started so), while this process heeds Ctrl-C throughout, the seconds the fork server takes
+  to import tce included. Each worker holds the read end of a pipe whose only write end is
+  the parent's: when the parent closes it (Ctrl-C, SIGTERM) or ends (``kill -9``), each
+  worker ends at once, after the scenario file it may be writing. The parent then removes
+  the temporary files and re-raises.
 - One run at a time per study folder (:func:`tce.study.results.folder_lock`), created and
   locked before anything is solved: an unwritable destination raises :class:`RunError` first.
 """
@@ -38,6 +41,7 @@ import json
 import logging
 import math
 import multiprocessing as mp
+from multiprocessing import forkserver
 import os
 import shutil
 import threading
@@ -410,6 +414,11 @@ def _context() -> mp.context.BaseContext:
 def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tally: _Tally) -> None:
     """Solve ``todo`` in ``jobs`` worker processes (see the module docstring for faults)."""
     ctx = _context()
+    starting = quiet_children  # a spawned worker starts with Ctrl-C ignored (the start is short)
+    if ctx.get_start_method() == "forkserver":  # its workers inherit the fork server's ignored Ctrl-C, and
+        with quiet_children():  # this process heeds a Ctrl-C while the server imports tce (seconds)
+            forkserver.ensure_running()
+        starting = contextlib.nullcontext
     stop, keep = ctx.Pipe(duplex=False)  # workers hold ``stop``; closing ``keep`` ends them
     waiting = deque(todo)
     again: deque[Scenario] = deque()  # running when a worker died: each is solved again alone
@@ -434,12 +443,16 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
                 else:
                     break
                 try:
-                    with quiet_children():  # workers (and the fork server) start with Ctrl-C ignored
+                    with starting():  # workers start with Ctrl-C ignored
                         running[pool.submit(_solve_in_worker, sc, directory)] = sc
                 except BrokenExecutor:  # a worker died between scenarios
                     (again if sc.name in retried else waiting).appendleft(sc)
                     broken = True
                     break
+                except (EOFError, OSError) as exc:  # the fork server ended while it started a worker
+                    tally.fault(f"worker processes cannot start: the fork server ended ({type(exc).__name__}: {exc}); "
+                                "the scenarios already running finish")
+                    stopping = True
             done = wait(running, return_when=FIRST_COMPLETED).done if running else set()
             if broken or any(isinstance(f.exception(), BrokenExecutor) for f in done):
                 done = wait(running).done  # the broken pool fails every scenario it holds
@@ -515,6 +528,8 @@ def _lock(stack: contextlib.ExitStack, directory: Path) -> None:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise RunError(str(storage_error(folder, exc))) from None
+    if folder.is_symlink():  # tce writes only into the folder it made
+        raise RunError(f"{folder}: a link, not a folder; fix: remove the link, then run the same command again")
     try:
         stack.enter_context(folder_lock(directory))
     except (FolderLocked, StorageError) as exc:

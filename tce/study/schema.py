@@ -57,7 +57,7 @@ from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
 from ..structures.vault import barrel_vault, groin_vault
 from . import guards
 from .guards import StudyError
-from .names import PLOT_KINDS
+from .names import PLOT_KINDS, slug
 
 __all__ = [
     "MAX_BLOCKS",
@@ -89,18 +89,57 @@ class _Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True, strict=True)
 
 
-Positive = Annotated[float, Field(gt=0)]
-NonNegative = Annotated[float, Field(ge=0)]
-Vector6 = Annotated[list[float], Field(min_length=6, max_length=6)]
-Vector3 = Annotated[list[float], Field(min_length=3, max_length=3)]
-Vector2 = Annotated[list[float], Field(min_length=2, max_length=2)]
+# Bounds of every quantity a study gives (SI: m, kN, kN/m^2, kN/m^3): beyond them a problem is
+# meaningless for masonry or overflows the solver's arithmetic, and the value is refused naming its key.
+#: lengths of a structure (m, > 0) and coordinates (within +-MAX_LENGTH): ten kilometres
+MAX_LENGTH = 1e4
+#: a force component or an axle load (kN)
+MAX_FORCE = 1e6
+#: cohesion, strengths and pressures (kN/m^2; 1e7 is ten times steel's yield stress)
+MAX_STRESS = 1e7
+#: unit weights (kN/m^3; steel's is 78.5)
+MAX_UNIT_WEIGHT = 1e3
+#: contact stiffnesses (kN/m^3): stiffer contacts are rigid to the last digit
+MAX_STIFFNESS = 1e20
+#: friction coefficient: beyond, no joint slides (leave friction out for Heyman's unlimited friction)
+MAX_FRICTION = 100.0
+#: dimensionless multipliers: load multipliers (lambda_step, lambda_cap, tolerance), settlement magnitudes
+MAX_MULTIPLIER = 1e6
+#: partial factors of [assessment]
+MIN_FACTOR, MAX_FACTOR = 0.01, 100.0
+
+
+def _within(limit: float) -> Any:
+    """A number in [-limit, limit]."""
+    return Annotated[float, Field(ge=-limit, le=limit)]
+
+
+def _vector(n: int, limit: float) -> Any:
+    """A list of ``n`` numbers in [-limit, limit]."""
+    return Annotated[list[_within(limit)], Field(min_length=n, max_length=n)]
+
+
+Length = Annotated[float, Field(gt=0, le=MAX_LENGTH)]
+Depth = Annotated[float, Field(ge=0, le=MAX_LENGTH)]
+Coordinate = _within(MAX_LENGTH)
+UnitWeight = Annotated[float, Field(gt=0, le=MAX_UNIT_WEIGHT)]
+Stress = Annotated[float, Field(ge=0, le=MAX_STRESS)]
+Strength = Annotated[float, Field(gt=0, le=MAX_STRESS)]
+Stiffness = Annotated[float, Field(gt=0, le=MAX_STIFFNESS)]
+Friction = Annotated[float, Field(ge=0, le=MAX_FRICTION)]
+Multiplier = Annotated[float, Field(gt=0, le=MAX_MULTIPLIER)]
+Factor = Annotated[float, Field(ge=MIN_FACTOR, le=MAX_FACTOR)]
+Angle = _within(360.0)
+Vector6 = _vector(6, MAX_LENGTH)
 
 
 class StudySection(_Strict):
-    """``[study]``: the study's name (also its results folder) and an optional description."""
+    """``[study]``: the study's name (also its results folder), an optional description and the
+    most solves the study may ask for (:func:`tce.study.guards.work`, stated before a run)."""
 
     name: str = Field(min_length=1, max_length=100, pattern=r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
     description: str = ""
+    max_solves: Annotated[int, Field(ge=1)] = guards.MAX_SOLVES
 
     @field_validator("name")
     @classmethod
@@ -118,7 +157,7 @@ class _Generated(_Strict):
     every generator takes the unit weight (kN/m^3)."""
 
     builder: ClassVar[Callable[..., Assembly]]
-    unit_weight: Positive = 20.0
+    unit_weight: UnitWeight = 20.0
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
@@ -129,11 +168,11 @@ class ArchStructure(_Generated):
     """``[structure] type = "semicircular_arch"``: :func:`tce.structures.arch.semicircular_arch`."""
 
     type: Literal["semicircular_arch"]
-    inner_radius: Positive = 1.0
-    thickness: Positive = 0.2
-    depth: Positive = 0.25
+    inner_radius: Length = 1.0
+    thickness: Length = 0.2
+    depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
-    support_height: Positive | None = None
+    support_height: Length | None = None
     joints: Literal["radial", "vertical"] = "radial"
 
     builder = semicircular_arch
@@ -143,13 +182,13 @@ class PointedArchStructure(_Generated):
     """``[structure] type = "pointed_arch"``: :func:`tce.structures.arch.pointed_arch`."""
 
     type: Literal["pointed_arch"]
-    span: Positive = 2.0
-    rise: Positive | None = None
-    centre_offset: NonNegative | None = None
-    thickness: Positive = 0.2
-    depth: Positive = 0.25
+    span: Length = 2.0
+    rise: Length | None = None
+    centre_offset: Depth | None = None
+    thickness: Length = 0.2
+    depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=2)] = 14
-    pier_height: Positive | None = None
+    pier_height: Length | None = None
 
     builder = pointed_arch
 
@@ -158,12 +197,12 @@ class SegmentalArchStructure(_Generated):
     """``[structure] type = "segmental_arch"``: :func:`tce.structures.arch.segmental_arch`."""
 
     type: Literal["segmental_arch"]
-    span: Positive = 2.0
-    rise: Positive = 0.5
-    thickness: Positive = 0.2
-    depth: Positive = 0.25
+    span: Length = 2.0
+    rise: Length = 0.5
+    thickness: Length = 0.2
+    depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 12
-    pier_height: Positive | None = None
+    pier_height: Length | None = None
 
     builder = segmental_arch
 
@@ -172,11 +211,11 @@ class ArchOnPiersStructure(_Generated):
     """``[structure] type = "arch_on_piers"``: :func:`tce.structures.arch.semicircular_arch_on_piers`."""
 
     type: Literal["arch_on_piers"]
-    inner_radius: Positive = 1.0
-    thickness: Positive = 0.2
-    depth: Positive = 0.25
+    inner_radius: Length = 1.0
+    thickness: Length = 0.2
+    depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 14
-    pier_height: Positive = 1.0
+    pier_height: Length = 1.0
 
     builder = semicircular_arch_on_piers
 
@@ -186,13 +225,13 @@ class ArchBridgeStructure(_Generated):
 
     type: Literal["arch_bridge"]
     spans: Annotated[int, Field(ge=1)] = 1
-    span: Positive = 6.0
-    rise: Positive = 1.5
-    thickness: Positive = 0.4
-    depth: Positive = 3.0
+    span: Length = 6.0
+    rise: Length = 1.5
+    thickness: Length = 0.4
+    depth: Length = 3.0
     voussoirs: Annotated[int, Field(ge=1)] = 12
-    pier_width: Positive = 1.0
-    pier_height: Positive = 3.0
+    pier_width: Length = 1.0
+    pier_height: Length = 3.0
     piers: Literal["free", "fixed"] = "free"
 
     builder = arch_bridge
@@ -202,13 +241,13 @@ class BarrelVaultStructure(_Generated):
     """``[structure] type = "barrel_vault"``: :func:`tce.structures.vault.barrel_vault`."""
 
     type: Literal["barrel_vault"]
-    inner_radius: Positive = 1.0
-    thickness: Positive = 0.2
-    depth: Positive = 1.5
+    inner_radius: Length = 1.0
+    thickness: Length = 0.2
+    depth: Length = 1.5
     voussoirs: Annotated[int, Field(ge=1)] = 12
     courses: Annotated[int, Field(ge=1)] = 6
     bond: Literal["stack", "running"] = "stack"
-    support_height: Positive | None = None
+    support_height: Length | None = None
     supports: Literal["walls", "courses"] = "walls"
 
     builder = barrel_vault
@@ -218,11 +257,11 @@ class GroinVaultStructure(_Generated):
     """``[structure] type = "groin_vault"``: :func:`tce.structures.vault.groin_vault`."""
 
     type: Literal["groin_vault"]
-    span_x: Positive = 2.0
-    span_y: Positive | None = None
-    thickness: Positive = 0.2
+    span_x: Length = 2.0
+    span_y: Length | None = None
+    thickness: Length = 0.2
     voussoirs: Annotated[int, Field(ge=2, multiple_of=2)] = 8
-    support_height: Positive | None = None
+    support_height: Length | None = None
     supports: Literal["corners", "springings"] = "corners"
 
     builder = groin_vault
@@ -232,12 +271,12 @@ class DomeStructure(_Generated):
     """``[structure] type = "dome"``: :func:`tce.structures.dome.hemispherical_dome`."""
 
     type: Literal["dome"]
-    radius: Positive = 5.0
-    thickness: Positive = 0.3
+    radius: Length = 5.0
+    thickness: Length = 0.3
     sectors: Annotated[int, Field(ge=3)] = 16
     courses: Annotated[int, Field(ge=1)] = 8
     oculus: Annotated[float, Field(ge=0, lt=90)] = 0.0
-    support_height: Positive | None = None
+    support_height: Length | None = None
 
     builder = hemispherical_dome
 
@@ -252,7 +291,7 @@ class FileStructure(_Strict):
     type: Literal["file"]
     path: str = Field(min_length=1)
     supports: list[str] | None = None
-    unit_weight: Positive | None = None
+    unit_weight: UnitWeight | None = None
 
     def build(self) -> Assembly:
         """The assembly this section describes."""
@@ -281,12 +320,12 @@ class MaterialSection(_Strict):
     """``[material]``: friction (absent: Heyman, unlimited), optional stiffnesses, cohesion,
     tensile and compressive strength (kN/m^2) and the flow rule (``docs/materials.md``)."""
 
-    friction: NonNegative | None = None
-    normal_stiffness: Positive | None = None
-    shear_stiffness: Positive | None = None
-    cohesion: NonNegative = 0.0
-    tensile_strength: NonNegative = 0.0
-    compressive_strength: Positive | None = None
+    friction: Friction | None = None
+    normal_stiffness: Stiffness | None = None
+    shear_stiffness: Stiffness | None = None
+    cohesion: Stress = 0.0
+    tensile_strength: Stress = 0.0
+    compressive_strength: Strength | None = None
     flow: Literal["associative", "non-associative"] = "associative"
 
     def build(self) -> Material:
@@ -299,9 +338,9 @@ class PointLoadSection(_Strict):
     surface above a plan point (``on_top``); :class:`tce.core.loads.PointLoad`."""
 
     block: str | None = None
-    at: Vector3 | None = None
-    on_top: Vector2 | None = None
-    force: Vector3
+    at: _vector(3, MAX_LENGTH) | None = None
+    on_top: _vector(2, MAX_LENGTH) | None = None
+    force: _vector(3, MAX_FORCE)
     scaled: bool = True
 
 
@@ -309,9 +348,9 @@ class DistributedLoadSection(_Strict):
     """``[[loads.distributed]]``: a pressure (kN/m^2 of plan area, downwards) over a plan
     rectangle; :class:`tce.core.loads.DistributedLoad`."""
 
-    x: Vector2
-    y: Vector2 | None = None
-    pressure: float
+    x: _vector(2, MAX_LENGTH)
+    y: _vector(2, MAX_LENGTH) | None = None
+    pressure: _within(MAX_STRESS)
     scaled: bool = True
 
 
@@ -322,11 +361,11 @@ class VehicleSection(_Strict):
     :class:`tce.core.vehicles.Vehicle`."""
 
     standard: Literal[tuple(STANDARD)] | None = None  # type: ignore[valid-type]
-    axles: list[Vector2] | None = None
-    wheels: list[float] | None = None
-    patch: Vector2 | None = None
-    x: float | None = None
-    y: float | None = None
+    axles: list[_vector(2, MAX_FORCE)] | None = None
+    wheels: list[Coordinate] | None = None
+    patch: _vector(2, MAX_LENGTH) | None = None
+    x: Coordinate | None = None
+    y: Coordinate | None = None
     name: str | None = None
     scaled: bool | None = None
 
@@ -351,12 +390,12 @@ class FillSection(_Strict):
     the coefficient at rest ``k0``, the passive coefficient ``kp``: 0, the default, switches
     the passive restraint off); :class:`tce.core.fill.Fill`."""
 
-    depth: NonNegative
-    unit_weight: Positive
+    depth: Depth
+    unit_weight: UnitWeight
     weight: bool = True
     dispersion: Annotated[float, Field(ge=0, le=60)] | Literal["boussinesq"] = DISPERSION_2_TO_1
     k0: Annotated[float, Field(ge=0, lt=1)] = 0.0
-    kp: NonNegative = 0.0
+    kp: Annotated[float, Field(ge=0, le=1e3)] = 0.0
 
     @field_validator("kp")
     @classmethod
@@ -376,17 +415,17 @@ class LoadsSection(_Strict):
     lambda_max (:func:`tce.analysis.critical.critical_position`), from the positions
     ``positions`` (m) besides its own."""
 
-    alpha: float | list[float] = 0.0
+    alpha: Angle | list[Angle] = 0.0
     lateral: bool | None = None
     point: list[PointLoadSection] = Field(default_factory=list)
     distributed: list[DistributedLoadSection] = Field(default_factory=list)
     vehicle: list[VehicleSection] = Field(default_factory=list)
     fill: FillSection | None = None
     critical_position: bool = False
-    positions: list[float] | None = None
-    lambda_step: Positive | None = None
-    tolerance: Positive | None = None
-    lambda_cap: Positive | None = None
+    positions: list[Coordinate] | None = None
+    lambda_step: Multiplier | None = None
+    tolerance: Multiplier | None = None
+    lambda_cap: Multiplier | None = None
 
     @property
     def alphas(self) -> list[float]:
@@ -465,21 +504,24 @@ def _distinct(key: str, values: list[float]) -> None:
 class SweepSection(_Strict):
     """``[sweep]``: lists of values; the study runs the cartesian product."""
 
-    friction: list[NonNegative] | None = None
-    cohesion: list[NonNegative] | None = None
-    tensile_strength: list[NonNegative] | None = None
-    compressive_strength: list[Positive] | None = None
-    magnitude: list[float] | None = None
-    inner_radius: list[Positive] | None = None
-    thickness: list[Positive] | None = None
-    depth: list[Positive] | None = None
-    radius: list[Positive] | None = None
-    load_x: list[float] | None = None
+    friction: list[Friction] | None = None
+    cohesion: list[Stress] | None = None
+    tensile_strength: list[Stress] | None = None
+    compressive_strength: list[Strength] | None = None
+    magnitude: list[_within(MAX_MULTIPLIER)] | None = None
+    inner_radius: list[Length] | None = None
+    thickness: list[Length] | None = None
+    depth: list[Length] | None = None
+    radius: list[Length] | None = None
+    load_x: list[Coordinate] | None = None
 
     def items(self) -> list[tuple[str, list[float]]]:
         """``(parameter, values)`` of the parameters swept, in declaration order."""
         return [(k, list(v)) for k, v in self if v is not None]
 
+
+#: limits solved to refine one minimum of a critical-position search (bounded Brent search to xtol)
+SEARCH_REFINE_SOLVES = 50
 
 #: studies with more scenarios draw per-scenario figures only for those ``[plots] scenarios`` names
 MAX_DRAWN_SCENARIOS = 12
@@ -553,8 +595,8 @@ class AssessmentSection(_Strict):
     The dead load of an arch is favourable: ``dead_factor`` is the favourable factor, at most
     1 (:data:`tce.analysis.assessment.DEAD_FACTOR_RULE`)."""
 
-    dead_factor: Positive = 1.0
-    live_factor: Positive = 1.0
+    dead_factor: Factor = 1.0
+    live_factor: Factor = 1.0
 
     @field_validator("dead_factor")
     @classmethod
@@ -578,17 +620,20 @@ class SettlementPathSection(_Strict):
 
     model_config = ConfigDict(populate_by_name=True)  # merged with _Strict's
 
-    increment: Positive = 0.001
-    s_max: Positive = 1.0
-    tolerance: Positive | None = None
+    increment: Multiplier = 0.001
+    s_max: Multiplier = 1.0
+    tolerance: Multiplier | None = None
     lam: bool = Field(default=False, alias="lambda")
-    live_at: list[Annotated[float, Field(ge=0.0, allow_inf_nan=False)]] | None = None
-    contact_gap: Positive | None = None
+    live_at: list[Annotated[float, Field(ge=0.0, le=MAX_MULTIPLIER)]] | None = None
+    contact_gap: Length | None = None
 
     @model_validator(mode="after")
     def _not_too_many_increments(self) -> SettlementPathSection:
         from ..analysis.settlement_path import MAX_STEPS
 
+        if self.increment > self.s_max:
+            raise ValueError(f"increment = {self.increment!r} is larger than s_max = {self.s_max!r}: the path would "
+                             "take no step; fix: an increment below s_max")
         if self.s_max / self.increment > MAX_STEPS:
             raise ValueError(
                 f"s_max / increment = {self.s_max / self.increment:.3g} increments, more than {MAX_STEPS}; "
@@ -620,6 +665,15 @@ class StudyFile(_Strict):
     plots: PlotsSection = PlotsSection()
     assessment: AssessmentSection | None = None
     settlement_path: SettlementPathSection | None = None
+
+    @field_validator("scenarios")
+    @classmethod
+    def _case_names(cls, v: dict[str, dict[str, list[float]]]) -> dict[str, dict[str, list[float]]]:
+        for name in v:  # a case name starts each scenario's name and its file names
+            if "/" in name or "\\" in name or not name.strip("."):
+                raise ValueError(f"the settlement case {name!r} holds a path separator or is only dots; fix: name it "
+                                 "with letters, digits and '_'")
+        return v
 
     @field_validator("sweep")
     @classmethod
@@ -759,6 +813,24 @@ class Study:
         return display.call("Study", {}, head=f"{self.name!r}, {self.path}, {len(scenarios)} scenarios "
                             f"{display.names([sc.name for sc in scenarios], 3)}")
 
+    def search_solves(self) -> int:
+        """Most direct-limit solves of one critical-position search (0 without one): the
+        positions it scans on the first structure, and :data:`SEARCH_REFINE_SOLVES` for each
+        minimum it refines."""
+        if not self.spec.loads.critical_position:
+            return 0
+        from ..analysis.critical import REFINED, scan_positions, search_bounds
+
+        sc = next(self._expand())
+        pattern, assembly = sc.loads_pattern, self.assembly(sc.structure)
+        scanned = scan_positions(pattern, assembly, *search_bounds(pattern, assembly), sc.loads["positions"])
+        return len(scanned) + REFINED * SEARCH_REFINE_SOLVES
+
+    def work(self) -> str:
+        """The most solves the study asks for, in words (:func:`tce.study.guards.work`)."""
+        return f"{guards.work(self.spec, self.search_solves())[1]} (the study's cap: [study] max_solves = " \
+               f"{self.spec.study.max_solves})"
+
     def assembly(self, structure: dict[str, Any]) -> Assembly:
         """The built assembly of a scenario's ``structure`` section: built once (when the
         study is validated), then the same object for the run, its workers and its results."""
@@ -886,7 +958,8 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
             )
     study = Study(path, text, spec)
     _check_scenarios(study)
-    guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])))
+    guards.check_work(path, spec, drawn_scenarios=len(spec.plots.select([sc.name for sc in study._expand()])),
+                      search_solves=study.search_solves())
     _check_plots(study)
     _check_settlement_path(study)
     _check_passive(study)
@@ -952,7 +1025,7 @@ def _check_scenarios(study: Study) -> None:
                 f"{study.path}: structure: cannot build it{f' with {swept}' if swept else ''}: {exc}; "
                 f"fix: {_build_fix(spec.structure, exc, swept)}"
             ) from None
-    names: set[str] = set()
+    names: dict[str, str] = {}  # slug -> scenario name: each names its own files (tce export)
     for sc in study.scenarios():
         try:
             build_material(sc.material)
@@ -974,12 +1047,13 @@ def _check_scenarios(study: Study) -> None:
             )
         if any(not math.isfinite(u) for v in sc.settlements.values() for u in v):
             raise StudyError(f"{study.path}: scenarios.{sc.settlement}: a displacement overflows; fix: smaller values")
-        if sc.name in names:
+        twin = names.setdefault(slug(sc.name), sc.name)
+        if twin is not sc.name:
+            same = (f"are named {sc.name!r}" if twin == sc.name
+                    else f"{twin!r} and {sc.name!r} share the file name {slug(sc.name)!r}")
             raise StudyError(
-                f"{study.path}: scenarios.{sc.settlement}: two scenarios are named {sc.name!r}; "
-                "fix: rename the settlement case"
+                f"{study.path}: scenarios.{sc.settlement}: two scenarios {same}; fix: rename the settlement case"
             )
-        names.add(sc.name)
         _check_loads(study, sc, study.assembly(sc.structure))
 
 

@@ -17,7 +17,7 @@ from tce.report import print_pdf
 def test_a_write_replaces_the_file_whole(tmp_path: Path) -> None:
     path = tmp_path / "sub" / "a.txt"
     with atomic_write(path) as tmp:
-        assert tmp.parent == path.parent and tmp.name == f".a.txt.{os.getpid()}.tmp"
+        assert tmp.parent == path.parent and tmp.name.startswith(".a.txt.") and tmp.name.endswith(f".{os.getpid()}.tmp")
         tmp.write_text("new")
         assert not path.exists()  # nothing is visible before the block ends
     assert path.read_text() == "new" and not temporaries(path.parent)
@@ -53,3 +53,15 @@ def test_the_pdf_is_placed_whole_or_not_at_all(exit_code: int, tmp_path: Path) -
     else:
         assert why.startswith("chromium failed") and "exit 3" in why and not pdf.exists()
     assert not temporaries(tmp_path)
+
+
+def test_a_link_planted_at_the_temporary_name_is_not_followed(tmp_path: Path, monkeypatch) -> None:
+    """The temporary is created exclusively (O_EXCL | O_NOFOLLOW): a link planted at its name,
+    even one that guessed the token, makes the write fail and leaves its target as it was."""
+    victim = tmp_path / "victim"
+    victim.write_text("victim")
+    monkeypatch.setattr("secrets.token_hex", lambda n: "guessed")
+    (tmp_path / f".a.txt.guessed.{os.getpid()}.tmp").symlink_to(victim)
+    with pytest.raises(FileExistsError), atomic_write(tmp_path / "a.txt") as tmp:
+        tmp.write_text("new")
+    assert victim.read_text() == "victim" and not (tmp_path / "a.txt").exists()

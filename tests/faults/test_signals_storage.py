@@ -145,7 +145,7 @@ def test_a_disk_that_fills_while_figures_are_drawn(tmp_path: Path, monkeypatch, 
     err = capsys.readouterr().err
     clean(err)
     (line,) = errors(err)
-    figure = Path(drawn[1]).with_name(Path(drawn[1]).name[1:].rsplit(".", 2)[0])  # its temporary's file: .NAME.PID.tmp
+    figure = Path(drawn[1]).with_name(Path(drawn[1]).name[1:].rsplit(".", 3)[0])  # its temporary: .NAME.TOKEN.PID.tmp
     assert "no space left on the device" in line and str(figure) in line
     assert (out / "tiny" / "results.nc").exists() and "tce plot" in err and not leftovers(out)
     assert not figure.exists()

@@ -12,7 +12,10 @@ for the scenario named SCENARIO:
   while a finished scenario is not yet returned;
 - ``fill``: after its file is written, the file system of the folder ARG is filled up;
 - ``hold``: before solving, the process waits until it is ended (a signal, or the parent
-  ending its workers).
+  ending its workers);
+- ``starting`` (SCENARIO unused): the first time the run submits a scenario to its pool
+  (which starts a worker), it writes a byte into the named pipe ARG and waits until the named
+  pipe ``ARG.sent`` is closed by the test (which sends its Ctrl-C in between).
 """
 
 import os
@@ -65,3 +68,21 @@ if _SPEC:
         return result
 
     runner._solve_and_write = _faulty
+
+    if _KIND == "starting":
+        import select
+
+        class _Held(runner.ProcessPoolExecutor):
+            held = False
+
+            def submit(self, *args, **kwargs):
+                if not _Held.held:
+                    _Held.held = True
+                    sent = os.open(_ARG[0] + ".sent", os.O_RDONLY | os.O_NONBLOCK)
+                    with open(_ARG[0], "w") as fifo:  # the test waits on this pipe's first byte,
+                        fifo.write("x")
+                    select.select([sent], [], [])  # sends its Ctrl-C, then opens and closes this pipe
+                    os.close(sent)
+                return super().submit(*args, **kwargs)
+
+        runner.ProcessPoolExecutor = _Held
