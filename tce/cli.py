@@ -237,8 +237,7 @@ def _out_folder(out: Path, option: str = "--out") -> Path:
     full disk)."""
     import shutil
 
-    from .study.results import storage_error
-    from .study.runner import MIN_FREE
+    from .files import MIN_FREE, storage_error
 
     fix = f"fix: give another {option}"
     if out.is_symlink() and not out.exists():
@@ -264,7 +263,7 @@ def _out_folder(out: Path, option: str = "--out") -> Path:
 def _writing(where: Path) -> Iterator[None]:
     """An :class:`OSError` while the block writes under ``where`` (a disk that fills) is a
     :class:`WriteFault` naming the path."""
-    from .study.results import storage_error
+    from .files import storage_error
 
     try:
         yield

@@ -14,12 +14,17 @@ This module imports nothing of tce: every floor may use it.
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import secrets
+import shutil
 from collections.abc import Iterator
 from pathlib import Path
 
-__all__ = ["atomic_write", "temporaries"]
+__all__ = ["MIN_FREE", "StorageError", "atomic_write", "storage_error", "temporaries"]
+
+#: free space a command needs before it writes (bytes)
+MIN_FREE = 2**20
 
 
 @contextlib.contextmanager
@@ -64,3 +69,33 @@ def temporaries(folder: Path, pid: int | None = None) -> list[Path]:
     """The temporary files :func:`atomic_write` left in ``folder`` (a writer killed
     mid-write): those of process ``pid``, or every ``.*.tmp`` file."""
     return sorted(folder.glob(f".*.{pid}.tmp" if pid is not None else ".*.tmp"))
+
+
+class StorageError(OSError):
+    """A results file or folder that cannot be written; the message names the path and the cause."""
+
+
+_CAUSES = {
+    errno.ENOSPC: "no space left on the device",
+    errno.EDQUOT: "disk quota exceeded",
+    errno.EROFS: "read-only file system",
+    errno.EACCES: "permission denied",
+    errno.EPERM: "permission denied",
+    errno.ENOTDIR: "a file is in the way of a folder",
+    errno.EEXIST: "a file is in the way of a folder",
+    errno.EISDIR: "a folder is in the way of a file",
+}
+
+
+def storage_error(path: Path, exc: BaseException) -> StorageError:
+    """A :class:`StorageError` for ``path`` saying why ``exc`` happened, and what to do."""
+    no = getattr(exc, "errno", None)
+    try:  # the netCDF library reports a full disk as "NetCDF: HDF error" or "Permission denied"
+        full = shutil.disk_usage(next(p for p in (path, *path.parents) if p.exists())).free < MIN_FREE
+    except OSError:
+        full = False
+    cause = "no space left on the device" if full else _CAUSES.get(no or 0, str(exc))
+    fix = "free some space" if "space" in cause or "quota" in cause else "choose another --out"
+    err = StorageError(f"cannot write {path}: {cause}; fix: {fix}, then run the same command again")
+    err.errno = no
+    return err

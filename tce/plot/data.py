@@ -237,7 +237,7 @@ def plot_spec(
             table[key] = list(given)
     from pydantic import ValidationError
 
-    from ..study.schema import PlotsSection  # pydantic: imported where a spec is made
+    from ..study.sections import PlotsSection  # pydantic: imported where a spec is made
 
     try:
         section = PlotsSection.model_validate(table)

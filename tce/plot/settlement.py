@@ -19,7 +19,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Polygon
 from scipy.spatial.transform import Rotation
 
-from ..core.model import EZ, find_plane
+from ..core.model import find_plane
 from .data import assembly
 from .figures import COLOURS
 

@@ -23,7 +23,6 @@ from ..study.names import missing_lambdas
 from .data import assembly, optimal_steps, scenarios, value
 
 if TYPE_CHECKING:
-    from ..core.analysis import Analysis
     from ..study.schema import Study
 
 __all__ = ["missing_states", "solve_states"]
@@ -84,7 +83,7 @@ def solve_states(ds: xr.Dataset, todo: Mapping[str, Sequence[float]]) -> xr.Data
 
     study = _study(ds)
     scenarios_ = {sc.name: sc for sc in study.scenarios()}
-    analyses: dict[str, Analysis] = {}
+    analyses: dict[str, "Analysis"] = {}
     parts = []
     n_itf = ds.sizes["interface"]
     for s, lams in todo.items():

@@ -32,13 +32,10 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Sequence
-from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from shapely.geometry import Polygon
 
 from .assembly import Assembly, AssemblyError, Block, Interface
 from .geometry import FaceTable, _ring, frames_from_normals

@@ -20,14 +20,12 @@ from __future__ import annotations
 
 import contextlib
 import datetime as _dt
-import errno
 import fcntl
 import hashlib
 import json
 import logging
 import os
 import re
-import shutil
 import socket
 from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
@@ -44,14 +42,13 @@ from ..core.model import InterfaceMap
 from ..core.resultants import global_vertex_forces
 from ..core.result import DOFS, WRENCH_COMPONENTS, XYZ
 from ..core.solve import SOLVER_NAME, TCEResult
-from ..files import atomic_write, temporaries
+from ..files import atomic_write, storage_error, temporaries
 from ..structures.assembly import Assembly
 from .schema import Scenario, Study
 
 __all__ = [
     "SCENARIO_VARS",
     "FolderLocked",
-    "StorageError",
     "folder_lock",
     "load_finished",
     "merge_scenarios",
@@ -432,10 +429,6 @@ def scenario_dataset(
 
 
 # ----------------------------------------------------------------------------- files
-class StorageError(OSError):
-    """A results file or folder that cannot be written; the message names the path and the cause."""
-
-
 class FolderLocked(RuntimeError):
     """Another run holds the study folder."""
 
@@ -445,32 +438,6 @@ def scenario_path(directory: Path, sc: Scenario) -> Path:
     slug = re.sub(r"[^A-Za-z0-9_.=-]+", "_", sc.name).strip("_.")[:80]
     digest = hashlib.sha256(sc.name.encode()).hexdigest()[:8]
     return directory / f"{slug}-{digest}.nc"
-
-
-_CAUSES = {
-    errno.ENOSPC: "no space left on the device",
-    errno.EDQUOT: "disk quota exceeded",
-    errno.EROFS: "read-only file system",
-    errno.EACCES: "permission denied",
-    errno.EPERM: "permission denied",
-    errno.ENOTDIR: "a file is in the way of a folder",
-    errno.EEXIST: "a file is in the way of a folder",
-    errno.EISDIR: "a folder is in the way of a file",
-}
-
-
-def storage_error(path: Path, exc: BaseException) -> StorageError:
-    """A :class:`StorageError` for ``path`` saying why ``exc`` happened, and what to do."""
-    no = getattr(exc, "errno", None)
-    try:  # the netCDF library reports a full disk as "NetCDF: HDF error" or "Permission denied"
-        full = shutil.disk_usage(next(p for p in (path, *path.parents) if p.exists())).free < 2**20
-    except OSError:
-        full = False
-    cause = "no space left on the device" if full else _CAUSES.get(no or 0, str(exc))
-    fix = "free some space" if "space" in cause or "quota" in cause else "choose another --out"
-    err = StorageError(f"cannot write {path}: {cause}; fix: {fix}, then run the same command again")
-    err.errno = no
-    return err
 
 
 def write_atomic(ds: xr.Dataset, path: Path, engine: str | None = None) -> Path:

@@ -39,7 +39,6 @@ from __future__ import annotations
 import contextlib
 import json
 import logging
-import math
 import multiprocessing as mp
 from multiprocessing import forkserver
 import os
@@ -53,7 +52,7 @@ from concurrent.futures import FIRST_COMPLETED, BrokenExecutor, Future, ProcessP
 from multiprocessing.connection import Connection
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Literal
+from typing import Literal
 
 import xarray as xr
 
@@ -64,19 +63,18 @@ from ..structures.assembly import Assembly
 from ..analysis.assessment import adequacy_factor
 from ..analysis.critical import CriticalResult, critical_position
 from ..core.loads import LoadPattern
+from ..files import MIN_FREE, StorageError, storage_error
 from . import keys
 from .jobs import choose_jobs
-from .names import missing_lambdas, same_lambda
+from .names import missing_lambdas
 from .positions import with_adequacy, with_critical
 from .results import (
     FolderLocked,
-    StorageError,
     folder_lock,
     load_finished,
     merge_scenarios,
     remove_temporaries,
     scenario_dataset,
-    storage_error,
     write_atomic,
     write_scenario,
 )
@@ -541,9 +539,6 @@ def _lock(stack: contextlib.ExitStack, directory: Path) -> None:
             "then run the same command again"
         )
 
-
-#: Free space a run needs before it starts (bytes).
-MIN_FREE = 2**20
 
 
 def run_study(

@@ -19,7 +19,6 @@ anything runs, and ``[sweep] load_x`` moves every scaled ``on_top`` point load.
 
 from __future__ import annotations
 
-import fnmatch
 import hashlib
 import itertools
 import json
@@ -57,12 +56,12 @@ from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
 from ..structures.vault import barrel_vault, groin_vault
 from . import guards
 from .guards import StudyError
-from .names import PLOT_KINDS, slug
+from .names import slug
+from .sections import PlotsSection, _Strict
 
 __all__ = [
     "MAX_BLOCKS",
     "MAX_INCREMENTS",
-    "PlotsSection",
     "STRUCTURE_TYPES",
     "Scenario",
     "Study",
@@ -81,12 +80,6 @@ MATERIAL_SWEEPS = ("friction", "cohesion", "tensile_strength", "compressive_stre
 RESERVED_NAMES = frozenset(
     ["CON", "PRN", "AUX", "NUL"] + [f"{p}{k}" for p in ("COM", "LPT") for k in range(1, 10)]
 )
-
-
-class _Strict(BaseModel):
-    # strict: a number must be written as a number (an int is accepted for a float), never
-    # as a boolean or a string
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, frozen=True, strict=True)
 
 
 # Bounds of every quantity a study gives (SI: m, kN, kN/m^2, kN/m^3): beyond them a problem is
@@ -522,71 +515,6 @@ class SweepSection(_Strict):
 
 #: limits solved to refine one minimum of a critical-position search (bounded Brent search to xtol)
 SEARCH_REFINE_SOLVES = 50
-
-#: studies with more scenarios draw per-scenario figures only for those ``[plots] scenarios`` names
-MAX_DRAWN_SCENARIOS = 12
-
-
-class PlotsSection(_Strict):
-    """``[plots]``: the states, scenarios and figure kinds a study draws (docs/studies.md).
-
-    Attributes
-    ----------
-    steps : list
-        Load multipliers to draw (numbers >= 0) and ``"max"`` (lambda_max). A number that
-        is not a step of the load path is solved, never interpolated.
-    scenarios : list of str, optional
-        Scenario names or shell patterns (``"outward/*"``) drawn in the per-scenario figures,
-        the thrust curves and the interactive view. Default: every scenario when the study
-        has at most :data:`MAX_DRAWN_SCENARIOS`, none otherwise (summary figures only).
-    kinds : list of str, optional
-        Figure kinds among :data:`tce.study.names.PLOT_KINDS`; default: every kind that applies except
-        ``"base"``.
-    """
-
-    steps: list[Any] = Field(default_factory=lambda: [0.0, "max"])
-    scenarios: list[str] | None = None
-    kinds: list[Literal[PLOT_KINDS]] | None = None  # type: ignore[valid-type]
-
-    @field_validator("steps")
-    @classmethod
-    def _steps(cls, v: list[Any]) -> list[Any]:
-        if not v:
-            raise ValueError('give at least one load multiplier, e.g. [0.0, "max"]')
-        out: list[Any] = []
-        for item in v:
-            ok = item == "max" or (
-                isinstance(item, int | float) and not isinstance(item, bool) and math.isfinite(item) and item >= 0
-            )
-            if not ok:
-                raise ValueError(f'{item!r} is neither a load multiplier >= 0 nor "max"')
-            value = "max" if item == "max" else float(item)
-            if value not in out:
-                out.append(value)
-        return out
-
-    @field_validator("scenarios", "kinds")
-    @classmethod
-    def _not_empty(cls, v: list[str] | None) -> list[str] | None:
-        if v is not None and not v:
-            raise ValueError("give at least one entry or remove the key")
-        return v
-
-    @property
-    def lambdas(self) -> list[float]:
-        """The numeric load multipliers of :attr:`steps`."""
-        return [s for s in self.steps if s != "max"]
-
-    def unmatched(self, names: list[str]) -> list[str]:
-        """Entries of :attr:`scenarios` that match none of ``names``."""
-        return [p for p in self.scenarios or [] if not any(fnmatch.fnmatchcase(n, p) for n in names)]
-
-    def select(self, names: list[str]) -> list[str]:
-        """The scenarios of ``names`` (in that order) drawn per scenario (see :attr:`scenarios`)."""
-        if self.scenarios is None:
-            return list(names) if len(names) <= MAX_DRAWN_SCENARIOS else []
-        return [n for n in names if any(fnmatch.fnmatchcase(n, p) for p in self.scenarios)]
-
 
 class AssessmentSection(_Strict):
     """``[assessment]``: partial factors on the dead (every fixed load, self-weight
