@@ -286,7 +286,8 @@ class LoadPattern:
         report, the results' ``lambda_multiplies``)."""
         live = self.live_loads
         if self.lateral:
-            live.append("the lateral load lambda*W (every block's weight, horizontal) in direction alpha")
+            live.append(f"the lateral load lambda*W (every block's weight, horizontal) in direction alpha = {self.alpha:g} "
+                        "degrees")
         fixed = ["self-weight"]
         if self.fill is not None and self.fill.weight:
             fixed.append("fill weight")

@@ -202,7 +202,8 @@ def _method(ds: xr.Dataset, material: dict, toml: dict) -> tuple[list[str], list
                     "non-associative frictional joints using linear programming, Computers & Structures 84 (2006).")
         text.append("The flow rule is non-associative: the associative λ is an upper bound and the iterative scheme "
                     "of Gilbert et al. gives the non-associative estimate; both are reported [4].")
-    if any(t.values() for t in toml.get("scenarios", {}).values() if isinstance(t, dict)):
+    moves = any(t.values() for t in toml.get("scenarios", {}).values() if isinstance(t, dict))
+    if moves:
         refs.append("[5] J. Ochsendorf, The masonry arch on spreading supports, The Structural Engineer 84 (2006); "
                     "S. Coccia, C. Di Carlo, F. Rinaldi, on arches under support settlements.")
         text.append("Support settlements are prescribed motions of the support blocks, imposed before the lateral "
@@ -211,8 +212,11 @@ def _method(ds: xr.Dataset, material: dict, toml: dict) -> tuple[list[str], list
         text.append("The contacts are compliant (normal and shear stiffness per unit area): the force state is "
                     "unique.")
     else:
-        text.append("The contacts are rigid: without support motion every admissible state minimises the energy, "
-                    "and the state shown is one of them (flagged below).")
+        text.append("The contacts are rigid: the minimisers of the energy form a face of the admissible set ("
+                    + ("often a segment or more where a support moves, every admissible state where none does"
+                       if moves else "every admissible state, no support moving")
+                    + "); the state shown is the canonical one, the face's state of least complementary strain "
+                      "energy (docs/conventions.md), and an optimum that is not unique is flagged below.")
     if "load_x" in ds.coords:
         text.append("The moving live loads are placed at every position of the sweep; the critical position is the "
                     "one with the smallest λmax (an influence line, as bridge assessment does).")

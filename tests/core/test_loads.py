@@ -261,4 +261,4 @@ def test_lambda_multiplies_the_live_load_alone_by_default(arch):
     assert both < 0.5 * alone
     assert LoadPattern(**LIVE).multiplies == "lambda multiplies point[0] (1 kN); fixed: self-weight"
     assert LoadPattern(**FIXED).multiplies == ("lambda multiplies the lateral load lambda*W (every block's weight, "
-                                               "horizontal) in direction alpha; fixed: self-weight, point[0]")
+                                               "horizontal) in direction alpha = 0 degrees; fixed: self-weight, point[0]")

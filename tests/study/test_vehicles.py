@@ -204,7 +204,7 @@ def test_a_vehicle_alone_is_what_lambda_multiplies(tmp_path, capsys) -> None:
     assert main(["show", str(tmp_path / "out" / "vehicle" / "results.nc")]) == 0
     out = capsys.readouterr().out
     assert "loads: lambda multiplies vehicle 'vehicle' (2 kN); fixed: self-weight" in out and "lateral" not in out
-    assert "and the lateral load lambda*W (every block's weight, horizontal) in direction alpha" in both.multiplies
+    assert "and the lateral load lambda*W (every block's weight, horizontal) in direction alpha = 0 degrees" in both.multiplies
 
 
 def test_a_vehicle_off_the_deck_is_an_error_not_unbounded() -> None:
