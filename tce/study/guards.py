@@ -173,8 +173,13 @@ def work(spec: Any, search_solves: int = 0) -> tuple[int, str]:
     loads = spec.loads
     steps = _worst_steps(loads.lambda_step, loads.lambda_cap)
     states = len(spec.plots.lambdas)
-    terms = [f"{steps} load steps to lambda_cap = {loads.lambda_cap} by lambda_step = {loads.lambda_step} + 2 + "
-             f"{states} drawn"]
+    if loads.lambda_step is not None and loads.lambda_cap is not None:
+        how = f"to lambda_cap = {loads.lambda_cap:g} by lambda_step = {loads.lambda_step:g}"
+    elif loads.lambda_step is not None:
+        how = f"by lambda_step = {loads.lambda_step:g}, no lambda_cap"
+    else:
+        how = "anchored on the direct limit"
+    terms = [f"{steps} load steps {how} + 2 + {states} drawn"]
     each = steps + 2 + states
     if loads.critical_position:
         terms.append(f"a critical-position search of {search_solves} limits")
@@ -183,7 +188,8 @@ def work(spec: Any, search_solves: int = 0) -> tuple[int, str]:
     if path is not None:
         increments = math.ceil(path.s_max / path.increment)
         lives = len(path.live_at or []) * (1 + search_solves)
-        terms.append(f"a settlement path of {increments} increments (s_max / increment) and {lives} live-load limits")
+        terms.append(f"a settlement path of {increments} increments (s_max / increment)"
+                     + (f" and {lives} live-load limits" if lives else ""))
         each += increments + lives
     return count * each, f"{count} scenarios x ({' + '.join(terms)}) = {count * each} solves at most"
 
