@@ -123,6 +123,7 @@ def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
             vals = np.asarray(ds["settlement_lambda_max"].sel(scenario=name).values, dtype=float)[:n]
             (line,) = axes[1].plot(mags, vals, color=colour, lw=1.6)
             line.set_gid(f"lambda:{name}")
+            _gaps(axes[1], mags, vals, name, colour, i)
         if live:
             _live(axes[-1], ds, name, colour)
         outcome = str(ds["settlement_outcome"].sel(scenario=name).values)
@@ -150,6 +151,25 @@ def settlement_curves(ds: xr.Dataset, names: Sequence[str] | None = None) -> Fig
         ax.set_xlim(left=0.0)
     fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
     return fig
+
+
+def _gaps(ax, mags: np.ndarray, vals: np.ndarray, name: str, colour: str, row: int) -> None:
+    """Where a lateral capacity is missing between computed ones: its isolated values drawn as
+    dots (a line needs two neighbours) and the missing magnitudes counted below the axis (the
+    settlement path's message, ``tce show``, says why: a value withheld or not solved)."""
+    ok = np.isfinite(vals)
+    if not ok.any():
+        return
+    inside = np.arange(np.flatnonzero(ok)[0], np.flatnonzero(ok)[-1] + 1)
+    missing = inside[~ok[inside]]
+    alone = ok & ~np.r_[False, ok[:-1]] & ~np.r_[ok[1:], False]
+    if alone.any():
+        (dots,) = ax.plot(mags[alone], vals[alone], "o", color=colour, ms=3)
+        dots.set_gid(f"lambda_alone:{name}")
+    if missing.size:
+        ax.text(0.0, -0.2 - 0.08 * row, f"{name}: no lateral capacity at {missing.size} magnitude(s), "
+                f"{mags[missing[0]]:.4g} to {mags[missing[-1]]:.4g}\n(withheld or not solved: tce show says why)",
+                transform=ax.transAxes, fontsize=7, va="top")
 
 
 def _live(ax, ds: xr.Dataset, name: str, colour: str) -> None:

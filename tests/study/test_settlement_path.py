@@ -124,3 +124,23 @@ def test_contact_gap_reaches_the_lateral_capacity(gap, tmp_path: Path):
         assert (got[1:] > 2 * closed.lambda_max[1:]).all()
     else:
         np.testing.assert_allclose(got, closed.lambda_max, rtol=1e-12)
+
+
+def test_the_figure_marks_a_withheld_lateral_capacity(dataset):
+    """A lateral capacity missing between computed ones (withheld as a spurious strength, or
+    not solved) is counted below the panel, and a value left alone between missing ones is
+    drawn as a dot (a line needs two neighbours)."""
+    from tce.plot.settlement import settlement_curves
+
+    name = "spread"
+    lam = dataset["settlement_lambda_max"].copy()
+    vals = lam.sel(scenario=name).values.copy()
+    assert np.isfinite(vals[:5]).all()
+    vals[[2, 4]] = np.nan  # the value at step 3 is left alone
+    lam.loc[{"scenario": name}] = vals
+    fig = settlement_curves(dataset.assign(settlement_lambda_max=lam), [name])
+    ax = next(a for a in fig.axes if a.get_title() == "Lateral capacity left")
+    dots = [line for line in ax.lines if line.get_gid() == f"lambda_alone:{name}"]
+    assert len(dots) == 1 and list(dots[0].get_xdata()) == [dataset["settlement_magnitude"].sel(scenario=name).values[3]]
+    notes = [t.get_text() for t in ax.texts]
+    assert any(t.startswith(f"{name}: no lateral capacity at 2 magnitude(s)") for t in notes), notes
