@@ -33,7 +33,6 @@ from dataclasses import dataclass, field, replace
 from typing import Literal
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 from scipy import optimize, special, stats
 from scipy.stats import qmc
@@ -324,7 +323,7 @@ class WarmLimit:
             self.sensitivity[p] = (other.A.data - base.A.data, other.b - base.b)
         self.settings = SolverOptions(tol=1e-10, max_iter=500).settings(refine=False, kkt=analysis.formulation(self.model.kind).kkt)
         self.solver = ClarabelSolver(base, self.settings)
-        self.m_eq = self.model.A_eq.shape[0]
+        self._A = base.A.copy()  # the current sample's constraint matrix (its values replaced per sample)
 
     def _base_value(self, parameter: str) -> float:
         """The model's value of a parameter (the load factors are 1)."""
@@ -368,15 +367,16 @@ class WarmLimit:
             return "infeasible", math.nan
         if sol.status == "DualInfeasible":
             return "unbounded", math.inf
-        if sol.solved and self._violation(sp.csc_matrix((A, self.base.A.indices, self.base.A.indptr),
-                                                        shape=self.base.A.shape), b, sol.x) <= 1e-8:
+        np.copyto(self._A.data, A)
+        if sol.solved and self._violation(b, sol.x) <= 1e-8:
             return "optimal", float(sol.x[-1])
         return self._fallback(values)
 
-    def _violation(self, A: sp.csc_matrix, b: NDArray[np.float64], x: NDArray[np.float64]) -> float:
-        """Largest violation of ``A x + s = b, s in K`` by ``s = b - A x`` (the equilibrium
-        rows' residual and the contact law's violation, on the scaled problem)."""
-        s = b - A @ x
+    def _violation(self, b: NDArray[np.float64], x: NDArray[np.float64]) -> float:
+        """Largest violation of ``A x + s = b, s in K`` by ``s = b - A x`` with the sample's
+        matrix (the equilibrium rows' residual and the contact law's violation, on the scaled
+        problem)."""
+        s = b - self._A @ x
         worst, row = 0.0, 0
         for kind, dim in self.base.cones:
             part = s[row : row + dim]
@@ -533,14 +533,16 @@ class _Undecided(Exception):
 
 
 def form(joint: JointDistribution, capacity: Capacity, threshold: float, tol: float = 1e-6, max_iter: int = 50,
-         step: float = 1e-4) -> FormResult:
+         step: float = 1e-4, start: ArrayLike | None = None) -> FormResult:
     """The design point of ``g(u) = capacity(x(u)) - threshold`` by the HL-RF iteration.
 
-    ``u_k+1 = ((grad g . u_k - g(u_k)) / |grad g|^2) grad g`` from ``u_0 = 0``, the gradient by
-    forward differences of step ``step`` in the standard normal space
-    (``scipy.optimize.approx_fprime``). Exact in one step for a limit state linear in normal
-    variables. A capacity that is not finite (a status other than ``optimal``) stops the
-    iteration, unconverged, with the status in the message.
+    ``u_k+1 = ((grad g . u_k - g(u_k)) / |grad g|^2) grad g`` from ``start`` (default the
+    origin, the mean point), the gradient by forward differences of step ``step`` in the
+    standard normal space (``scipy.optimize.approx_fprime``). Exact in one step for a limit
+    state linear in normal variables. It stops unconverged, saying why, where a capacity is
+    not finite (a status other than ``optimal``), where the gradient vanishes (below
+    ``1e-8 |g|``: a capacity flat in the variables there, e.g. a hinge mechanism that friction
+    does not govern; start elsewhere) or where a step leaves ``|u| <= 40``.
     """
     evaluations = 0
 
@@ -552,7 +554,7 @@ def form(joint: JointDistribution, capacity: Capacity, threshold: float, tol: fl
             raise _Undecided(f"capacity {status} at u = {np.round(u, 6).tolist()}")
         return value - threshold
 
-    u = np.zeros(joint.dim)
+    u = np.zeros(joint.dim) if start is None else np.array(start, dtype=float).reshape(joint.dim)
     grad = np.zeros(joint.dim)
     message, converged, k = "iteration limit reached", False, 0
     try:
@@ -560,10 +562,13 @@ def form(joint: JointDistribution, capacity: Capacity, threshold: float, tol: fl
         for k in range(1, max_iter + 1):
             grad = optimize.approx_fprime(u, g, step)
             norm2 = float(grad @ grad)
-            if norm2 == 0:
-                message = "zero gradient: the capacity does not depend on the variables"
+            if math.sqrt(norm2) <= 1e-8 * abs(gu):
+                message = f"the gradient vanishes at u = {np.round(u, 6).tolist()}: the capacity is flat there"
                 break
             new = (float(grad @ u) - gu) / norm2 * grad
+            if not float(np.linalg.norm(new)) <= 40.0:
+                message = f"diverged: a step to |u| = {float(np.linalg.norm(new)):.3g}"
+                break
             moved = float(np.linalg.norm(new - u))
             u, gu = new, g(new)
             if moved <= tol * (1 + float(np.linalg.norm(u))) and abs(gu) <= tol * max(abs(g0), 1e-300):
@@ -571,11 +576,11 @@ def form(joint: JointDistribution, capacity: Capacity, threshold: float, tol: fl
                 break
     except _Undecided as e:
         message = str(e)
-    beta = math.copysign(float(np.linalg.norm(u)), g0) if converged else math.nan
     norm = float(np.linalg.norm(grad))
-    return FormResult(beta=beta, pf=float(special.ndtr(-beta)), u=u, x=joint.to_physical(u)[0],
-                      alpha=-grad / norm if norm else grad, converged=converged, iterations=k,
-                      evaluations=evaluations, message=message)
+    alpha = -grad / norm if norm else grad
+    beta = float(alpha @ u) if converged else math.nan  # u* = beta alpha at the design point
+    return FormResult(beta=beta, pf=float(special.ndtr(-beta)), u=u, x=joint.to_physical(u)[0], alpha=alpha,
+                      converged=converged, iterations=k, evaluations=evaluations, message=message)
 
 
 @dataclass(frozen=True)
@@ -587,9 +592,9 @@ class SubsetResult:
     pf : float
         ``p0^(L-1) * P(g < 0 | F_L-1)`` over the ``L`` levels.
     cov : float
-        Its coefficient of variation, ``sqrt(sum_j delta_j^2)`` (Au and Beck 2001, eqs. 19 and
-        27-29: ``delta_j^2 = (1 - p_j) / (p_j N) (1 + gamma_j)``, ``gamma_j`` from the
-        correlation of the failure indicators along the Markov chains; 0 at level 0), which
+        Its coefficient of variation, ``sqrt(sum_j delta_j^2)`` with
+        ``delta_j^2 = (1 - p_j) / (p_j N) (1 + gamma_j)`` (Au and Beck 2001), ``gamma_j`` from
+        the correlation of the failure indicators along the Markov chains (0 at level 0); it
         neglects the correlation between levels.
     beta : float
         ``-Phi^-1(pf)``.
@@ -626,7 +631,7 @@ def subset_simulation(joint: JointDistribution, capacity: Capacity, threshold: f
     threshold ``b_j`` is halfway between the ``n p0``-th and the next ``g`` (0 when more than
     ``n p0`` points fail: the last level). Each seed grows a chain of ``1 / p0`` states: per
     component a candidate ``xi ~ N(u_i, spread^2)`` is accepted with probability
-    ``min(1, phi(xi) / phi(u_i))`` (Au and Beck 2001, Sec. 4), the whole candidate kept when
+    ``min(1, phi(xi) / phi(u_i))`` (Au and Beck 2001), the whole candidate kept when
     ``g <= b_j``, the current state repeated otherwise.
 
     Parameters
@@ -695,7 +700,7 @@ def subset_simulation(joint: JointDistribution, capacity: Capacity, threshold: f
 
 
 def _chain_gamma(indicators: NDArray[np.bool_], p: float, n: int) -> float:
-    """``gamma_j`` of Au and Beck (2001, eqs. 27-29) from the failure indicators ``(nc, ns)``
+    """``gamma_j`` of Au and Beck (2001) from the failure indicators ``(nc, ns)``
     of ``nc`` Markov chains of ``ns`` states (``n = nc ns``) and the level's probability ``p``::
 
         R(k) = sum_j sum_l<=ns-k I_jl I_j,l+k / (n - k nc) - p^2,   rho(k) = R(k) / R(0)
