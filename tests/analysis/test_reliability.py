@@ -39,7 +39,7 @@ def warm() -> WarmLimit:
 @pytest.mark.parametrize("mu", [0.2, 0.45, 0.5, 0.7, 1.3])
 def test_warm_friction_is_a_fresh_analysis(warm, mu):
     """Friction changed in the warm solver gives the status and lambda_max of an analysis built
-    for it (infeasible below about 0.4: the arch slides under its own weight), to 1e-8."""
+    for it (infeasible below about 0.33: the arch slides under its own weight), to 1e-8."""
     status, lam = warm({"mu": mu, "g": 1.0, "q": 1.0})
     fresh = _fresh(mu)
     assert status == ("infeasible" if math.isnan(fresh) else "optimal")
@@ -149,3 +149,19 @@ def test_form_stops_on_an_undecided_capacity():
     joint = JointDistribution([RandomVariable("a", "normal", 1.0, std=0.5)])
     res = form(joint, lambda s: ("optimal", s["a"]) if s["a"] > 0.8 else ("infeasible", math.nan), threshold=0.2)
     assert not res.converged and "infeasible" in res.message and math.isnan(res.beta)
+
+
+def test_form_on_the_arch_with_uncertain_friction():
+    """The paper's arch (in plane) with a lognormal friction: lambda_max is flat above mu ~ 0.58
+    (four hinges, friction idle), so FORM from the mean stops and says so; started in the
+    sliding range it finds mu* with lambda_max(mu*) = 0.1, and with one monotone variable its
+    pf is exact: the lognormal CDF at mu*."""
+    warm = WarmLimit(Analysis(semicircular_arch(), Material(0.7)), {"mu": "friction"}, alpha=0.0)
+    joint = JointDistribution([RandomVariable("mu", "lognormal", 0.7, cov=0.15)])
+    flat = form(joint, warm, 0.1)
+    assert not flat.converged and "flat" in flat.message
+    res = form(joint, warm, 0.1, start=[-2.0])
+    assert res.converged
+    assert warm({"mu": float(res.x[0])})[1] == pytest.approx(0.1, abs=1e-6)
+    assert res.pf == pytest.approx(joint.marginals[0].cdf(res.x[0]), rel=1e-9)
+    assert res.beta > 0 and res.alpha[0] == pytest.approx(-1.0)
