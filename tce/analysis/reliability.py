@@ -29,7 +29,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Literal
 
 import numpy as np
@@ -41,6 +41,7 @@ from ..core.analysis import Analysis
 from ..core.clarabel_solver import ClarabelSolver, SolverOptions
 from ..core.limit import LimitSolver
 from ..core.loads import LoadPattern, as_pattern, scene_vectors
+from ..core.material import Material
 from ..core.problem import ConicProblem, Formulation, limit_problem
 
 __all__ = [
@@ -233,7 +234,9 @@ class JointDistribution:
             return special.ndtri(qmc.Sobol(self.dim, scramble=True, rng=rng).random(n))
         raise ValueError(f"method must be 'mc', 'lhs' or 'sobol', got {method!r}")
 
-    def sample(self, n: int, method: Method = "mc", seed: int | None = None) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def sample(
+        self, n: int, method: Method = "mc", seed: int | None = None
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(u, x)``: ``n`` standard normal points and their physical values, both ``(n, d)``."""
         u = self.standard_normal(n, method, seed)
         return u, self.to_physical(u)
@@ -321,9 +324,11 @@ class WarmLimit:
                 raise ValueError(f"{p} changes the problem's structure at the analysis' material "
                                  f"({self.material.describe()}): give it a friction (and cohesion) > 0")
             self.sensitivity[p] = (other.A.data - base.A.data, other.b - base.b)
-        self.settings = SolverOptions(tol=1e-10, max_iter=500).settings(refine=False, kkt=analysis.formulation(self.model.kind).kkt)
+        kkt = analysis.formulation(self.model.kind).kkt
+        self.settings = SolverOptions(tol=1e-10, max_iter=500).settings(refine=False, kkt=kkt)  # LimitSolver's
         self.solver = ClarabelSolver(base, self.settings)
         self._A = base.A.copy()  # the current sample's constraint matrix (its values replaced per sample)
+        self._rows = _cone_rows(base.cones)
 
     def _base_value(self, parameter: str) -> float:
         """The model's value of a parameter (the load factors are 1)."""
@@ -336,11 +341,16 @@ class WarmLimit:
             raise KeyError(f"the sample has no value for {missing}")
         return {p: float(sample[k]) for k, p in self.variables.items()}
 
+    def _scene(self, values: Mapping[str, float]) -> tuple[Material, NDArray[np.float64], NDArray[np.float64]]:
+        """The material (checked by :class:`Material`) and ``(b_fixed, b_live)`` of parameter
+        ``values`` (the model's for the others)."""
+        material = replace(self.material, **{p: v for p, v in values.items() if not p.endswith("_factor")})
+        return material, self.b_fixed * values.get("fixed_factor", 1.0), self.b_live * values.get("live_factor", 1.0)
+
     def _problem(self, values: Mapping[str, float]) -> ConicProblem:
         """The limit problem with the parameters ``values`` (the model's for the others)."""
-        material = replace(self.material, **{p: v for p, v in values.items() if not p.endswith("_factor")})
-        f = Formulation(self.model, material)
-        return limit_problem(f, self.b_fixed * values.get("fixed_factor", 1.0), self.b_live * values.get("live_factor", 1.0))
+        material, b_fixed, b_live = self._scene(values)
+        return limit_problem(Formulation(self.model, material), b_fixed, b_live)
 
     def __call__(self, sample: Sample) -> tuple[str, float]:
         """``(status, lambda_max)`` of one sample (``lambda_max`` NaN unless ``optimal``, inf
@@ -354,7 +364,7 @@ class WarmLimit:
             A value the material refuses (a negative friction, ...), named.
         """
         values = self._values(sample)
-        replace(self.material, **{p: v for p, v in values.items() if not p.endswith("_factor")})  # validates
+        self._scene(values)  # a value the material refuses raises here
         A, b = self.base.A.data.copy(), self.base.b.copy()
         for p, v in values.items():
             dA, db = self.sensitivity[p]
@@ -377,25 +387,31 @@ class WarmLimit:
         matrix (the equilibrium rows' residual and the contact law's violation, on the scaled
         problem)."""
         s = b - self._A @ x
-        worst, row = 0.0, 0
-        for kind, dim in self.base.cones:
-            part = s[row : row + dim]
-            if kind == "zero":
-                worst = max(worst, float(np.abs(part).max(initial=0.0)))
-            elif kind == "nonneg":
-                worst = max(worst, float(-part.min(initial=0.0)))
-            else:
-                worst = max(worst, float(np.linalg.norm(part[1:]) - part[0]))
-            row += dim
-        return worst
+        zero, nonneg, soc = self._rows
+        cones = s[soc]
+        return max(float(np.abs(s[zero]).max(initial=0.0)), float(-s[nonneg].min(initial=0.0)),
+                   float((np.linalg.norm(cones[:, 1:], axis=1) - cones[:, 0]).max(initial=0.0)))
 
     def _fallback(self, values: Mapping[str, float]) -> tuple[str, float]:
         """A fresh :class:`LimitSolver` with the sample's material (retry, unbounded proof)."""
-        material = replace(self.material, **{p: v for p, v in values.items() if not p.endswith("_factor")})
-        res = LimitSolver(self.model, material).solve_loads(
-            self.b_fixed * values.get("fixed_factor", 1.0), self.b_live * values.get("live_factor", 1.0), mechanism=False)
+        material, b_fixed, b_live = self._scene(values)
+        res = LimitSolver(self.model, material).solve_loads(b_fixed, b_live, mechanism=False)
         log.info("warm limit solve not clean; fresh solve: %s (%s)", res.status, res.message)
         return res.status, res.lambda_max
+
+
+def _cone_rows(cones: Sequence[tuple[str, int]]) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
+    """The rows of the zero cones, of the nonnegative cones, and ``(k, 3)`` of the 3D
+    second-order cones of a cone list (:class:`tce.core.problem.ConicProblem`)."""
+    parts: dict[str, list[NDArray[np.int64]]] = {"zero": [], "nonneg": [], "soc": []}
+    row = 0
+    for kind, dim in cones:
+        if kind == "soc" and dim != 3:
+            raise ValueError(f"only 3D second-order cones are checked, got one of dimension {dim}")
+        parts[kind].append(np.arange(row, row + dim))
+        row += dim
+    flat = {k: np.concatenate(v) if v else np.zeros(0, dtype=np.int64) for k, v in parts.items()}
+    return flat["zero"], flat["nonneg"], flat["soc"].reshape(-1, 3)
 
 
 class RebuiltLimit:

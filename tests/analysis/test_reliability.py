@@ -165,3 +165,26 @@ def test_form_on_the_arch_with_uncertain_friction():
     assert warm({"mu": float(res.x[0])})[1] == pytest.approx(0.1, abs=1e-6)
     assert res.pf == pytest.approx(joint.marginals[0].cdf(res.x[0]), rel=1e-9)
     assert res.beta > 0 and res.alpha[0] == pytest.approx(-1.0)
+
+
+def test_a_warm_answer_failing_the_checks_is_solved_afresh(monkeypatch, caplog):
+    """A warm solve reported solved whose multiplier is 1e-6 too high (equilibrium then fails
+    by about that much) is not taken: a fresh LimitSolver answers, with the right value."""
+    from types import SimpleNamespace
+
+    from tce.core.clarabel_solver import Solution
+
+    warm = WarmLimit(Analysis(semicircular_arch(), Material(0.6)), {"mu": "friction"}, alpha=0.0)
+    solve = warm.solver.solve
+
+    def off() -> Solution:
+        sol = solve()
+        x = sol.x.copy()
+        x[-1] += 1e-6
+        return Solution(sol.status, SimpleNamespace(x=x, z=sol.z, s=sol.s, obj_val=0.0, iterations=0), 0.0, 0.0)
+
+    monkeypatch.setattr(warm.solver, "solve", off)
+    with caplog.at_level("INFO", logger="tce.analysis.reliability"):
+        status, lam = warm({"mu": 0.8})
+    assert status == "optimal" and lam == pytest.approx(_fresh(0.8), abs=1e-9)
+    assert "fresh solve" in caplog.text
