@@ -285,8 +285,9 @@ class WarmLimit:
     Parameters
     ----------
     analysis : Analysis
-        Its assembly, material and model choice; the material's friction must be > 0, and
-        its cohesion > 0 where cohesion is a variable (the rows change with them otherwise).
+        Its assembly, material and model choice; the material's value of each parameter that
+        varies must be > 0 (the rows of a Heyman material, or of zero cohesion or tension,
+        differ from those of a positive one).
     variables : mapping of str to str
         Sample key -> parameter of :data:`WARM_PARAMETERS` (e.g. ``{"mu": "friction"}``).
     alpha : float, optional
@@ -318,12 +319,19 @@ class WarmLimit:
         self.base = base
         self.sensitivity: dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]] = {}
         for p in set(self.variables.values()):
-            other = self._problem({p: self._base_value(p) + 1.0})
+            value = self._base_value(p)
+            if value == 0.0:
+                raise ValueError(f"{p} changes the problem's structure from the analysis' value 0 "
+                                 f"({self.material.describe()}): give the material a {p} > 0")
+            # a step the material accepts (less friction or tension, more cohesion keeps
+            # tensile_strength <= cohesion / friction); the data are affine in each parameter
+            step = -0.5 * value if p in ("friction", "tensile_strength") else 0.5 * value
+            other = self._problem({p: value + step})
             if not (np.array_equal(other.A.indices, base.A.indices) and np.array_equal(other.A.indptr, base.A.indptr)
                     and other.cones == base.cones):
                 raise ValueError(f"{p} changes the problem's structure at the analysis' material "
-                                 f"({self.material.describe()}): give it a friction (and cohesion) > 0")
-            self.sensitivity[p] = (other.A.data - base.A.data, other.b - base.b)
+                                 f"({self.material.describe()})")
+            self.sensitivity[p] = ((other.A.data - base.A.data) / step, (other.b - base.b) / step)
         kkt = analysis.formulation(self.model.kind).kkt
         self.settings = SolverOptions(tol=1e-10, max_iter=500).settings(refine=False, kkt=kkt)  # LimitSolver's
         self.solver = ClarabelSolver(base, self.settings)

@@ -64,6 +64,17 @@ def test_warm_cohesion_on_the_arch():
     assert [w({"c": c})[1] for c in (0.1, 2.0, 0.5)] == pytest.approx(first[::-1], abs=1e-9)
 
 
+def test_warm_with_tension_near_the_cone_apex():
+    """A material with cohesion and a tensile strength near cohesion / friction: friction,
+    cohesion and tension changed warm (together) give a fresh analysis' lambda_max."""
+    base = Material(0.6, cohesion=1.0, tensile_strength=1.5)  # c / mu = 1.67 kN/m^2
+    w = WarmLimit(Analysis(semicircular_arch(), base), {"mu": "friction", "c": "cohesion", "t": "tensile_strength"},
+                  alpha=0.0)
+    for mu, c, t in [(0.6, 1.0, 1.5), (0.9, 2.0, 0.5), (0.45, 0.8, 1.7)]:
+        fresh = Analysis(semicircular_arch(), Material(mu, cohesion=c, tensile_strength=t)).limit(0.0, mechanism=False)
+        assert w({"mu": mu, "c": c, "t": t}) == (fresh.status, pytest.approx(fresh.lambda_max, abs=1e-8))
+
+
 def test_warm_live_point_load():
     """With a live point load on the crown, the live factor divides lambda_max (its adequacy factor)."""
     loads = LoadPattern(lateral=False, point=[PointLoad(force=[0.0, 0.0, -1.0], block="v07")])
