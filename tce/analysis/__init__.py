@@ -1,4 +1,5 @@
-"""Analyses built on TCE solves: the load path, minimum thickness and the diagnosis of a failing scene.
+"""Analyses built on TCE solves: the load path, minimum thickness, the diagnosis of a failing scene
+and the probability of collapse (:mod:`tce.analysis.reliability`).
 
 :class:`Analysis` (one assembly and material, scene by scene) lives in :mod:`tce.core.analysis`
 and is re-exported here, where scripts import it from.

@@ -3,7 +3,7 @@
 Clarabel (Goulart and Chen, "Clarabel: an interior-point solver for conic programs with
 quadratic objectives", 2024) solves a :class:`tce.core.problem.ConicProblem`. A
 :class:`ClarabelSolver` is set up once per problem structure; a new load or support motion
-only changes ``q`` and ``b`` (:meth:`ClarabelSolver.update`), which keeps the symbolic
+only changes ``q`` and ``b``, a friction coefficient the values of ``A`` (:meth:`ClarabelSolver.update`), which keeps the symbolic
 factorisation (presolve is off so that the data layout never changes).
 
 Times are wall-clock times measured here around the calls (``time.perf_counter``):
@@ -191,15 +191,14 @@ class ClarabelSolver:
         self._solver = clarabel.DefaultSolver(problem.P, problem.q, problem.A, problem.b, _cones(problem), settings)
         self._setup = time.perf_counter() - t0
 
-    def update(self, q: NDArray[np.float64] | None = None, b: NDArray[np.float64] | None = None) -> None:
-        """Replace ``q`` and/or ``b`` (same shapes); the matrices and cones stay."""
+    def update(self, q: NDArray[np.float64] | None = None, b: NDArray[np.float64] | None = None,
+               A: NDArray[np.float64] | None = None) -> None:
+        """Replace ``q``, ``b`` and/or the nonzero values ``A`` of the constraint matrix (same
+        shapes, ``A`` in the CSC order of ``problem.A.data``); the sparsity pattern and cones stay."""
         t0 = time.perf_counter()
-        if q is not None and b is not None:
-            self._solver.update(q=q, b=b)
-        elif q is not None:
-            self._solver.update(q=q)
-        elif b is not None:
-            self._solver.update(b=b)
+        data = {k: v for k, v in (("q", q), ("b", b), ("A", A)) if v is not None}
+        if data:
+            self._solver.update(**data)
         self._setup += time.perf_counter() - t0
 
     def solve(self) -> Solution:
