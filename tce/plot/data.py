@@ -321,7 +321,7 @@ def find_state(ds: xr.Dataset, scenario: str, target: Target) -> State:
         k = hits[0]
         if status[k] == "optimal":
             return State(scenario, target, k, float(lam[k]), _notes(ds, scenario, k))
-        return State(scenario, target, None, target, status_words(status[k], lam="λ"))
+        return State(scenario, target, None, target, status_words(status[k], lam="λ", at=target))
     upper = float(value(ds, "lambda_upper", scenario)) if "lambda_upper" in ds else float("nan")
     if not ok.size:
         return State(scenario, target, None, target, outcome_note(ds, scenario) or "no admissible state")

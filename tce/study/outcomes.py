@@ -75,6 +75,9 @@ def outcome_words(
     return f"{words}: {reason}" if reason else words
 
 
-def status_words(status: str, lam: str = "lambda") -> str:
-    """What the status of one solve means ("" for ``optimal``; another word as it is)."""
+def status_words(status: str, lam: str = "lambda", at: float | None = None) -> str:
+    """What the status of one solve means ("" for ``optimal``; another word as it is); ``at``:
+    the step's multiplier (an infeasible step at 0 is not beyond a limit: nothing stands)."""
+    if status == "infeasible" and at == 0:
+        return f"infeasible: no admissible state even at {lam} = 0 (the structure cannot stand under its fixed loads)"
     return STATUS_MEANING[status].format(lam=lam) if status in STATUS_MEANING else status

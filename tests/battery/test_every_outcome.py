@@ -230,6 +230,8 @@ def test_figures_without_a_state_say_why(ran: tuple[Case, int, Path], kind: str)
             words = _words(draw(ds, [scenario], [0.0]))
             assert f"{outcome}: " in words, (scenario, words)
             assert "no state of finite energy" in words or outcome != "unbounded"
+            assert "beyond the limit" not in words  # at 0 nothing stands: there is no limit to be beyond
+            assert "cannot stand" in words or outcome != "infeasible"
 
 
 def test_capacity_figure_words_every_outcome(ran: tuple[Case, int, Path]) -> None:
