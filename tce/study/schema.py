@@ -1058,6 +1058,7 @@ def _check_settlement_path(study: Study) -> None:
     if section is None:
         return
     from ..analysis.settlement_path import check_path_scene
+    from ..core.model import find_plane
 
     for sc in study.scenarios():
         pattern = sc.loads_pattern
@@ -1073,10 +1074,18 @@ def _check_settlement_path(study: Study) -> None:
                 f"{study.path}: settlement_path.live_at: no live load to apply (lambda multiplies the lateral "
                 "pattern alone, which lambda = true follows along the path); fix: remove live_at or add a live load"
             )
+        assembly = study.assembly(sc.structure)
         try:
-            check_path_scene(study.assembly(sc.structure), build_material(sc.material), sc.settlements, sc.alpha if section.lam else None)
+            check_path_scene(assembly, build_material(sc.material), sc.settlements, sc.alpha if section.lam else None)
         except ValueError as exc:
             raise StudyError(
                 f"{study.path}: settlement_path (scenario {sc.name!r}): {exc}; fix: remove [settlement_path] "
                 "or give a Heyman material (no [material] keys) and, for a planar structure, in-plane motions"
             ) from None
+        if section.live_at and find_plane(assembly) is None:
+            raise StudyError(
+                f"{study.path}: settlement_path.live_at: live loads on a deformed spatial structure are not "
+                "supported: its no-sliding contacts, no longer parallel after the settlement, carry spurious "
+                "tangential forces (a dome's crown load came out unbounded after 2 cm of spread; "
+                "docs/settlements.md); fix: remove live_at, or use a planar structure"
+            )
