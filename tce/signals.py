@@ -11,7 +11,9 @@ before ``main`` runs, Ctrl-C is left to Python.
 
 :func:`quiet_children` starts processes with Ctrl-C ignored from their first instruction
 (an ignored signal stays ignored across ``exec``), so that a worker still importing prints
-no traceback when Ctrl-C reaches its process group.
+no traceback when Ctrl-C reaches its process group. :func:`deferred` holds a stop signal
+received inside its block and raises it when the block ends: a worker pool's ``submit``
+interrupted half-way leaves the pool in a state its shutdown waits on for ever.
 """
 
 from __future__ import annotations
@@ -22,9 +24,11 @@ import threading
 from collections.abc import Iterator
 from types import FrameType
 
-__all__ = ["Interrupted", "exit_code", "handle_signals", "quiet_children", "restore_signals"]
+__all__ = ["Interrupted", "deferred", "exit_code", "handle_signals", "quiet_children", "restore_signals"]
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+#: inside :func:`deferred`: the stop signals received there (None outside)
+_held: list[int] | None = None
 
 
 class Interrupted(KeyboardInterrupt):
@@ -38,6 +42,9 @@ class Interrupted(KeyboardInterrupt):
 def _stop(signum: int, frame: FrameType | None) -> None:
     for sig in _SIGNALS:  # stopping: further signals are not allowed to break the clean-up
         signal.signal(sig, signal.SIG_IGN)
+    if _held is not None:  # raised when the deferring block ends
+        _held.append(signum)
+        return
     raise Interrupted(signum)
 
 
@@ -62,6 +69,23 @@ def restore_signals(before: dict[int, object]) -> None:
 def exit_code(exc: KeyboardInterrupt) -> int:
     """``128 + signal``: 130 for Ctrl-C (a plain KeyboardInterrupt too), 143 for SIGTERM."""
     return 128 + int(getattr(exc, "signum", signal.SIGINT))
+
+
+@contextlib.contextmanager
+def deferred() -> Iterator[None]:
+    """Within the block a stop signal (:func:`handle_signals`) is held, and raised as
+    :class:`Interrupted` as soon as the block ends (nested blocks: the outermost)."""
+    global _held
+    if _held is not None or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    _held = []
+    try:
+        yield
+    finally:
+        got, _held = _held, None
+        if got:
+            raise Interrupted(got[0])
 
 
 @contextlib.contextmanager

@@ -79,7 +79,7 @@ from .results import (
     write_scenario,
 )
 from .schema import Scenario, Study, build_material
-from ..signals import quiet_children
+from ..signals import deferred, quiet_children
 from .settlement import settlement_vars
 
 __all__ = [
@@ -416,7 +416,7 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
     if ctx.get_start_method() == "forkserver":  # its workers inherit the fork server's ignored Ctrl-C, and
         with quiet_children():  # this process heeds a Ctrl-C while the server imports tce (seconds)
             forkserver.ensure_running()
-        starting = contextlib.nullcontext
+        starting = deferred  # a Ctrl-C inside a submit is raised after it (the pool stays whole)
     stop, keep = ctx.Pipe(duplex=False)  # workers hold ``stop``; closing ``keep`` ends them
     waiting = deque(todo)
     again: deque[Scenario] = deque()  # running when a worker died: each is solved again alone
@@ -441,7 +441,7 @@ def _in_pool(todo: list[Scenario], study: Study, directory: Path, jobs: int, tal
                 else:
                     break
                 try:
-                    with starting():  # workers start with Ctrl-C ignored
+                    with starting():  # workers start with Ctrl-C ignored; here a Ctrl-C waits for the submit
                         running[pool.submit(_solve_in_worker, sc, directory)] = sc
                 except BrokenExecutor:  # a worker died between scenarios
                     (again if sc.name in retried else waiting).appendleft(sc)

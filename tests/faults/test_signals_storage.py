@@ -228,3 +228,32 @@ def test_a_full_disk_when_the_lock_is_taken_leaves_no_lock(tmp_path: Path, monke
     (line,) = errors(err)
     assert results.LOCK_NAME in line and "no space left" in line
     assert not leftovers(tmp_path / "out")
+
+
+def test_a_signal_inside_a_deferred_block_is_raised_when_it_ends() -> None:
+    """A Ctrl-C that arrives while the runner submits to its pool is held and raised right after
+    the submit (raised inside it, it left the pool half-updated and its shutdown waiting for ever:
+    a run hung for 300 s in test_ctrl_c_keeps_a_finished_scenario_not_yet_returned[2]); outside
+    such a block it is raised at once."""
+    from tce.signals import Interrupted, deferred, handle_signals, restore_signals
+
+    before = handle_signals()
+    try:
+        reached = []
+        with pytest.raises(Interrupted) as stop:
+            with deferred():
+                os.kill(os.getpid(), signal.SIGINT)
+                for _ in range(1000):  # the handler has run by now (it runs between bytecodes)
+                    pass
+                reached.append("end of the block")
+        assert reached == ["end of the block"] and stop.value.signum == signal.SIGINT
+    finally:
+        restore_signals(before)
+    before = handle_signals()
+    try:
+        with pytest.raises(Interrupted):
+            os.kill(os.getpid(), signal.SIGINT)
+            for _ in range(1000):
+                pass
+    finally:
+        restore_signals(before)
