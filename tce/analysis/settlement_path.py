@@ -477,18 +477,22 @@ def _solve(sc: _Scene, cf: _Config, closed: NDArray[np.bool_]) -> _Step:
     return _Step("optimal", v=v, fn=fn, reactions=reac, dn=dn)
 
 
-def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArray[np.float64]) -> tuple[str, float]:
+def _limit(
+    sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArray[np.float64]
+) -> tuple[str, float, int]:
     """lambda_max of the lateral pattern (the weights along the horizontal ``direction``, in
     the scene's coordinates) on the contacts ``closed`` of ``cf``:
     ``max lam  s.t.  G' f + b + lam b_lat = 0, fn >= 0`` (no sliding), the contacts at block
     A's copies of their points (:func:`_operators`).
 
-    Solved twice: as stated, and with every tangential force within :data:`SHEAR_CAP` times
-    the load (the free blocks' weight and the fixed forces' magnitudes; not the lateral load
-    found, which the spurious strength inflates). Where the capped program gives less
-    (relative 1e-7), the capacity rests on tangential forces that no friction provides, a
-    near self-stress of a geometry that lost the symmetry of the reference: the status is
-    ``withheld`` (NaN)."""
+    Solved as stated; where its optimum carries a tangential force above :data:`SHEAR_CAP`
+    times the load (the free blocks' weight and the fixed forces' magnitudes; not the lateral
+    load found, which the spurious strength inflates), solved again with every tangential
+    force within that cap (an optimum within the cap is the capped program's optimum too).
+    Where the capped program gives less (relative 1e-7), the capacity rests on tangential
+    forces that no friction provides, a near self-stress of a geometry that lost the symmetry
+    of the reference: the status is ``withheld`` (NaN). Returns the status, lambda_max and
+    the number of programs solved."""
     Gn, Gt, *_ = _operators(sc, cf, closed, on_a=True)
     b, weight = _weights(sc, cf), _weights(sc)
     blat = np.zeros_like(b)
@@ -501,14 +505,16 @@ def _limit(sc: _Scene, cf: _Config, closed: NDArray[np.bool_], direction: NDArra
     bounds = [(0, None)] * nn + [(None, None)] * nt + [(None, None)]
     status, res = _linprog(c, A_eq=A, b_eq=-b, bounds=bounds)
     if status != "optimal":
-        return status, float("nan")
+        return status, float("nan"), 1
     lam = float(res.x[-1])
     dead = 0.0 if sc.dead is None else float(np.linalg.norm(sc.dead[2], axis=1).sum())
     cap = SHEAR_CAP * (1.0 + dead / sc.weights[sc.free].sum())  # forces in units of the weight
+    if np.abs(res.x[nn : nn + nt]).max(initial=0.0) <= cap:
+        return status, lam, 1
     capped_status, capped = _linprog(c, A_eq=A, b_eq=-b, bounds=bounds[:nn] + [(-cap, cap)] * nt + bounds[-1:])
     if capped_status != "optimal" or capped.x[-1] < lam - 1e-7 * max(1.0, abs(lam)):
-        return "withheld", float("nan")
-    return status, lam
+        return "withheld", float("nan"), 2
+    return status, lam, 2
 
 
 def _move(sc: _Scene, cf: _Config, v: NDArray[np.float64], ds: float, advance: bool = True) -> _Config:
@@ -972,8 +978,8 @@ def settlement_path(
         missing: dict[str, list[float]] = {}  # magnitudes without a lateral capacity, per status
         for i, (c, cl, _) in enumerate(records):
             _, _, gap = _contacts(sc, c)
-            st, val = _limit(sc, c, cl | (gap <= reach), direction)
-            n_solves += 2 if st in ("optimal", "withheld") else 1  # the capped program after an optimum
+            st, val, solved = _limit(sc, c, cl | (gap <= reach), direction)
+            n_solves += solved
             lam_max[i] = val if st == "optimal" else np.nan
             if st != "optimal":
                 missing.setdefault(st, []).append(c.s)
