@@ -765,17 +765,28 @@ class SettlementPathResult(Result):
         the centroid and the rotation vector ``(rx, ry, rz)`` about it."""
         return self._lift(self.placements)
 
-    def deformed(self, assembly: Assembly, index: int = -1) -> Assembly:
-        """``assembly`` with its blocks at the placement of step ``index`` (the interfaces as
-        in the reference: for drawing)."""
+    def moves(self, assembly: Assembly, index: int = -1) -> NDArray[np.float64]:
+        """The placement of every block of ``assembly`` at step ``index``: homogeneous
+        matrices ``(n_blocks, 4, 4)`` taking a point of the block in the reference to its
+        place (global frame, m)."""
         disp = self.displacements()[index]
         R = _Spatial.rotation(disp[:, 3:])
-        blocks = []
-        for k, blk in enumerate(assembly.blocks):
-            c = blk.shape.centroid
-            pts = c + disp[k, :3] + (blk.shape.vertices - c) @ R[k].T
-            blocks.append(Block(blk.name, Polyhedron(pts, blk.shape.faces), blk.unit_weight, blk.support))
-        return Assembly(tuple(blocks), assembly.interfaces, dict(assembly.meta))
+        c = assembly.centroids
+        move = np.zeros((len(c), 4, 4))
+        move[:, :3, :3] = R
+        move[:, :3, 3] = c + disp[:, :3] - np.einsum("nij,nj->ni", R, c)
+        move[:, 3, 3] = 1.0
+        return move
+
+    def deformed(self, assembly: Assembly, index: int = -1) -> Assembly:
+        """``assembly`` with its blocks at the placement of step ``index`` (:meth:`moves`; the
+        interfaces as in the reference: for drawing)."""
+        blocks = tuple(
+            Block(blk.name, Polyhedron(blk.shape.vertices @ m[:3, :3].T + m[:3, 3], blk.shape.faces), blk.unit_weight,
+                  blk.support)
+            for blk, m in zip(assembly.blocks, self.moves(assembly, index))
+        )
+        return Assembly(blocks, assembly.interfaces, dict(assembly.meta))
 
 
 def settlement_path(

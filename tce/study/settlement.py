@@ -85,15 +85,8 @@ def deformed_assembly(
         The widest opening of a contact point kept (m, >= 0): the motion that counting it
         as a contact neglects.
     """
-    from scipy.spatial.transform import Rotation  # imported on first use: it is slow to import
-
-    disp = path.displacements()[index]
-    rot = Rotation.from_rotvec(disp[:, 3:]).as_matrix()
-    c0 = assembly.centroids
-    move = np.zeros((len(c0), 4, 4))
-    move[:, :3, :3] = rot
-    move[:, :3, 3] = c0 + disp[:, :3] - np.einsum("nij,nj->ni", rot, c0)
-    move[:, 3, 3] = 1.0
+    move = path.moves(assembly, index)
+    rot = move[:, :3, :3]
     interfaces, widest = [], 0.0
     for itf in assembly.interfaces:
         pa = itf.points @ rot[itf.a].T + move[itf.a, :3, 3]
@@ -107,8 +100,8 @@ def deformed_assembly(
         near = pa[closed][np.argmin(np.linalg.norm(pa[:, None] - pa[closed][None], axis=2), axis=1)]
         points = np.where(closed[:, None], pa, near + HINGE_WIDTH * (pa - near))
         interfaces.append(Interface(itf.a, itf.b, points, normal, itf.stiffness))
-    moved = path.deformed(assembly, index)
-    return Assembly(moved.blocks, tuple(interfaces), dict(assembly.meta)), move, widest
+    blocks = path.deformed(assembly, index).blocks
+    return Assembly(blocks, tuple(interfaces), dict(assembly.meta)), move, widest
 
 
 def _carried(dead: AppliedLoads, move: np.ndarray, names: tuple[str, ...]) -> tuple[PointLoad, ...]:
