@@ -280,7 +280,9 @@ class WarmLimit:
     Each answer passes the checks of :class:`tce.core.limit.LimitSolver` (equilibrium and
     contact law to 1e-8 of ``W``, ``W L`` on the scaled problem); a solve that does not is
     solved again by a fresh :class:`~tce.core.limit.LimitSolver` with the sample's material
-    (which retries with iterative refinement and proves an undecided unbounded limit).
+    (which retries with iterative refinement and proves an undecided unbounded limit); so is
+    a solve that ends ``DualInfeasible``: a sample is ``unbounded`` only as the limit solver
+    proves it, as for every other limit tce reports.
 
     Parameters
     ----------
@@ -383,8 +385,6 @@ class WarmLimit:
         sol = self.solver.solve()
         if sol.status == "PrimalInfeasible":
             return "infeasible", math.nan
-        if sol.status == "DualInfeasible":
-            return "unbounded", math.inf
         np.copyto(self._A.data, A)
         if sol.solved and self._violation(b, sol.x) <= 1e-8:
             return "optimal", float(sol.x[-1])
