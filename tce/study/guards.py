@@ -7,7 +7,7 @@ to one) of at most :data:`MAX_STUDY_BYTES` whose path holds no NUL. :func:`check
 parsing), and :func:`check_tree` any key or text value holding a control character (which
 would break every file name made from it). :func:`check_work` bounds the scenarios
 (:data:`MAX_SCENARIOS`), worst-case solves (:func:`work`: every load path to ``lambda_cap``
-plus its drawn states, critical-position searches and settlement paths; at most ``[study]
+plus its drawn states, critical-position searches, settlement paths and sampled capacities; at most ``[study]
 max_solves``, :data:`MAX_SOLVES` by default) and drawn states (:data:`MAX_DRAWN_STATES`) before the
 scenarios are expanded, each message giving the estimate and the keys that set it.
 
@@ -167,7 +167,8 @@ def _control(text: str) -> bool:
 def work(spec: Any, search_solves: int = 0) -> tuple[int, str]:
     """The most solves a study asks for and how they are counted: every scenario's load path to
     ``lambda_cap`` with its drawn states, its critical-position search (``search_solves``
-    limits each) and its settlement path (``s_max / increment`` increments). ``spec`` is the
+    limits each), its settlement path (``s_max / increment`` increments) and its ``[uncertainty]``
+    samples (each at most a search or a settlement path). ``spec`` is the
     parsed :class:`tce.study.schema.StudyFile` (not imported: the schema imports these guards)."""
     count = _scenarios(spec)[0]
     loads = spec.loads
@@ -191,6 +192,12 @@ def work(spec: Any, search_solves: int = 0) -> tuple[int, str]:
         terms.append(f"a settlement path of {increments} increments (s_max / increment)"
                      + (f" and {lives} live-load limits" if lives else ""))
         each += increments + lives
+    sampled = spec.uncertainty
+    if sampled is not None:
+        # each sample: a direct limit, a critical-position search or a settlement path
+        per = max(1 + search_solves, math.ceil(path.s_max / path.increment) if path is not None else 1)
+        terms.append(f"{sampled.samples} samples of at most {per} solves ([uncertainty] samples)")
+        each += sampled.samples * per
     return count * each, f"{count} scenarios x ({' + '.join(terms)}) = {count * each} solves at most"
 
 
@@ -220,7 +227,7 @@ def check_work(path: Path, spec: Any, drawn_scenarios: int | None = None, search
         raise _error(
             f"{path}: study.max_solves: {how}, more than the study's cap max_solves = {cap} (by default MAX_SOLVES); "
             "fix: a larger loads.lambda_step or settlement_path.increment, a smaller loads.lambda_cap or "
-            "settlement_path.s_max, fewer scenarios, or raise [study] max_solves"
+            "settlement_path.s_max, fewer scenarios or uncertainty.samples, or raise [study] max_solves"
         )
     if drawn_scenarios is not None and drawn_scenarios * len(spec.plots.steps) > MAX_DRAWN_STATES:
         n = drawn_scenarios * len(spec.plots.steps)

@@ -20,7 +20,9 @@ warm TCE solve of the first scenario and ``t_build`` the time to build its analy
 more than :data:`LARGE_MODEL` unknowns is taken as large work without solving anything.
 ``settlement`` is the finite-settlement path of a study with ``[settlement_path]``: its
 increments up to ``s_max`` (``s_max / increment`` per scenario, an upper bound: a path ends
-at its collapse) times :data:`SETTLEMENT_INCREMENT_S`.
+at its collapse) times :data:`SETTLEMENT_INCREMENT_S`. A job of samples (``[uncertainty]``)
+counts one solve per sample, or one settlement path per sample in a study with
+``[settlement_path]`` whose scenario moves a support.
 """
 
 from __future__ import annotations
@@ -102,7 +104,13 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
     from ..analysis.loadpath import AUTO_INCREMENTS, MAX_INCREMENTS, increments_and_cap
 
     solves = 0.0
+    sampled = 0.0
     for sc in scenarios:
+        if sc.samples is not None:  # a job of samples: a limit or a settlement path per sample
+            n = sc.samples[1] - sc.samples[0]
+            solves += n
+            sampled += n * settlement_increments(sc)
+            continue
         if sc.group != first.group:  # another structure or material: as a path anchored on its limit
             solves += AUTO_INCREMENTS + 4
             continue
@@ -112,7 +120,7 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
         increments = min(lam, cap) / step + 1 if math.isfinite(lam) else min(cap / step, MAX_INCREMENTS) + 1
         solves += increments + 2
     groups = len({sc.group for sc in scenarios})
-    increments = sum(map(settlement_increments, scenarios))
+    increments = sampled + sum(settlement_increments(sc) for sc in scenarios if sc.samples is None)
     work = (solves * t_solve + increments * SETTLEMENT_INCREMENT_S + len(scenarios) * SCENARIO_S
             + (groups - 1) * t_build)
     path = f", {increments:.0f} settlement increments of {SETTLEMENT_INCREMENT_S:.2g} s" if increments else ""

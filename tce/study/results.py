@@ -12,7 +12,8 @@ reader sees the previous file or the complete new one; a failed write raises
 :class:`StorageError` naming the path and the cause and leaves no temporary behind. A
 scenario file records the hash of its scenario's definition (:attr:`tce.study.Scenario.key`)
 and of its own content; a rerun reuses it only when both match and it holds every variable
-of :data:`SCENARIO_VARS` (:func:`load_finished`). One run at a time writes a study folder
+of :data:`SCENARIO_VARS` (a job of samples: :data:`tce.study.samples.SAMPLE_VARS`;
+:func:`load_finished`). One run at a time writes a study folder
 (:func:`folder_lock`).
 """
 
@@ -44,6 +45,7 @@ from ..core.result import DOFS, WRENCH_COMPONENTS, XYZ
 from ..core.solve import SOLVER_NAME, TCEResult
 from ..files import atomic_write, storage_error, temporaries
 from ..structures.assembly import Assembly
+from .samples import SAMPLE_VARS, with_samples
 from .schema import Scenario, Study
 
 __all__ = [
@@ -517,7 +519,7 @@ def load_finished(directory: Path, scenarios: Iterable[Scenario]) -> dict[str, x
         except Exception as exc:  # noqa: BLE001 - the netCDF library raises many kinds on a damaged file
             log.warning("ignoring unreadable scenario file %s (%s): solving %r again", path, exc, sc.name)
             continue
-        missing = [v for v in SCENARIO_VARS if v not in ds.data_vars]
+        missing = [v for v in (SCENARIO_VARS if sc.samples is None else SAMPLE_VARS) if v not in ds.data_vars]
         if ds.attrs.get("scenario_key") != sc.key:
             log.info("scenario %r changed since %s was written: solving it again", sc.name, path)
         elif missing or ds.attrs.get("content_sha256") != content_digest(ds):
@@ -645,7 +647,9 @@ def study_attrs(study: Study, models: Iterable[str]) -> dict[str, str]:
 
 
 def merge_scenarios(study: Study, parts: dict[str, xr.Dataset]) -> xr.Dataset:
-    """The study dataset: ``parts`` (one dataset per scenario name) in the study's order.
+    """The study dataset: ``parts`` (one dataset per scenario name) in the study's order, with
+    the samples of the jobs of ``[uncertainty]`` (also in ``parts``, by job name) and their
+    statistics (:func:`tce.study.samples.with_samples`).
 
     Variables without a ``scenario`` dimension (names and support flags, the same for every
     scenario) are taken from the first scenario. Each scenario keeps its own coordinates
@@ -653,7 +657,7 @@ def merge_scenarios(study: Study, parts: dict[str, xr.Dataset]) -> xr.Dataset:
     attrs give each its own blocks (:func:`geometries`).
     """
     order = [sc.name for sc in study.scenarios()]
-    missing = [n for n in order if n not in parts]
+    missing = [sc.name for sc in study.jobs() if sc.name not in parts]
     if missing:
         raise ValueError(f"cannot merge: scenarios not solved: {missing}")
     n_steps = max(parts[n].sizes["step"] for n in order)
@@ -663,7 +667,8 @@ def merge_scenarios(study: Study, parts: dict[str, xr.Dataset]) -> xr.Dataset:
                        coords="minimal", compat="override", join="outer", combine_attrs="drop")
     ds["geometry"] = (("scenario",), np.asarray(geometries(study)[1], dtype=np.int64))
     ds.attrs = study_attrs(study, ds["model"].values.tolist())
-    return _label(ds)
+    ds = _label(ds)
+    return ds if study.spec.uncertainty is None else with_samples(ds, study, parts)
 
 
 def _plain_text(values: np.ndarray) -> np.ndarray:

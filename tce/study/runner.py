@@ -78,6 +78,7 @@ from .results import (
     write_atomic,
     write_scenario,
 )
+from .samples import solve_samples
 from .schema import Scenario, Study, build_material
 from ..signals import deferred, quiet_children
 from .settlement import settlement_vars
@@ -137,7 +138,8 @@ class RunReport:
     results : Path
         The study's ``results.nc`` (written only when every scenario is solved).
     solved, reused : list of str
-        Scenarios solved by this run, and scenarios taken from an earlier run.
+        Jobs (scenarios and jobs of samples, :meth:`tce.study.Study.jobs`) solved by this run,
+        and those taken from an earlier run.
     outcomes : dict
         ``{scenario: outcome}`` of every finished scenario, in the study's order.
     faults : list of str
@@ -183,12 +185,15 @@ def _cold(analysis: Analysis) -> Analysis:
 
 
 def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
-    """Run the load path of one scenario on its built ``assembly``; return its dataset.
+    """Run the load path of one scenario on its built ``assembly``; return its dataset (for a
+    job of samples, :attr:`Scenario.samples`, their capacities: :func:`tce.study.samples.solve_samples`).
 
     The multipliers the study's figures draw (:attr:`Scenario.draw`) that the load path did
     not reach are solved after it and stored as steps like the others
     (:func:`with_drawn_states`).
     """
+    if sc.samples is not None:
+        return solve_samples(sc, assembly)
     analysis = _cold(_analysis(sc, assembly))
     tol = sc.loads["tolerance"]
     pattern, crit = sc.loads_pattern, None
@@ -357,12 +362,13 @@ class _Tally:
         self.steps = 0
 
     def done(self, name: str, ds: xr.Dataset) -> None:
-        """Scenario ``name`` is solved and its file written; ``ds`` is its dataset."""
-        self.outcomes[name] = str(ds["outcome"].values[0])
+        """Job ``name`` is solved and its file written; ``ds`` is its dataset."""
+        if "outcome" in ds:  # a scenario's load path (not a job of samples)
+            self.outcomes[name] = str(ds["outcome"].values[0])
         self.datasets[name] = ds
-        self.steps += int(ds["n_solves"].values[0])
+        self.steps += int(ds["n_solves"].values[0]) if "n_solves" in ds else ds.sizes["sample"]
         if self.progress is not None:
-            self.progress(len(self.outcomes), self.total, self.steps)
+            self.progress(len(self.datasets), self.total, self.steps)
 
     def fault(self, line: str, details: str = "") -> None:
         log.debug("fault: %s\n%s", line, details)
@@ -496,7 +502,7 @@ def _on_dask(todo: list[Scenario], study: Study, directory: Path, scheduler: str
         tasks = (joblib.delayed(solve_scenario)(sc, study.assembly(sc.structure)) for sc in _grouped(todo))
         try:
             for ds in joblib.Parallel(n_jobs=-1, return_as="generator_unordered")(tasks):
-                sc = by_name[str(ds["scenario"].values[0])]
+                sc = by_name[ds.attrs.get("job", str(ds["scenario"].values[0]))]
                 try:
                     write_scenario(ds, directory, sc)
                 except StorageError as exc:
@@ -603,7 +609,7 @@ def run_study(
         raise RunError(f"unknown backend {backend!r}: use 'processes' or 'dask'")
     directory = _study_folder(out, study.name)
     folder = directory / "scenarios"
-    scenarios = study.scenarios()
+    scenarios, jobs_all = study.scenarios(), study.jobs()
     with contextlib.ExitStack() as stack:
         _lock(stack, directory)
         for d in (directory, folder):
@@ -611,8 +617,8 @@ def run_study(
         if fresh:
             for old in folder.glob("*.nc"):
                 old.unlink()
-        parts = load_finished(folder, scenarios)
-        todo = [sc for sc in scenarios if sc.name not in parts]
+        parts = load_finished(folder, jobs_all)
+        todo = [sc for sc in jobs_all if sc.name not in parts]
         how = ""
         if todo:
             choice = choose_jobs(_grouped(todo), jobs, lambda sc: _analysis(sc, study.assembly(sc.structure)), backend)
@@ -621,7 +627,7 @@ def run_study(
         if parts:
             log.info(
                 "resuming %s: %d of %d scenarios already solved, solving the %d missing%s",
-                study.name, len(parts), len(scenarios), len(todo), how,
+                study.name, len(parts), len(jobs_all), len(todo), how,
             )
         else:
             log.info("running %s: %d scenarios%s", study.name, len(todo), how)
@@ -636,7 +642,7 @@ def run_study(
                 _in_process(todo, study, folder, tally)
             else:
                 _in_pool(_grouped(todo), study, folder, jobs, tally)
-            report.solved = [sc.name for sc in todo if sc.name in tally.outcomes]
+            report.solved = [sc.name for sc in todo if sc.name in tally.datasets]
             report.faults = tally.faults
             # each was written atomically before it counted as done: merged from memory
             parts.update(tally.datasets)

@@ -58,6 +58,7 @@ from . import guards
 from .guards import StudyError
 from .names import slug
 from .sections import PlotsSection, _Strict
+from .uncertainty import UncertaintySection
 
 __all__ = [
     "MAX_BLOCKS",
@@ -76,6 +77,8 @@ __all__ = [
 GEOMETRY_SWEEPS = ("inner_radius", "thickness", "depth", "radius")
 #: swept parameters of the material
 MATERIAL_SWEEPS = ("friction", "cohesion", "tensile_strength", "compressive_strength")
+#: between a scenario's name and its samples in the name of a job of samples (:meth:`Study.jobs`)
+SAMPLES_SEPARATOR = " samples "
 #: names a file or folder may not take on some systems (Windows), with or without an extension
 RESERVED_NAMES = frozenset(
     ["CON", "PRN", "AUX", "NUL"] + [f"{p}{k}" for p in ("COM", "LPT") for k in range(1, 10)]
@@ -593,6 +596,7 @@ class StudyFile(_Strict):
     plots: PlotsSection = PlotsSection()
     assessment: AssessmentSection | None = None
     settlement_path: SettlementPathSection | None = None
+    uncertainty: UncertaintySection | None = None
 
     @field_validator("scenarios")
     @classmethod
@@ -659,6 +663,8 @@ class Scenario:
     assembly_digest: str
     draw: tuple[float, ...] = ()
     settlement_path: dict[str, Any] | None = None
+    samples: tuple[int, int] | None = None
+    uncertainty: str | None = None
 
     @property
     def group(self) -> str:
@@ -695,6 +701,9 @@ class Scenario:
             what["pattern"] = self.pattern
         if self.settlement_path is not None:
             what["settlement_path"] = self.settlement_path
+        if self.samples is not None:
+            what["samples"] = list(self.samples)
+            what["uncertainty"] = self.uncertainty
         return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()
 
     @property
@@ -780,6 +789,21 @@ class Study:
         drawn = set(plots.select([sc.name for sc in out]))
         lams = tuple(plots.lambdas)
         return [replace(sc, draw=lams) if lams and sc.name in drawn else sc for sc in out]
+
+    def jobs(self) -> list[Scenario]:
+        """What a run solves: every scenario (:meth:`scenarios`) and, with ``[uncertainty]``,
+        for each scenario ``ceil(samples / chunk)`` jobs of samples (:attr:`Scenario.samples`),
+        in the scenarios' order."""
+        scenarios = self.scenarios()
+        section = self.spec.uncertainty
+        if section is None:
+            return scenarios
+        spec, n = section.spec(), section.samples
+        return scenarios + [
+            replace(sc, name=f"{sc.name}{SAMPLES_SEPARATOR}{lo}-{min(lo + section.chunk, n)}", draw=(),
+                    samples=(lo, min(lo + section.chunk, n)), uncertainty=spec)
+            for sc in scenarios for lo in range(0, n, section.chunk)
+        ]
 
     def _expand(self) -> Iterator[Scenario]:
         spec = self.spec
@@ -891,6 +915,9 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
     _check_plots(study)
     _check_settlement_path(study)
     _check_passive(study)
+    from .samples import check_uncertainty
+
+    check_uncertainty(study)
     return study
 
 

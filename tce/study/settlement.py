@@ -31,7 +31,7 @@ from ..core.material import Material
 from ..structures.assembly import Assembly, Interface
 from .schema import Scenario
 
-__all__ = ["HINGE_WIDTH", "NO_MOTION", "deformed_assembly", "fixed_part", "live_after_settlement", "settlement_vars"]
+__all__ = ["HINGE_WIDTH", "NO_MOTION", "deformed_assembly", "fixed_part", "follow", "live_after_settlement", "settlement_vars"]
 
 #: outcome of a scenario that moves no support (nothing to follow)
 NO_MOTION = "no_motion"
@@ -150,6 +150,28 @@ def live_after_settlement(
     return out
 
 
+def follow(sc: Scenario, assembly: Assembly, material: Material, lam: bool) -> tuple[SettlementPathResult, AppliedLoads | None]:
+    """The settlement path of scenario ``sc`` (its ``[settlement_path]`` settings, its fixed
+    loads carried; the lateral capacity along it when ``lam``) and those fixed loads (None for
+    the paper's pattern)."""
+    opts = sc.settlement_path or {}
+    pattern = sc.loads_pattern
+    dead = None if pattern.default else resolve(fixed_part(pattern), assembly)
+    r = settlement_path(
+        assembly,
+        sc.settlements,
+        material,
+        increment=opts["increment"],
+        s_max=opts["s_max"],
+        atol=opts.get("tolerance"),
+        lam=lam,
+        alpha=sc.alpha,
+        contact_gap=opts.get("contact_gap"),
+        dead=dead if dead is not None and len(dead.blocks) else None,
+    )
+    return r, dead
+
+
 def settlement_vars(sc: Scenario, assembly: Assembly, material: Material) -> xr.Dataset:
     """The ``settlement_*`` variables of scenario ``sc`` (its ``settlement_path`` settings)."""
     opts = sc.settlement_path or {}
@@ -165,20 +187,7 @@ def settlement_vars(sc: Scenario, assembly: Assembly, material: Material) -> xr.
                         open=np.full((1, ni), np.nan), displacement=np.full((1, nb, 6), np.nan),
                         hinge_point=np.full((1, ni, 3), np.nan))
     else:
-        pattern = sc.loads_pattern
-        dead = None if pattern.default else resolve(fixed_part(pattern), assembly)
-        r = settlement_path(
-            assembly,
-            sc.settlements,
-            material,
-            increment=opts["increment"],
-            s_max=opts["s_max"],
-            atol=opts.get("tolerance"),
-            lam=bool(opts.get("lam")),
-            alpha=sc.alpha,
-            contact_gap=opts.get("contact_gap"),
-            dead=dead if dead is not None and len(dead.blocks) else None,
-        )
+        r, dead = follow(sc, assembly, material, bool(opts.get("lam")))
         rotating = np.zeros((len(r.magnitudes), ni))  # float: padded with NaN when merged
         for i, h in enumerate(r.hinges):
             rotating[i, h] = 1
