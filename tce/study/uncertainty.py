@@ -183,8 +183,8 @@ class UncertaintySection(_Strict):
         return JointDistribution([v.variable(k) for k, v in self.variables.items()], self.correlation_matrix())
 
     def spec(self) -> str:
-        """The section as JSON (a job's copy of it, and the key of its draw)."""
-        return json.dumps(self.model_dump(), sort_keys=True)
+        """The section as JSON, the variables in file order (a job's copy of it, and the key of its draw)."""
+        return json.dumps(self.model_dump())
 
 
 @functools.lru_cache(maxsize=4)
