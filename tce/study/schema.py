@@ -19,16 +19,17 @@ anything runs, and ``[sweep] load_x`` moves every scaled ``on_top`` point load.
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import itertools
 import json
 import math
 import tomllib
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
-from typing import Annotated, Any, ClassVar, Literal, Union, get_args
+from typing import Annotated, Any, ClassVar, Literal, Union, get_args, get_origin
 
 from pydantic import (
     BaseModel,
@@ -58,7 +59,7 @@ from . import guards
 from .guards import StudyError
 from .names import slug
 from .sections import PlotsSection, _Strict
-from .uncertainty import UncertaintySection
+from .uncertainty import UncertaintySection, capacity_kind, draw
 
 __all__ = [
     "MAX_BLOCKS",
@@ -69,6 +70,7 @@ __all__ = [
     "StudyError",
     "build_material",
     "build_structure",
+    "check_uncertainty",
     "load_study",
     "parse_study",
 ]
@@ -711,6 +713,56 @@ class Scenario:
         """The scenario's :class:`tce.core.loads.LoadPattern`."""
         return LoadPattern.from_dict(self.pattern)
 
+    @property
+    def moves(self) -> bool:
+        """Whether the scenario moves a support."""
+        return any(any(u != 0 for u in v) for v in self.settlements.values())
+
+    def capacity_kind(self, capacity: str) -> str:
+        """What the samples of this scenario compute for ``[uncertainty] capacity``
+        (:func:`tce.study.uncertainty.capacity_kind`)."""
+        return capacity_kind(capacity, self.settlement_path is not None, self.moves, "dead_factor" in self.loads)
+
+    def drawn(self, values: Mapping[str, float]) -> Drawn:
+        """The scenario's sections with the sample ``values`` (study key -> value) set:
+        ``material.<key>``, ``structure.<key>``, ``loads.alpha``, ``loads.fill.<key>``,
+        ``loads.vehicle.<i>.x`` / ``.y``, ``assessment.<factor>``; ``settlement.magnitude``
+        multiplies the settlement vectors (:func:`check_uncertainty` has checked the keys)."""
+        structure, material, pattern = dict(self.structure), dict(self.material), copy.deepcopy(self.pattern)
+        factors = {k: float(self.loads[k]) for k in ("dead_factor", "live_factor") if k in self.loads}
+        scale = 1.0
+        for key, v in values.items():
+            head, _, rest = key.partition(".")
+            if head == "material":
+                material[rest] = v
+            elif head == "structure":
+                structure[rest] = v
+            elif head == "assessment":
+                factors[rest] = v
+            elif key == "settlement.magnitude":
+                scale = v
+            elif key == "loads.alpha":
+                pattern["alpha"] = v
+            elif rest.startswith("fill."):
+                pattern["fill"][rest[5:]] = v
+            else:  # loads.vehicle.<i>.<x|y>
+                _, i, coord = rest.split(".")
+                pattern["vehicle"][int(i)][coord] = v
+        settlements = {s: [scale * u for u in vec] for s, vec in self.settlements.items()}
+        return Drawn(structure, material, pattern, factors, settlements)
+
+
+@dataclass(frozen=True)
+class Drawn:
+    """A scenario's sections with one sample's values (plain data, as in :class:`Scenario`;
+    ``factors``: the assessment's ``dead_factor`` and ``live_factor``)."""
+
+    structure: dict[str, Any]
+    material: dict[str, Any]
+    pattern: dict[str, Any]
+    factors: dict[str, float]
+    settlements: dict[str, list[float]]
+
 
 def assembly_digest(assembly: Assembly) -> str:
     """SHA-256 of an assembly's blocks and interfaces (names, exact coordinates, faces,
@@ -915,8 +967,6 @@ def parse_study(text: str, path: Path | str = "<study>") -> Study:
     _check_plots(study)
     _check_settlement_path(study)
     _check_passive(study)
-    from .samples import check_uncertainty
-
     check_uncertainty(study)
     return study
 
@@ -1116,3 +1166,131 @@ def _check_settlement_path(study: Study) -> None:
                 "tangential forces (a dome's crown load came out unbounded after 2 cm of spread; "
                 "docs/settlements.md); fix: remove live_at, or use a planar structure"
             )
+
+
+def _real(annotation: Any) -> bool:
+    """Whether a field's annotation takes a real number (not a list of them)."""
+    if annotation is float:
+        return True
+    if get_origin(annotation) in (list, tuple, dict):
+        return False
+    return any(_real(a) for a in get_args(annotation))
+
+
+def _numeric(fields: Mapping[str, Any]) -> list[str]:
+    return [k for k, f in fields.items() if _real(f.annotation)]
+
+
+def _key_problem(study: Study, key: str) -> str | None:
+    """Why ``key`` is not a variable of ``study`` (None when it is one)."""
+    spec = study.spec
+    head, _, rest = key.partition(".")
+    sections = {"material": MaterialSection.model_fields, "structure": type(spec.structure).model_fields,
+                "loads.fill": FillSection.model_fields, "assessment": AssessmentSection.model_fields}
+    if head == "loads" and rest.startswith("fill."):
+        head, rest = "loads.fill", rest[5:]
+        if spec.loads.fill is None:
+            return "the study has no [loads.fill]"
+    if head in sections:
+        if head == "assessment" and spec.assessment is None:
+            return "the study has no [assessment]"
+        numeric = _numeric(sections[head])
+        if rest in numeric:
+            return None
+        if rest in sections[head]:
+            return f"{head}.{rest} is not a real number; use one of {[f'{head}.{k}' for k in numeric]}"
+        return f"{head} has no key {rest!r}; use one of {[f'{head}.{k}' for k in numeric]}{did_you_mean(rest, numeric)}"
+    if key in ("loads.alpha", "settlement.magnitude"):
+        return None
+    if head == "loads" and rest.startswith("vehicle."):
+        _, i, coord = (rest.split(".") + ["", ""])[:3]
+        n = len(spec.loads.vehicle)
+        if not (i.isdigit() and int(i) < n and coord in ("x", "y") and rest.count(".") == 2):
+            return f"use loads.vehicle.<i>.x or .y with i from 0 to {n - 1}" if n else "the study has no [[loads.vehicle]]"
+        if coord == "x" and spec.loads.critical_position:
+            return "the critical-position search sets the vehicles' x itself; fix: remove the variable"
+        return None
+    known = ["material.<key>", "structure.<key>", "loads.alpha", "loads.fill.<key>", "loads.vehicle.<i>.x",
+             "loads.vehicle.<i>.y", "assessment.dead_factor", "assessment.live_factor", "settlement.magnitude"]
+    return f"not a key a variable can set; use one of {known}"
+
+
+def _reason(exc: Exception) -> str:
+    if isinstance(exc, ValidationError):
+        return "; ".join(f"{'.'.join(map(str, e['loc']))}: {e['msg']}" for e in exc.errors()[:2])
+    return str(exc)
+
+
+def _refused(study: Study, sc: Scenario, key: str, value: float) -> str | None:
+    """Why the section of ``key`` refuses ``value`` in scenario ``sc`` (None when it takes it)."""
+    d = sc.drawn({key: value})
+    head = key.partition(".")[0]
+    try:
+        if head == "material":
+            build_material(d.material)
+        elif head == "structure":
+            build_structure(d.structure).validate()
+        elif head == "assessment":
+            AssessmentSection.model_validate(d.factors)
+        elif key == "settlement.magnitude":
+            if not abs(value) <= MAX_MULTIPLIER:
+                return f"beyond +-{MAX_MULTIPLIER:g}"
+        elif key == "loads.alpha":
+            if not abs(value) <= 360.0:
+                return "an angle beyond +-360 degrees"
+        else:
+            if "fill" in d.pattern:
+                FillSection.model_validate(d.pattern["fill"])
+            pattern = LoadPattern.from_dict(d.pattern)
+            if not sc.loads.get("critical_position"):
+                resolve(pattern, study.assembly(sc.structure))
+    except (ValueError, ValidationError, LoadError, OSError) as exc:
+        return _reason(exc)
+    return None
+
+
+def check_uncertainty(study: Study) -> None:
+    """Refuse an ``[uncertainty]`` section that cannot run on ``study``, naming the file and the
+    key (:class:`StudyError`): a variable's key that the study does not have or that is not a
+    real number, a capacity whose section is missing, the assessment's factors with another
+    capacity, the material with a settlement capacity, and a variable whose smallest or largest
+    drawn value its section refuses (a normal thickness drawn negative)."""
+    section = study.spec.uncertainty
+    if section is None:
+        return
+    path, spec = study.path, study.spec
+    where = lambda key: f'{path}: uncertainty.variables."{key}"'  # noqa: E731
+    for key in section.names:
+        problem = _key_problem(study, key)
+        if problem is not None:
+            raise StudyError(f"{where(key)}: {problem}" + ("" if "fix:" in problem else "; fix: correct the key"))
+    needs = {"adequacy_factor": ("assessment", spec.assessment), "settlement_capacity":
+             ("settlement_path", spec.settlement_path)}
+    if section.capacity in needs and needs[section.capacity][1] is None:
+        name = needs[section.capacity][0]
+        raise StudyError(f"{path}: uncertainty.capacity: {section.capacity} needs a [{name}] section; fix: add it or "
+                         "capacity = \"auto\"")
+    kinds = {sc.name: sc.capacity_kind(section.capacity) for sc in study.scenarios()}
+    for sc in study.scenarios():
+        if kinds[sc.name] == "settlement_capacity" and not sc.moves:
+            raise StudyError(f"{path}: uncertainty.capacity: scenario {sc.name!r} moves no support: it has no settlement "
+                             "capacity; fix: capacity = \"auto\"")
+    for key in section.names:
+        if key.startswith("assessment.") and any(k != "adequacy_factor" for k in kinds.values()):
+            raise StudyError(f"{where(key)}: the assessment's factors enter the adequacy factor alone, and some "
+                             "scenario computes another capacity; fix: capacity = \"adequacy_factor\" or remove the variable")
+        if key.startswith("material.") and "settlement_capacity" in kinds.values():
+            raise StudyError(f"{where(key)}: a settlement path follows the rigid Heyman material (no friction limit, "
+                             "cohesion or strengths); fix: remove the variable, or capacity = \"lambda_max\"")
+    _, x = draw(section)
+    first = study.scenarios()[0]
+    for j, key in enumerate(section.names):
+        lo, hi = float(x[:, j].min()), float(x[:, j].max())
+        for value in (lo, hi) if hi > lo else (lo,):
+            problem = _refused(study, first, key, value)
+            if problem is not None:
+                raise StudyError(
+                    f"{where(key)}: the {section.samples} drawn values span [{lo:.6g}, {hi:.6g}] and {value:.6g} is "
+                    f"refused ({problem}); fix: a distribution within the key's range (truncnorm with bounds, "
+                    "lognormal for a positive quantity) or a smaller spread"
+                )
