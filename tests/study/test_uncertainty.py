@@ -1,0 +1,183 @@
+"""``[uncertainty]`` in study files (tce.study.uncertainty, tce.study.samples): the jobs and their
+keys, bad input refused naming the key, the work estimate, the statuses counted, the warm and
+rebuilt capacities, and a run killed between jobs of samples resumed to the same answer."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from helpers import block_on_support
+
+from tce.study import runner
+from tce.study.schema import StudyError, parse_study
+from tce.study.uncertainty import FRAGILITY_POINTS, statistics
+
+from faults.common import answer, errors, tce_run
+
+#: a flat block (1.0 x 0.4 x 0.1 m) on a slab: it slides at lambda = mu (it rocks at b / h = 10)
+SLIDING = """
+[study]
+name = "sliding"
+
+[structure]
+type = "file"
+path = "block.json"
+
+[material]
+friction = 0.6
+
+[loads]
+lambda_step = 0.1
+tolerance = 1e-3
+
+[uncertainty]
+samples = 20
+chunk = 8
+seed = 4
+threshold = 0.55
+
+[uncertainty.variables]
+"material.friction" = { distribution = "lognormal", mean = 0.6, cov = 0.15 }
+"""
+
+
+def sliding(folder: Path, text: str = SLIDING, **replace: str) -> Path:
+    """The sliding-block study written to ``folder`` (with its block file), ``replace``d."""
+    (folder / "block.json").write_text(json.dumps(block_on_support(b=1.0, h=0.1, d=0.4).to_dict()))
+    for old, new in replace.items():
+        assert old in text, old
+        text = text.replace(old, new)
+    path = folder / "study.toml"
+    path.write_text(text)
+    return path
+
+
+def test_jobs_cover_every_sample_once(tmp_path):
+    """ceil(N / chunk) jobs per scenario, contiguous and disjoint; the nominal scenario's key
+    does not change with [uncertainty]; a job's key changes with the section and its samples."""
+    text = SLIDING.replace("[scenarios", "") + '\n[scenarios.none]\n[scenarios.up]\nbase = [0, 0, 0.001, 0, 0, 0]\n'
+    study = parse_study(text, sliding(tmp_path))
+    jobs = [j for j in study.jobs() if j.samples is not None]
+    assert len(jobs) == 2 * math.ceil(20 / 8)
+    for name in ("none", "up"):
+        ranges = [j.samples for j in jobs if j.name.startswith(name + " ")]
+        assert ranges == [(0, 8), (8, 16), (16, 20)]
+    plain = parse_study(text.split("[uncertainty]")[0] + "[scenarios.none]\n[scenarios.up]\nbase = [0, 0, 0.001, 0, 0, 0]\n",
+                        tmp_path / "study.toml")
+    assert [sc.key for sc in study.scenarios()] == [sc.key for sc in plain.scenarios()]
+    keys = {j.key for j in jobs}
+    assert len(keys) == len(jobs)
+    other = parse_study(text.replace("seed = 4", "seed = 5"), tmp_path / "study.toml")
+    assert not keys & {j.key for j in other.jobs() if j.samples is not None}
+
+
+@pytest.mark.parametrize(
+    "old, new, key",
+    [
+        ('distribution = "lognormal"', 'distribution = "lognormall"', "material.friction"),
+        ('"material.friction"', '"material.frictio"', "material.frictio"),
+        ('"material.friction"', '"material.flow"', "material.flow"),
+        ('"material.friction"', '"structure.path"', "structure.path"),
+        ('"material.friction"', '"loads.vehicle.0.x"', "loads.vehicle.0.x"),
+        ('"material.friction"', '"assessment.live_factor"', "assessment.live_factor"),
+        ('distribution = "lognormal", mean = 0.6, cov = 0.15', 'distribution = "normal", mean = 0.6, std = 0.4',
+         "material.friction"),
+        ('cov = 0.15 }', 'cov = 0.15 }\n"material.cohesion" = { distribution = "uniform", mean = 1, std = 0.1 }\n'
+         '"material.tensile_strength" = { distribution = "uniform", mean = 0.5, std = 0.1 }\n'
+         '[uncertainty.correlation]\n"material.friction|material.cohesion" = 0.9\n'
+         '"material.cohesion|material.tensile_strength" = 0.9\n"material.friction|material.tensile_strength" = -0.9',
+         "positive definite"),
+        ('cov = 0.15 }', 'cov = 0.15 }\n[uncertainty.correlation]\n"material.friction|material.cohesion" = 0.5',
+         "'material.cohesion' is not a variable"),
+        ("samples = 20", "samples = 0", "uncertainty.samples"),
+        ("threshold = 0.55", 'capacity = "settlement_capacity"', "uncertainty.capacity"),
+    ],
+)
+def test_bad_input_names_the_key(tmp_path, old, new, key):
+    """Each mistake is one StudyError naming the file and the key (the friction drawn normal
+    with std 0.2 goes negative among 20 samples: its range is checked, not only its mean)."""
+    with pytest.raises(StudyError) as err:
+        parse_study(SLIDING.replace(old, new), sliding(tmp_path))
+    assert str(tmp_path / "study.toml") in str(err.value) and key in str(err.value)
+
+
+def test_bad_input_exits_2_and_writes_nothing(tmp_path):
+    study = sliding(tmp_path, **{"cov = 0.15": "std = 0.3", 'distribution = "lognormal"': 'distribution = "normal"'})
+    done = tce_run(study, tmp_path / "out")
+    assert done.returncode == 2
+    assert 'uncertainty.variables."material.friction"' in errors(done.stderr)[0], done.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_work_estimate_counts_the_samples(tmp_path):
+    """[study] max_solves caps the samples too."""
+    study = parse_study(SLIDING, sliding(tmp_path))
+    assert "20 samples" in study.work()
+    with pytest.raises(StudyError, match="study.max_solves"):
+        parse_study(SLIDING.replace('name = "sliding"', 'name = "sliding"\nmax_solves = 40'), tmp_path / "study.toml")
+
+
+def test_statuses_are_counted_never_dropped():
+    """+inf survives, -inf fails, NaN is counted apart; the fragility spans the finite capacities."""
+    cap = np.array([[0.5, 1.5, np.inf, -np.inf, np.nan, 2.0]])
+    status = np.array([["optimal", "optimal", "unbounded", "infeasible", "numerical", "optimal"]], dtype=object)
+    ds = xr.Dataset(
+        {"sample_capacity": (("scenario", "sample"), cap), "sample_status": (("scenario", "sample"), status),
+         "sample_input": (("sample", "variable"), np.array([[1.0], [2.0], [3.0], [0.0], [5.0], [4.0]]))},
+        coords={"scenario": ["a"], "sample": np.arange(6), "variable": ["v"]},
+        attrs={"uncertainty_threshold": 1.0, "uncertainty_interval": "wilson", "uncertainty_confidence": 0.95},
+    )
+    out = statistics(ds)
+    assert (int(out.n_failed[0]), int(out.n_decided[0]), int(out.n_numerical[0])) == (2, 5, 1)
+    assert float(out.failure_probability[0]) == 0.4
+    assert float(out.failure_low[0]) < 0.4 < float(out.failure_high[0])
+    x = out.fragility_intensity.values[0]
+    assert len(x) == FRAGILITY_POINTS and (x[0], x[-1]) == (0.5, 2.0)
+    # P(capacity < x) at the largest finite capacity: 0.5, 1.5 and -inf of the 5 decided
+    assert float(out.fragility_probability[0, -1]) == pytest.approx(3 / 5)
+    assert float(out.sensitivity[0, 0]) == pytest.approx(0.9)  # ranks of (0.5, 1.5, inf, -inf, 2) vs inputs
+
+
+def test_warm_and_rebuilt_capacities_agree(tmp_path, monkeypatch):
+    """The warm solver's capacities are the rebuilt scenarios' (to 1e-7), and each is the drawn
+    friction (the block slides at lambda = mu)."""
+    from tce.study import samples
+
+    study = parse_study(SLIDING, sliding(tmp_path))
+    warm = runner.run_study(study, tmp_path / "warm", jobs=1)
+    monkeypatch.setattr(samples, "_warm", lambda *args: None)
+    rebuilt = runner.run_study(study, tmp_path / "rebuilt", jobs=1)
+    a, b = (xr.load_dataset(r.results) for r in (warm, rebuilt))
+    np.testing.assert_allclose(a.sample_capacity.values, b.sample_capacity.values, rtol=1e-7)
+    np.testing.assert_allclose(a.sample_capacity.values[0], a.sample_input.values[:, 0], rtol=1e-7)
+    assert list(a.capacity_kind.values) == ["lambda_max"]
+
+
+class Stop(Exception):
+    """Stands for a crash or a Ctrl-C between two jobs."""
+
+
+def test_stopped_run_resumes_without_redrawing(tmp_path):
+    """A run stopped after its nominal scenario and first job of samples keeps both; the rerun
+    solves only the missing jobs and writes the answer of a run that was never stopped."""
+    study = parse_study(SLIDING, sliding(tmp_path))
+    clean = answer(runner.run_study(study, tmp_path / "clean", jobs=1).results)
+
+    def stop_after_two(done: int, total: int, steps: int) -> None:
+        if done == 2:
+            raise Stop
+
+    with pytest.raises(Stop):
+        runner.run_study(study, tmp_path / "stopped", jobs=1, progress=stop_after_two)
+    folder = tmp_path / "stopped" / "sliding" / "scenarios"
+    kept = {p.name: p.stat().st_mtime_ns for p in folder.glob("*.nc")}
+    assert sorted(kept) == sorted(p.name for p in (tmp_path / "clean" / "sliding" / "scenarios").glob("*.nc"))[:2]
+    report = runner.run_study(study, tmp_path / "stopped", jobs=1)
+    assert report.solved == ["none samples 8-16", "none samples 16-20"]
+    assert all((folder / n).stat().st_mtime_ns == t for n, t in kept.items())
+    xr.testing.assert_identical(answer(report.results), clean)
