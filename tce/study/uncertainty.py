@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import functools
 import json
+import logging
 import warnings
 from typing import Annotated, Any, Literal
 
@@ -36,6 +37,8 @@ __all__ = [
     "draw",
     "statistics",
 ]
+
+log = logging.getLogger(__name__)
 
 #: most samples of a study
 MAX_SAMPLES = 1_000_000
@@ -190,7 +193,13 @@ class UncertaintySection(_Strict):
 @functools.lru_cache(maxsize=4)
 def _drawn(spec: str) -> tuple[np.ndarray, np.ndarray]:
     section = UncertaintySection.model_validate_json(spec)
-    u, x = section.joint().sample(section.samples, section.method, section.seed)
+    with warnings.catch_warnings():  # scipy's warning of a Sobol sample not a power of 2: said once, in the log
+        warnings.simplefilter("ignore", UserWarning)
+        u, x = section.joint().sample(section.samples, section.method, section.seed)
+    n = section.samples
+    if section.method == "sobol" and n & (n - 1):
+        log.warning("[uncertainty] samples = %d: a Sobol sample keeps its balance properties only for a power "
+                    "of 2 (e.g. %d)", n, 1 << (n.bit_length() - 1))
     u.setflags(write=False)
     x.setflags(write=False)
     return u, x
