@@ -195,9 +195,13 @@ def work(spec: Any, search_solves: int = 0) -> tuple[int, str]:
     sampled = spec.uncertainty
     if sampled is not None:
         # each sample: a direct limit, a critical-position search or a settlement path
+        from .uncertainty import evaluations  # here: the tce program imports this module before it handles Ctrl-C
+
         per = max(1 + search_solves, math.ceil(path.s_max / path.increment) if path is not None else 1)
-        terms.append(f"{sampled.samples} samples of at most {per} solves ([uncertainty] samples)")
-        each += sampled.samples * per
+        extra = evaluations(sampled)
+        terms.append(f"{sampled.samples} samples{f' + {extra} FORM and subset evaluations' if extra else ''} "
+                     f"of at most {per} solves ([uncertainty])")
+        each += (sampled.samples + extra) * per
     return count * each, f"{count} scenarios x ({' + '.join(terms)}) = {count * each} solves at most"
 
 

@@ -20,9 +20,10 @@ warm TCE solve of the first scenario and ``t_build`` the time to build its analy
 more than :data:`LARGE_MODEL` unknowns is taken as large work without solving anything.
 ``settlement`` is the finite-settlement path of a study with ``[settlement_path]``: its
 increments up to ``s_max`` (``s_max / increment`` per scenario, an upper bound: a path ends
-at its collapse) times :data:`SETTLEMENT_INCREMENT_S`. A job of samples (``[uncertainty]``)
-counts one solve per sample, or one settlement path per sample in a study with
-``[settlement_path]`` whose scenario moves a support.
+at its collapse) times :data:`SETTLEMENT_INCREMENT_S`. A job of ``[uncertainty]`` counts
+one solve per evaluation of the capacity (at most: :func:`tce.study.uncertainty.evaluations`),
+or one settlement path per evaluation in a study with ``[settlement_path]`` whose scenario
+moves a support.
 """
 
 from __future__ import annotations
@@ -34,6 +35,8 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
+
+from .uncertainty import UncertaintySection, evaluations
 
 if TYPE_CHECKING:
     from ..core.analysis import Analysis
@@ -106,8 +109,8 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
     solves = 0.0
     sampled = 0.0
     for sc in scenarios:
-        if sc.samples is not None:  # a job of samples: a limit or a settlement path per sample
-            n = sc.samples[1] - sc.samples[0]
+        if sc.uncertainty is not None:  # a limit or a settlement path per evaluation of the capacity
+            n = evaluations(UncertaintySection.model_validate_json(sc.uncertainty), sc.samples)
             solves += n
             sampled += n * settlement_increments(sc)
             continue
@@ -120,7 +123,7 @@ def estimate_work(scenarios: Sequence[Scenario], analysis_of: Callable[[Scenario
         increments = min(lam, cap) / step + 1 if math.isfinite(lam) else min(cap / step, MAX_INCREMENTS) + 1
         solves += increments + 2
     groups = len({sc.group for sc in scenarios})
-    increments = sampled + sum(settlement_increments(sc) for sc in scenarios if sc.samples is None)
+    increments = sampled + sum(settlement_increments(sc) for sc in scenarios if sc.uncertainty is None)
     work = (solves * t_solve + increments * SETTLEMENT_INCREMENT_S + len(scenarios) * SCENARIO_S
             + (groups - 1) * t_build)
     path = f", {increments:.0f} settlement increments of {SETTLEMENT_INCREMENT_S:.2g} s" if increments else ""

@@ -12,7 +12,7 @@ reader sees the previous file or the complete new one; a failed write raises
 :class:`StorageError` naming the path and the cause and leaves no temporary behind. A
 scenario file records the hash of its scenario's definition (:attr:`tce.study.Scenario.key`)
 and of its own content; a rerun reuses it only when both match and it holds every variable
-of :data:`SCENARIO_VARS` (a job of samples: :data:`tce.study.samples.SAMPLE_VARS`;
+of :data:`SCENARIO_VARS` (a job of ``[uncertainty]``: :func:`tce.study.samples.job_vars`;
 :func:`load_finished`). One run at a time writes a study folder
 (:func:`folder_lock`).
 """
@@ -45,7 +45,7 @@ from ..core.result import DOFS, WRENCH_COMPONENTS, XYZ
 from ..core.solve import SOLVER_NAME, TCEResult
 from ..files import atomic_write, storage_error, temporaries
 from ..structures.assembly import Assembly
-from .samples import SAMPLE_VARS, with_samples
+from .samples import job_vars, with_samples
 from .schema import Scenario, Study
 
 __all__ = [
@@ -519,7 +519,7 @@ def load_finished(directory: Path, scenarios: Iterable[Scenario]) -> dict[str, x
         except Exception as exc:  # noqa: BLE001 - the netCDF library raises many kinds on a damaged file
             log.warning("ignoring unreadable scenario file %s (%s): solving %r again", path, exc, sc.name)
             continue
-        missing = [v for v in (SCENARIO_VARS if sc.samples is None else SAMPLE_VARS) if v not in ds.data_vars]
+        missing = [v for v in (SCENARIO_VARS if sc.uncertainty is None else job_vars(sc)) if v not in ds.data_vars]
         if ds.attrs.get("scenario_key") != sc.key:
             log.info("scenario %r changed since %s was written: solving it again", sc.name, path)
         elif missing or ds.attrs.get("content_sha256") != content_digest(ds):

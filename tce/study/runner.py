@@ -78,7 +78,7 @@ from .results import (
     write_atomic,
     write_scenario,
 )
-from .samples import solve_samples
+from .samples import solve_job
 from .schema import Scenario, Study, build_material
 from ..signals import deferred, quiet_children
 from .settlement import settlement_vars
@@ -186,14 +186,14 @@ def _cold(analysis: Analysis) -> Analysis:
 
 def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     """Run the load path of one scenario on its built ``assembly``; return its dataset (for a
-    job of samples, :attr:`Scenario.samples`, their capacities: :func:`tce.study.samples.solve_samples`).
+    job of ``[uncertainty]``, :attr:`Scenario.uncertainty`, its answer: :func:`tce.study.samples.solve_job`).
 
     The multipliers the study's figures draw (:attr:`Scenario.draw`) that the load path did
     not reach are solved after it and stored as steps like the others
     (:func:`with_drawn_states`).
     """
-    if sc.samples is not None:
-        return solve_samples(sc, assembly)
+    if sc.uncertainty is not None:
+        return solve_job(sc, assembly)
     analysis = _cold(_analysis(sc, assembly))
     tol = sc.loads["tolerance"]
     pattern, crit = sc.loads_pattern, None
@@ -366,7 +366,7 @@ class _Tally:
         if "outcome" in ds:  # a scenario's load path (not a job of samples)
             self.outcomes[name] = str(ds["outcome"].values[0])
         self.datasets[name] = ds
-        self.steps += int(ds["n_solves"].values[0]) if "n_solves" in ds else ds.sizes["sample"]
+        self.steps += int(ds["n_solves"].values[0]) if "n_solves" in ds else ds.sizes.get("sample", 0)
         if self.progress is not None:
             self.progress(len(self.datasets), self.total, self.steps)
 

@@ -30,6 +30,7 @@ import logging
 import math
 from collections.abc import Mapping
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -37,20 +38,23 @@ from pydantic import ValidationError
 
 from ..analysis.assessment import adequacy_factor
 from ..analysis.critical import critical_position, search_bounds
-from ..analysis.reliability import Capacity, WarmLimit, evaluate
+from ..analysis.reliability import Capacity, WarmLimit, evaluate, form, subset_simulation
 from ..core.analysis import Analysis
 from ..core.loads import LoadPattern
 from ..structures.assembly import Assembly
-from .schema import SAMPLES_SEPARATOR, Scenario, Study, build_material, build_structure
+from .schema import Scenario, Study, build_material, build_structure
 from .settlement import follow
 from .uncertainty import UncertaintySection, draw, label, statistics, study_attrs
 
-__all__ = ["SAMPLE_VARS", "solve_samples", "with_samples"]
+__all__ = ["FORM_VARS", "SAMPLE_VARS", "SUBSET_VARS", "job_vars", "solve_job", "with_samples"]
 
 log = logging.getLogger(__name__)
 
 #: data variables every file of a job of samples holds
 SAMPLE_VARS = ("sample_capacity", "sample_status", "capacity_kind")
+#: data variables of a job of FORM (with ``form = true``) and of subset simulation (``subset = true``)
+FORM_VARS = ("form_beta", "form_pf", "form_status", "form_evaluations", "form_design_point", "form_alpha")
+SUBSET_VARS = ("subset_pf", "subset_cov", "subset_status", "subset_evaluations")
 #: variables a warm solver changes: study key -> WarmLimit parameter
 WARM_MATERIAL = {"material.friction": "friction", "material.cohesion": "cohesion",
                  "material.tensile_strength": "tensile_strength"}
@@ -135,30 +139,57 @@ def _rebuilt(job: Scenario, assembly: Assembly, kind: str) -> Capacity:
     return capacity
 
 
-def solve_samples(job: Scenario, assembly: Assembly) -> xr.Dataset:
-    """The capacities of the samples ``job.samples`` of the job's scenario (:meth:`tce.study.Scenario.capacity_kind`):
-    a dataset of ``sample_capacity`` and
-    ``sample_status`` on ``(scenario, sample)`` and ``capacity_kind``, with the job's key
-    (``scenario_key``) and name (``job``) in its attrs."""
+def job_vars(job: Scenario) -> tuple[str, ...]:
+    """The data variables the file of a job of ``[uncertainty]`` holds (a file without one of
+    them is solved again)."""
+    if job.samples is not None:
+        return SAMPLE_VARS
     section = UncertaintySection.model_validate_json(job.uncertainty)
-    lo, hi = job.samples
-    _, x = draw(job.uncertainty)
-    records = [dict(zip(section.names, map(float, row), strict=True)) for row in x[lo:hi]]
+    return ("capacity_kind",) + FORM_VARS * section.form + SUBSET_VARS * section.subset
+
+
+def solve_job(job: Scenario, assembly: Assembly) -> xr.Dataset:
+    """The answer of a job of ``[uncertainty]`` (:attr:`Scenario.uncertainty`) on the built
+    ``assembly`` of its scenario, computed cold (module docstring) as the scenario's capacity
+    (:meth:`tce.study.Scenario.capacity_kind`): for a job of samples their ``sample_capacity``
+    and ``sample_status`` on ``(scenario, sample)``; for the job of FORM and subset simulation
+    their ``form_*`` and ``subset_*`` variables (``docs/results.md``); with ``capacity_kind``,
+    the job's key (``scenario_key``) and name (``job``) in its attrs."""
+    section = UncertaintySection.model_validate_json(job.uncertainty)
     kind = job.capacity_kind(section.capacity)
     capacity = _warm(job, assembly, kind, section) or _rebuilt(job, assembly, kind)
-    statuses, values = evaluate(capacity, records)
-    scenario = job.name.rpartition(SAMPLES_SEPARATOR)[0]
-    ds = xr.Dataset(
-        {
-            "sample_capacity": (("scenario", "sample"), values[None]),
-            "sample_status": (("scenario", "sample"), np.asarray(statuses, dtype=object)[None]),
-            "capacity_kind": (("scenario",), np.asarray([kind], dtype=object)),
-        },
-        coords={"scenario": np.asarray([scenario], dtype=object), "sample": np.arange(lo, hi)},
-        attrs={"scenario_key": job.key, "job": job.name},
-    )
-    log.debug("job %r: %d samples, %s", job.name, hi - lo, dict(zip(*np.unique(statuses, return_counts=True))))
-    return label(ds)
+    data: dict[str, tuple] = {"capacity_kind": (("scenario",), np.asarray([kind], dtype=object))}
+    coords: dict[str, Any] = {"scenario": np.asarray([job.of], dtype=object)}
+    if job.samples is not None:
+        lo, hi = job.samples
+        _, x = draw(job.uncertainty)
+        records = [dict(zip(section.names, map(float, row), strict=True)) for row in x[lo:hi]]
+        statuses, values = evaluate(capacity, records)
+        data["sample_capacity"] = (("scenario", "sample"), values[None])
+        data["sample_status"] = (("scenario", "sample"), np.asarray(statuses, dtype=object)[None])
+        coords["sample"] = np.arange(lo, hi)
+        log.debug("job %r: %s", job.name, dict(zip(*np.unique(statuses, return_counts=True))))
+    else:
+        data |= _estimators(section, capacity)
+        coords["variable"] = np.asarray(section.names, dtype=object)
+    return label(xr.Dataset(data, coords=coords, attrs={"scenario_key": job.key, "job": job.name}))
+
+
+def _estimators(section: UncertaintySection, capacity: Capacity) -> dict[str, tuple]:
+    """FORM and subset simulation of ``capacity < threshold``, as the section asks for them."""
+    joint, data = section.joint(), {}
+    one = lambda v: (("scenario",), np.asarray([v], dtype=object if isinstance(v, str) else None))  # noqa: E731
+    if section.form:
+        f = form(joint, capacity, section.threshold)
+        data |= {"form_beta": one(f.beta), "form_pf": one(f.pf), "form_evaluations": one(f.evaluations),
+                 "form_status": one("converged" if f.converged else f.message),
+                 "form_design_point": (("scenario", "variable"), f.x[None]),
+                 "form_alpha": (("scenario", "variable"), f.alpha[None])}
+    if section.subset:
+        r = subset_simulation(joint, capacity, section.threshold, n=section.subset_samples, seed=section.seed)
+        data |= {"subset_pf": one(r.pf), "subset_cov": one(r.cov), "subset_evaluations": one(r.evaluations),
+                 "subset_status": one("converged" if r.converged else "not_converged")}
+    return data
 
 
 def with_samples(ds: xr.Dataset, study: Study, parts: Mapping[str, xr.Dataset]) -> xr.Dataset:
@@ -166,16 +197,21 @@ def with_samples(ds: xr.Dataset, study: Study, parts: Mapping[str, xr.Dataset]) 
     and their statistics (:func:`tce.study.uncertainty.statistics`)."""
     section = study.spec.uncertainty
     names = [sc.name for sc in study.scenarios()]
-    jobs = [job for job in study.jobs() if job.samples is not None]
     cap = np.full((len(names), section.samples), np.nan)
     status = np.full((len(names), section.samples), "", dtype=object)
     kinds = np.full(len(names), "", dtype=object)
-    for job in jobs:
-        part = parts[job.name]
-        i, (lo, hi) = names.index(job.name.rpartition(SAMPLES_SEPARATOR)[0]), job.samples
+    estimators: list[xr.Dataset] = []  # the jobs of FORM and subset simulation, in the scenarios' order
+    for job in study.jobs():
+        if job.uncertainty is None:
+            continue
+        part, i = parts[job.name], names.index(job.of)
+        kinds[i] = str(part["capacity_kind"].values[0])
+        if job.samples is None:
+            estimators.append(part.drop_vars("capacity_kind"))
+            continue
+        lo, hi = job.samples
         cap[i, lo:hi] = part["sample_capacity"].values[0]
         status[i, lo:hi] = part["sample_status"].values[0].astype(str)
-        kinds[i] = str(part["capacity_kind"].values[0])
     _, x = draw(section)
     out = ds.assign(
         sample_input=(("sample", "variable"), np.asarray(x)),
@@ -183,5 +219,9 @@ def with_samples(ds: xr.Dataset, study: Study, parts: Mapping[str, xr.Dataset]) 
         sample_status=(("scenario", "sample"), status),
         capacity_kind=(("scenario",), kinds),
     ).assign_coords(sample=np.arange(section.samples), variable=np.asarray(section.names, dtype=object))
+    if estimators:
+        merged = xr.concat(estimators, dim="scenario")
+        out = out.assign({k: (v.dims, v.values.astype(object) if v.dtype.kind in "OUS" else v.values)
+                          for k, v in merged.data_vars.items()})
     out.attrs.update(study_attrs(section))
     return statistics(label(out))

@@ -81,6 +81,8 @@ GEOMETRY_SWEEPS = ("inner_radius", "thickness", "depth", "radius")
 MATERIAL_SWEEPS = ("friction", "cohesion", "tensile_strength", "compressive_strength")
 #: between a scenario's name and its samples in the name of a job of samples (:meth:`Study.jobs`)
 SAMPLES_SEPARATOR = " samples "
+#: ends the name of a scenario's job of FORM and subset simulation (:meth:`Study.jobs`)
+ESTIMATORS_SUFFIX = " form+subset"
 #: names a file or folder may not take on some systems (Windows), with or without an extension
 RESERVED_NAMES = frozenset(
     ["CON", "PRN", "AUX", "NUL"] + [f"{p}{k}" for p in ("COM", "LPT") for k in range(1, 10)]
@@ -651,6 +653,14 @@ class Scenario:
         Load multipliers the study's figures draw for this scenario (``[plots] steps``,
         empty unless ``[plots]`` selects the scenario): solved after the load path when
         they are not steps of it. Not part of :attr:`key`: figures do not change answers.
+    uncertainty : str, optional
+        Set on the jobs of ``[uncertainty]`` (:meth:`Study.jobs`), which solve the section
+        (JSON, :meth:`UncertaintySection.spec`) instead of the load path (:mod:`tce.study.samples`).
+    samples : (int, int), optional
+        A job of samples: the samples ``lo`` to ``hi - 1``, named ``<scenario> samples lo-hi``;
+        None for the scenario's job of FORM and subset simulation, ``<scenario> form+subset``.
+    of : str, optional
+        The name of the scenario a job of ``[uncertainty]`` belongs to.
     """
 
     name: str
@@ -665,8 +675,9 @@ class Scenario:
     assembly_digest: str
     draw: tuple[float, ...] = ()
     settlement_path: dict[str, Any] | None = None
-    samples: tuple[int, int] | None = None
     uncertainty: str | None = None
+    samples: tuple[int, int] | None = None
+    of: str | None = None
 
     @property
     def group(self) -> str:
@@ -703,9 +714,9 @@ class Scenario:
             what["pattern"] = self.pattern
         if self.settlement_path is not None:
             what["settlement_path"] = self.settlement_path
-        if self.samples is not None:
-            what["samples"] = list(self.samples)
+        if self.uncertainty is not None:
             what["uncertainty"] = self.uncertainty
+            what["samples"] = None if self.samples is None else list(self.samples)
         return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()
 
     @property
@@ -844,18 +855,23 @@ class Study:
 
     def jobs(self) -> list[Scenario]:
         """What a run solves: every scenario (:meth:`scenarios`) and, with ``[uncertainty]``,
-        for each scenario ``ceil(samples / chunk)`` jobs of samples (:attr:`Scenario.samples`),
-        in the scenarios' order."""
+        for each scenario ``ceil(samples / chunk)`` jobs of samples (:attr:`Scenario.samples`)
+        and, with ``form`` or ``subset``, one job of FORM and subset simulation, in the
+        scenarios' order."""
         scenarios = self.scenarios()
         section = self.spec.uncertainty
         if section is None:
             return scenarios
         spec, n = section.spec(), section.samples
-        return scenarios + [
+        jobs = [
             replace(sc, name=f"{sc.name}{SAMPLES_SEPARATOR}{lo}-{min(lo + section.chunk, n)}", draw=(),
-                    samples=(lo, min(lo + section.chunk, n)), uncertainty=spec)
+                    samples=(lo, min(lo + section.chunk, n)), uncertainty=spec, of=sc.name)
             for sc in scenarios for lo in range(0, n, section.chunk)
         ]
+        if section.form or section.subset:
+            jobs += [replace(sc, name=f"{sc.name}{ESTIMATORS_SUFFIX}", draw=(), uncertainty=spec, of=sc.name)
+                     for sc in scenarios]
+        return scenarios + jobs
 
     def _expand(self) -> Iterator[Scenario]:
         spec = self.spec

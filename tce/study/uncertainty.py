@@ -35,6 +35,7 @@ __all__ = [
     "VariableSection",
     "capacity_kind",
     "draw",
+    "evaluations",
     "statistics",
 ]
 
@@ -210,6 +211,21 @@ def draw(section: UncertaintySection | str) -> tuple[np.ndarray, np.ndarray]:
     both ``(samples, variables)``, read-only; drawn once per process from ``(samples, method,
     seed)`` and the variables (:meth:`JointDistribution.sample`): the same on every run."""
     return _drawn(section if isinstance(section, str) else section.spec())
+
+
+#: most iterations of FORM (:func:`tce.analysis.reliability.form`) and levels of subset simulation
+#: (:func:`tce.analysis.reliability.subset_simulation`) of a study
+FORM_ITERATIONS, SUBSET_LEVELS = 50, 20
+
+
+def evaluations(section: UncertaintySection, samples: tuple[int, int] | None = None) -> int:
+    """Most evaluations of the capacity of one job of ``section``: its samples ``(lo, hi)``, or
+    (``samples`` None) FORM's ``FORM_ITERATIONS (d + 1) + 1`` plus subset simulation's
+    ``subset_samples SUBSET_LEVELS``, as the section asks for them."""
+    if samples is not None:
+        return samples[1] - samples[0]
+    d = len(section.variables)
+    return section.form * (FORM_ITERATIONS * (d + 1) + 1) + section.subset * section.subset_samples * SUBSET_LEVELS
 
 
 def capacity_kind(capacity: str, settlement_path: bool, moves: bool, assessment: bool) -> str:

@@ -2,7 +2,8 @@
 slides at lambda = mu (it rocks at b / h = 10), so with a lognormal friction, mean 0.6 and
 c.o.v. 0.15, P(lambda_max < x) is the lognormal CDF, written out here from the mean and c.o.v.
 Through ``tce``'s study path: the section read from TOML, the draw, the jobs of samples, the
-merged statistics and fragility curve."""
+merged statistics and fragility curve, FORM (exact here: the limit state is monotone in one
+variable) and subset simulation."""
 
 from __future__ import annotations
 
@@ -26,7 +27,8 @@ def _lognormal_cdf(x: np.ndarray) -> np.ndarray:
 @pytest.fixture(scope="module")
 def results(tmp_path_factory) -> xr.Dataset:
     folder = tmp_path_factory.mktemp("sliding")
-    text = SLIDING.replace("samples = 20", "samples = 400").replace("chunk = 8", "chunk = 100")
+    text = SLIDING.replace("samples = 20", "samples = 400").replace("chunk = 8", "chunk = 100").replace(
+        "threshold = 0.55", "threshold = 0.55\nform = true\nsubset = true\nsubset_samples = 200")
     study = parse_study(text, sliding(folder, text))
     return xr.load_dataset(runner.run_study(study, folder / "out", jobs=1).results)
 
@@ -47,3 +49,13 @@ def test_failure_probability_is_the_lognormal_cdf(results):
     assert np.all(results["fragility_low"].values[0] <= cdf + 1e-12)
     assert np.all(cdf <= results["fragility_high"].values[0] + 1e-12)
     assert results.attrs["uncertainty_interval"] == "clopper-pearson" and results.attrs["uncertainty_samples"] == 400
+
+
+def test_form_is_exact_and_subset_within_its_accuracy(results):
+    exact = float(_lognormal_cdf(np.array(0.55)))
+    assert results["form_status"].values[0] == "converged"
+    assert float(results["form_pf"][0]) == pytest.approx(exact, abs=1e-6)
+    assert float(results["form_design_point"][0, 0]) == pytest.approx(0.55, rel=1e-6)
+    assert results["subset_status"].values[0] == "converged"
+    pf, cov = float(results["subset_pf"][0]), float(results["subset_cov"][0])
+    assert abs(pf - exact) <= 3 * cov * exact
