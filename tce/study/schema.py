@@ -715,7 +715,8 @@ class Scenario:
         if self.settlement_path is not None:
             what["settlement_path"] = self.settlement_path
         if self.uncertainty is not None:
-            what["uncertainty"] = self.uncertainty
+            section = UncertaintySection.model_validate_json(self.uncertainty)
+            what["uncertainty"] = section.answer_spec(self.samples is not None)
             what["samples"] = None if self.samples is None else list(self.samples)
         return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()
 

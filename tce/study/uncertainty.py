@@ -186,6 +186,17 @@ class UncertaintySection(_Strict):
         """The joint distribution of the variables."""
         return JointDistribution([v.variable(k) for k, v in self.variables.items()], self.correlation_matrix())
 
+    def answer_spec(self, samples: bool) -> str:
+        """What decides the answer of a job (JSON, part of its key): for a job of samples the
+        variables, their correlation, the draw and the capacity; for FORM and subset
+        simulation also the threshold and their settings. The interval, its confidence and
+        the threshold of the statistics are applied when the results are merged: changing them
+        solves nothing again."""
+        keep = {"variables", "correlation", "samples", "method", "seed", "capacity"}
+        if not samples:
+            keep |= {"threshold", "form", "subset", "subset_samples"}
+        return json.dumps(self.model_dump(include=keep))
+
     def spec(self) -> str:
         """The section as JSON, the variables in file order (a job's copy of it, and the key of its draw)."""
         return json.dumps(self.model_dump())

@@ -74,6 +74,9 @@ def test_jobs_cover_every_sample_once(tmp_path):
     assert len(keys) == len(jobs)
     other = parse_study(text.replace("seed = 4", "seed = 5"), tmp_path / "study.toml")
     assert not keys & {j.key for j in other.jobs() if j.samples is not None}
+    # the statistics' settings are applied when merging: the samples need not be solved again
+    judged = parse_study(text.replace("threshold = 0.55", 'threshold = 0.5\ninterval = "wilson"'), tmp_path / "study.toml")
+    assert keys == {j.key for j in judged.jobs() if j.samples is not None}
 
 
 @pytest.mark.parametrize(
