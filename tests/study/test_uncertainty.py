@@ -184,3 +184,62 @@ def test_stopped_run_resumes_without_redrawing(tmp_path):
     assert report.solved == ["none samples 8-16", "none samples 16-20"]
     assert all((folder / n).stat().st_mtime_ns == t for n, t in kept.items())
     xr.testing.assert_identical(answer(report.results), clean)
+
+
+CRITICAL = """
+[study]
+name = "critical"
+
+[structure]
+type = "semicircular_arch"
+voussoirs = 8
+
+[material]
+friction = 0.8
+
+[loads]
+lateral = false
+critical_position = true
+lambda_step = 1.0
+tolerance = 1e-3
+
+[[loads.point]]
+on_top = [0.0, 0.0]
+force = [0.0, 0.0, -1.0]
+
+[uncertainty]
+samples = 2
+
+[uncertainty.variables]
+"structure.unit_weight" = { distribution = "normal", mean = 20, cov = 0.1 }
+"""
+
+
+def test_critical_position_is_searched_for_each_sample(tmp_path, monkeypatch):
+    """With critical_position, a sample's capacity is its own least lambda_max over the
+    positions, searched for each sample (from the nominal critical position): at most its direct
+    limit wherever the load stands (here at five positions)."""
+    from tce.analysis import Analysis
+    from tce.core.loads import LoadPattern
+    from tce.study import samples
+    from tce.study.schema import build_material, build_structure
+
+    searches = []
+
+    def counted(analysis, loads, start=None, **kw):
+        searches.append(list(start))
+        return search(analysis, loads, start=start, **kw)
+
+    search = samples.critical_position
+    monkeypatch.setattr(samples, "critical_position", counted)
+    study = parse_study(CRITICAL, tmp_path / "study.toml")
+    ds = xr.load_dataset(runner.run_study(study, tmp_path, jobs=1).results)
+    assert searches == [[], [0.0], [0.0]]  # the nominal search, then one per sample from its position
+    sc = study.scenarios()[0]
+    for k, weight in enumerate(ds["sample_input"].values[:, 0]):
+        drawn = sc.drawn({"structure.unit_weight": float(weight)})
+        analysis = Analysis(build_structure(drawn.structure), build_material(drawn.material))
+        pattern = LoadPattern.from_dict(drawn.pattern)
+        at = [analysis.limit(loads=pattern.moved(x), mechanism=False).lambda_max for x in (-0.8, -0.5, -0.3, 0.0, 0.4)]
+        assert ds["sample_capacity"].values[0, k] <= min(at) * (1 + 1e-6)
+        assert ds["sample_capacity"].values[0, k] >= 0.9 * min(at)
