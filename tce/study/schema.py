@@ -59,7 +59,7 @@ from . import guards
 from .guards import StudyError
 from .names import slug
 from .sections import PlotsSection, _Strict
-from .uncertainty import UncertaintySection, capacity_kind, draw
+from .uncertainty import MAX_JOBS, UncertaintySection, capacity_kind, draw
 
 __all__ = [
     "MAX_BLOCKS",
@@ -1276,6 +1276,10 @@ def check_uncertainty(study: Study) -> None:
     if section is None:
         return
     path, spec = study.path, study.spec
+    jobs = len(study.scenarios()) * math.ceil(section.samples / section.chunk)
+    if jobs > MAX_JOBS:
+        raise StudyError(f"{path}: uncertainty.chunk: {jobs} jobs of samples (scenarios x ceil(samples / chunk)), more "
+                         f"than MAX_JOBS = {MAX_JOBS}, each a file; fix: a larger chunk")
     where = lambda key: f'{path}: uncertainty.variables."{key}"'  # noqa: E731
     for key in section.names:
         problem = _key_problem(study, key)

@@ -30,6 +30,7 @@ from .sections import _Strict
 __all__ = [
     "CAPACITY_KINDS",
     "FRAGILITY_POINTS",
+    "MAX_JOBS",
     "MAX_SAMPLES",
     "UncertaintySection",
     "VariableSection",
@@ -43,6 +44,8 @@ log = logging.getLogger(__name__)
 
 #: most samples of a study
 MAX_SAMPLES = 1_000_000
+#: most jobs of samples of a study (files under ``scenarios/``): scenarios x ceil(samples / chunk)
+MAX_JOBS = 100_000
 #: intensities of a fragility curve
 FRAGILITY_POINTS = 41
 #: what a sample's capacity is: the direct limit of the scenario's loads, the adequacy factor of

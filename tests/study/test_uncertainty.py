@@ -98,6 +98,7 @@ def test_jobs_cover_every_sample_once(tmp_path):
         ('cov = 0.15 }', 'cov = 0.15 }\n[uncertainty.correlation]\n"material.friction|material.cohesion" = 0.5',
          "'material.cohesion' is not a variable"),
         ("samples = 20", "samples = 0", "uncertainty.samples"),
+        ("samples = 20\nchunk = 8", "samples = 200000\nchunk = 1", "uncertainty.chunk"),
         ("threshold = 0.55", 'capacity = "settlement_capacity"', "uncertainty.capacity"),
     ],
 )
