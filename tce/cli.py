@@ -635,7 +635,7 @@ def _check(args: argparse.Namespace) -> int:
 
 
 #: sections of ``tce bench`` (:data:`tce.quality.bench.SECTIONS`; named here so that the parser imports no solver)
-BENCH_SECTIONS = ("solve", "hot_path", "limit", "load_path", "scaling")
+BENCH_SECTIONS = ("solve", "hot_path", "limit", "load_path", "scaling", "reliability")
 
 
 def _bench(args: argparse.Namespace) -> int:
