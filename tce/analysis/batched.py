@@ -11,9 +11,9 @@ GPU (``moreau-cuda12``/``-cuda13``, Python 3.12+).
 
 Each answer is judged as the warm solver's is (``Solved`` or ``AlmostSolved``, then
 :meth:`WarmLimit.violation` at 1e-8 on the scaled problem); an answer that is not clean, and
-is not a ``PrimalInfeasible`` certificate, is solved again by the :class:`WarmLimit` itself (its Clarabel solve, then the
-fresh :class:`~tce.core.limit.LimitSolver` that proves an unbounded limit), so the statuses
-are those of :class:`WarmLimit`.
+is not a ``PrimalInfeasible`` certificate, is solved again by the :class:`WarmLimit` itself
+(its Clarabel solve, then the fresh :class:`~tce.core.limit.LimitSolver` that proves an
+unbounded limit), so the statuses are those of :class:`WarmLimit`.
 """
 
 from __future__ import annotations

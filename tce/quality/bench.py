@@ -32,18 +32,19 @@ The sections :func:`run_bench` measures, in one table (:data:`COLUMNS`) printed 
     and solve times, peak resident memory, fitted growth of the solve time.
 ``reliability``
     Samples of the paper's arch that keep its geometry (:func:`reliability_case`: a 1 kN point
-    load at ``x = -0.25`` m, friction lognormal, unit weight normal): the CPU time per sample of
-    :class:`tce.analysis.reliability.WarmLimit` against one direct-limit solve of the same
+    load at ``x = -0.25`` m, friction lognormal, unit weight normal). The CPU time per sample
+    of :class:`tce.analysis.reliability.WarmLimit` against one direct-limit solve of the same
     problem (:func:`tce.core.problem.limit_problem`, built beforehand) on raw Clarabel, a new
-    ``clarabel.DefaultSolver`` set up and solved per sample, in interleaved rounds (``error``:
-    the largest difference of lambda_max); :data:`RELIABILITY_SAMPLES` samples in one call
-    (``error``: the half-width of the 95 % Clopper-Pearson interval of ``P(capacity <
-    RELIABILITY_THRESHOLD)``); the same samples in chunks of :data:`RELIABILITY_CHUNK`, each a
-    cold ``WarmLimit`` (:func:`reliability_chunk`), in process, in 1 and 2 worker processes
-    (``concurrent.futures``, spawned) and on a Dask ``LocalCluster`` of 2 workers (skipped
-    with a note without ``dask[distributed]``): ``time_s`` is the second pass on the started
-    workers, ``build_s`` what the first pass cost more (their start), ``error`` the largest
-    difference from the in-process capacities.
+    ``clarabel.DefaultSolver`` set up and solved per sample, in interleaved rounds, with the
+    samples as one batch of :class:`tce.analysis.batched.BatchedLimit` beside them where the
+    extra ``batched`` is installed (``error``: the largest difference of lambda_max).
+    :data:`RELIABILITY_SAMPLES` samples in one call (``error``: the half-width of the 95 %
+    Clopper-Pearson interval of ``P(capacity < RELIABILITY_THRESHOLD)``). Samples in chunks of
+    :data:`RELIABILITY_CHUNK`, each a cold ``WarmLimit`` (:func:`reliability_chunk`), in
+    process, in 1 and 2 worker processes (``concurrent.futures``, spawned) and on a Dask
+    ``LocalCluster`` of 2 workers (a note without ``dask[distributed]``): ``time_s`` is the
+    second pass on the started workers, ``build_s`` what the first pass cost more (their
+    start), ``error`` the largest difference from the in-process capacities.
 
 Times are medians of repeated calls after one warm-up (wall clock, ``hot_path`` CPU time; s
 in the table, ms in the report); a ``solve`` row's time includes reading the state it is judged
@@ -431,11 +432,18 @@ def _raw_limit(problem: Any, settings: Any) -> float:
 
 
 def _reliability_cost(quick: bool) -> list[dict[str, Any]]:
-    """WarmLimit per sample against raw Clarabel per sample, CPU time, interleaved rounds."""
+    """WarmLimit per sample against raw Clarabel per sample (and the samples as one Moreau batch
+    where the extra ``batched`` is installed), CPU time, interleaved rounds."""
     from ..core.problem import Formulation, limit_problem
+
+    import importlib.util
 
     n, rounds = (60, 3) if quick else (200, 8)
     x = reliability_joint().sample(n, "lhs", seed=1)[1]
+    have_moreau = importlib.util.find_spec("moreau") is not None
+    methods = {"raw": "raw clarabel: a new solver set up and solved per sample",
+               "warm": "WarmLimit sample (update, solve, checks)",
+               "batched": "BatchedLimit: the samples as one Moreau batch (CPU), checks"}
     rows: list[dict[str, Any]] = []
     for kind, label in MODELS.items():
         warm = reliability_case(kind)
@@ -444,6 +452,11 @@ def _reliability_cost(quick: bool) -> list[dict[str, Any]]:
                                   warm.b_live) for s in samples]
         runs = {"raw": lambda: [_raw_limit(p, warm.settings) for p in problems],
                 "warm": lambda: [warm(s)[1] for s in samples]}
+        if have_moreau:
+            from ..analysis.batched import BatchedLimit
+
+            batched = BatchedLimit(warm, batch_size=n)
+            runs["batched"] = lambda: list(batched(samples)[1])
         times: dict[str, list[float]] = {k: [] for k in runs}
         out: dict[str, list[float]] = {}
         for r in range(rounds):
@@ -451,18 +464,22 @@ def _reliability_cost(quick: bool) -> list[dict[str, Any]]:
                 t0 = time.process_time()
                 out[name] = runs[name]()
                 times[name].append((time.process_time() - t0) / n)
-        raw, got = np.array(out["raw"]), np.array(out["warm"])
-        both = np.isfinite(raw) & np.isfinite(got)
-        err = float(np.abs(raw[both] - got[both]).max(initial=0.0)) if np.array_equal(both, np.isfinite(raw)) else np.inf
+        raw = np.array(out["raw"])
         med = {k: statistics.median(v) for k, v in times.items()}
         case = f"arch, {label}, 1 kN point load, friction and unit weight"
-        common = dict(model=kind, n_blocks=len(warm.model.assembly.blocks), n_solves=n * rounds, error=err,
-                      error_of="lambda_max vs raw")
-        rows.append(row("reliability", case, "raw clarabel: a new solver set up and solved per sample",
-                        time_s=med["raw"], note="CPU time; limit problems built beforehand", **common))
-        rows.append(row("reliability", case, "WarmLimit sample (update, solve, checks)", time_s=med["warm"],
-                        note=f"{med['warm'] / med['raw']:.2f}x raw (CPU time, interleaved; issue 39: at most 1.5x)",
-                        **common))
+        common = dict(model=kind, n_blocks=len(warm.model.assembly.blocks), error_of="lambda_max vs raw")
+        for name, method in methods.items():
+            if name not in runs:
+                rows.append(row("reliability", case, method, note="skipped: moreau is not installed "
+                                "(pip install tce[batched])", **common))
+                continue
+            got = np.array(out[name])
+            same = np.array_equal(np.isfinite(raw), np.isfinite(got))
+            err = float(np.abs(raw - got)[np.isfinite(raw)].max(initial=0.0)) if same else np.inf
+            note = ("CPU time; limit problems built beforehand" if name == "raw" else
+                    f"{med[name] / med['raw']:.2f}x raw (CPU time, interleaved; issue 39: at most 1.5x)")
+            rows.append(row("reliability", case, method, n_solves=n * rounds, time_s=med[name], error=err, note=note,
+                            **common))
     return rows
 
 
