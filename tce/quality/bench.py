@@ -54,6 +54,7 @@ by. The report's first line names the day, the commit and the load it was measur
 from __future__ import annotations
 
 import gc
+import importlib.util
 import itertools
 import json
 import os
@@ -67,6 +68,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..analysis.reliability import JointDistribution, RandomVariable, WarmLimit, evaluate, failure_probability
 from ..core.limit import LimitSolver
 from ..core.material import Material
 from ..core.model import build_model
@@ -384,22 +386,19 @@ RELIABILITY_CHUNK = 250
 UNIT_WEIGHT = 20.0  # kN/m^3, the paper's arch
 
 
-def reliability_joint() -> Any:
+def reliability_joint() -> JointDistribution:
     """The section's inputs: friction lognormal (mean 0.6, c.o.v. 0.15) and unit weight normal
     (mean 20 kN/m^3, std 1 kN/m^3), independent."""
-    from ..analysis.reliability import JointDistribution, RandomVariable
-
     return JointDistribution([RandomVariable("friction", "lognormal", 0.6, cov=0.15),
                               RandomVariable("unit_weight", "normal", UNIT_WEIGHT, std=1.0)])
 
 
-def reliability_case(kind: str = "planar") -> Any:
+def reliability_case(kind: str = "planar") -> WarmLimit:
     """A :class:`tce.analysis.reliability.WarmLimit` of the paper's arch (14 voussoirs, friction
     0.6) under a live point load of 1 kN downwards on the extrados at ``x = -0.25`` m
     (``studies/arch_point_load.toml``'s critical position of its grid): lambda_max is the
     collapse load in kN. Sample keys ``mu`` (friction) and ``g`` (unit weight over 20 kN/m^3,
     the fixed load factor); :func:`_warm_samples` makes them from physical values."""
-    from ..analysis.reliability import WarmLimit
     from ..core.analysis import Analysis
     from ..core.loads import LoadPattern, PointLoad
 
@@ -416,8 +415,6 @@ def _warm_samples(x: np.ndarray) -> list[dict[str, float]]:
 def reliability_chunk(kind: str, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Statuses and capacities (kN; :func:`tce.analysis.reliability.outcome_value`) of the
     samples ``x`` ``(n, 2)`` by a cold :func:`reliability_case`: one job of the throughput rows."""
-    from ..analysis.reliability import evaluate
-
     return evaluate(reliability_case(kind), _warm_samples(x))
 
 
@@ -435,8 +432,6 @@ def _reliability_cost(quick: bool) -> list[dict[str, Any]]:
     """WarmLimit per sample against raw Clarabel per sample (and the samples as one Moreau batch
     where the extra ``batched`` is installed), CPU time, interleaved rounds."""
     from ..core.problem import Formulation, limit_problem
-
-    import importlib.util
 
     n, rounds = (60, 3) if quick else (200, 8)
     x = reliability_joint().sample(n, "lhs", seed=1)[1]
@@ -485,8 +480,6 @@ def _reliability_cost(quick: bool) -> list[dict[str, Any]]:
 
 def _reliability_one_call(quick: bool) -> dict[str, Any]:
     """:data:`RELIABILITY_SAMPLES` samples of the planar arch through one WarmLimit, wall time."""
-    from ..analysis.reliability import evaluate, failure_probability
-
     n = RELIABILITY_SAMPLES // 5 if quick else RELIABILITY_SAMPLES
     x = reliability_joint().sample(n, "lhs", seed=2)[1]
     t0 = time.perf_counter()
@@ -552,8 +545,6 @@ class _Dask:
 
 def _reliability_workers(quick: bool) -> list[dict[str, Any]]:
     """Throughput of the chunked samples in process, in 1 and 2 processes and on Dask (module doc)."""
-    import importlib.util
-
     n = RELIABILITY_SAMPLES // (10 if quick else 2)
     x = reliability_joint().sample(n, "lhs", seed=3)[1]
     chunks = [x[i:i + RELIABILITY_CHUNK] for i in range(0, n, RELIABILITY_CHUNK)]
@@ -570,10 +561,10 @@ def _reliability_workers(quick: bool) -> list[dict[str, Any]]:
     times: dict[str, list[tuple[float, float]]] = {k: [] for k in runners}
     answers: dict[str, tuple[np.ndarray, np.ndarray]] = {}
     for _ in range(1 if quick else 2):
-        for name, start in runners.items():
+        for name, make in runners.items():
             passes = []
             t0 = time.perf_counter()
-            runner = start()
+            runner = make()
             try:
                 for _ in range(2):
                     got = runner.map(reliability_chunk, ["planar"] * len(chunks), chunks)
