@@ -42,13 +42,19 @@ __all__ = [
     "PlotSpecError",
     "State",
     "StructureFrame",
+    "CAPACITY_WORDS",
+    "SAMPLE_WORDS",
     "assembly",
+    "capacity_label",
     "chain_interfaces",
+    "counts_note",
+    "dominant_variable",
     "find_state",
     "geometry",
     "geometry_groups",
     "group_identical",
     "groups_of",
+    "has_uncertainty",
     "hinge_segments",
     "join_names",
     "mechanism_groups",
@@ -56,13 +62,16 @@ __all__ = [
     "optimal_steps",
     "outcome_note",
     "plot_spec",
+    "sample_counts",
     "scenarios",
     "slug",
     "state_pages",
     "structure_frame",
     "study_cap",
     "support_forces",
+    "sweep_axes",
     "swept_parameters",
+    "uncertainty_variables",
     "unique_note",
 ]
 
@@ -636,3 +645,84 @@ def join_names(names: Iterable[str], limit: int = 4) -> str:
     names = list(names)
     head = ", ".join(names[:limit])
     return head + (f", … (+{len(names) - limit})" if len(names) > limit else "")
+
+
+# ---------------------------------------------------------------------------- uncertainty studies
+#: what a sample's status stands for in the failure probability
+#: (:func:`tce.analysis.reliability.outcome_value`), in the order they are counted
+SAMPLE_WORDS = {"optimal": "a finite capacity", "unbounded": "no finite limit (+inf: survives)",
+                "infeasible": "nothing stands (-inf: fails)", "numerical": "undecided (NaN: left out of the estimate)"}
+#: what each ``capacity_kind`` measures: the intensity ``x`` of ``P(capacity < x)``
+CAPACITY_WORDS = {"lambda_max": "the load multiplier λ of the scenario's loads",
+                  "adequacy_factor": "the adequacy factor (multiplier of the factored live load)",
+                  "settlement_capacity": "the settlement magnitude (× the scenario's settlement vectors)"}
+
+
+def has_uncertainty(ds: xr.Dataset) -> bool:
+    """Whether ``ds`` holds the samples of an ``[uncertainty]`` study (``sample_capacity``)."""
+    return "sample_capacity" in ds
+
+
+def capacity_label(kind: str) -> str:
+    """What the capacity of ``kind`` measures (:data:`CAPACITY_WORDS`; an unknown kind named as is)."""
+    return CAPACITY_WORDS.get(kind, kind)
+
+
+def uncertainty_variables(ds: xr.Dataset) -> dict[str, dict[str, Any]]:
+    """The random variables' specs (attr ``uncertainty_variables``, JSON), key -> spec, in
+    the order of the ``variable`` coordinate (a list of specs with a ``name`` is keyed by it)."""
+    try:
+        specs = json.loads(str(ds.attrs.get("uncertainty_variables", "{}")))
+    except ValueError:
+        specs = {}
+    if isinstance(specs, list):
+        specs = {str(s.get("name", k)): {k2: v for k2, v in s.items() if k2 != "name"} for k, s in enumerate(specs)}
+    keys = [str(v) for v in ds["variable"].values] if "variable" in ds.coords else list(specs)
+    return {k: dict(specs.get(k, {})) for k in keys}
+
+
+def sample_counts(ds: xr.Dataset, scenario: str) -> dict[str, int]:
+    """The number of samples of ``scenario`` per status word (``sample_status``), those of
+    :data:`SAMPLE_WORDS` first, in its order, then any other word; words with no sample left out."""
+    words, counts = np.unique(value(ds, "sample_status", scenario).astype(str), return_counts=True)
+    found = dict(zip(words.tolist(), counts.tolist()))
+    order = [w for w in SAMPLE_WORDS if w in found] + sorted(w for w in found if w not in SAMPLE_WORDS)
+    return {w: int(found[w]) for w in order}
+
+
+def counts_note(ds: xr.Dataset, scenario: str) -> str:
+    """The samples of ``scenario`` that did not end ``optimal``, counted with what they stand
+    for (``"12 unbounded: no finite limit (+inf: survives); 3 numerical: ..."``); "" when
+    every sample did."""
+    counts = sample_counts(ds, scenario)
+    total = sum(counts.values())
+    others = {w: n for w, n in counts.items() if w != "optimal"}
+    if len(others) == 1 and "optimal" not in counts:
+        (word,) = others
+        return f"all {total} samples {word}: {SAMPLE_WORDS.get(word, 'counted apart')}"
+    return "; ".join(f"{n} of {total} {w}: {SAMPLE_WORDS.get(w, 'counted apart')}" for w, n in others.items())
+
+
+def dominant_variable(ds: xr.Dataset, scenario: str) -> tuple[str, float] | None:
+    """The variable of largest ``|sensitivity|`` for ``scenario`` and its sensitivity (None
+    when every sensitivity is NaN: no decided sample, or a constant capacity)."""
+    if "sensitivity" not in ds:
+        return None
+    s = np.asarray(value(ds, "sensitivity", scenario, ["variable"]), dtype=float)
+    if not np.isfinite(s).any():
+        return None
+    k = int(np.nanargmax(np.abs(s)))
+    return str(ds["variable"].values[k]), float(s[k])
+
+
+def sweep_axes(ds: xr.Dataset, names: Sequence[str]) -> list[str]:
+    """Numeric coordinates along ``scenario`` that take more than one value among ``names``:
+    the swept parameters (:func:`swept_parameters`, in their order) then any other (``load_x``)."""
+    out = swept_parameters(ds, names)
+    for p, coord in ds.coords.items():
+        if p in out or p == "scenario" or coord.dims != ("scenario",) or coord.dtype.kind not in "fiu":
+            continue
+        v = np.asarray(coord.sel(scenario=list(names)).values, dtype=float)
+        if len(np.unique(v[np.isfinite(v)])) > 1:
+            out.append(str(p))
+    return out
