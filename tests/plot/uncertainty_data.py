@@ -53,7 +53,7 @@ K = 41
 MODES = ("unbounded", "infeasible", "numerical", "some_numerical")
 
 
-def small_study(folder: Path, name: str = "uq", kinds: str = '["summary"]') -> xr.Dataset:
+def small_study(folder: Path, name: str = "uq", kinds: str = '["summary", "fragility", "capacity_samples", "sensitivity", "convergence"]') -> xr.Dataset:
     """The results of :data:`STUDY` run in ``folder`` (about 2 s), the figures ``kinds``."""
     text = STUDY.replace('name = "uq"', f'name = "{name}"') + f"[plots]\nkinds = {kinds}\n"
     report = run_study(parse_study(text, folder / f"{name}.toml"), folder, jobs=1)
