@@ -192,8 +192,9 @@ def _fragility_curve(ax: Axes, ds: xr.Dataset, s: str, colour: str, marker: str,
     pf = float(value(ds, "failure_probability", s))
     if math.isfinite(pf) and math.isfinite(threshold):
         lo, hi = float(value(ds, "failure_low", s)), float(value(ds, "failure_high", s))
-        ax.errorbar([threshold], [pf], yerr=[[pf - lo], [hi - pf]], color=colour, marker=marker, markersize=4,
-                    capsize=2.5, linewidth=1.0, gid=f"pf:{s}")
+        bars = ax.errorbar([threshold], [pf], yerr=[[pf - lo], [hi - pf]], color=colour, marker=marker, markersize=4,
+                           capsize=2.5, linewidth=1.0)
+        bars.lines[0].set_gid(f"pf:{s}")
 
 
 def _pf_sweep(ax: Axes, ds: xr.Dataset, members: Sequence[str], p: str) -> None:
@@ -215,9 +216,10 @@ def _pf_sweep(ax: Axes, ds: xr.Dataset, members: Sequence[str], p: str) -> None:
         undecided += [s for s, v in zip(ss, pf) if not math.isfinite(v)]
         parts = ([key[0]] if key[0] and len({k_[0] for k_ in lines}) > 1 else []) + \
                 [f"{q} = {v:g}" for q, v in zip(others, key[1:])]
-        ax.errorbar(x, pf, yerr=[pf - lo, hi - pf], color=palette[k], linestyle=LINESTYLES[k % len(LINESTYLES)],
-                    marker=MARKERS[k % len(MARKERS)], markersize=3.5, capsize=2.5, linewidth=1.2,
-                    label=", ".join(parts) or None, gid=f"pf_sweep:{p}:{k}")
+        bars = ax.errorbar(x, pf, yerr=[pf - lo, hi - pf], color=palette[k], linestyle=LINESTYLES[k % len(LINESTYLES)],
+                           marker=MARKERS[k % len(MARKERS)], markersize=3.5, capsize=2.5, linewidth=1.2,
+                           label=", ".join(parts) or None)
+        bars.lines[0].set_gid(f"pf_sweep:{p}:{k}")
     ax.set_ylim(-0.02, 1.02)
     unit = SWEPT.get(p, "m" if p == "load_x" else "")
     ax.set_xlabel(f"{p}" + (f" ({unit})" if unit else ""), fontsize=FONT)
@@ -374,19 +376,20 @@ def convergence_figure(ds: xr.Dataset) -> Figure:
         if "form_pf" in others and math.isfinite(others["form_pf"]):
             ax.axhline(others["form_pf"], color="#D55E00", linestyle="--", linewidth=1.2, gid=f"form:{s}")
         elif "form_pf" in others:
-            words.append(f"FORM: {text(ds, 'form_status', s, 'no estimate')}")
+            words.append(f"FORM: no estimate ({text(ds, 'form_status', s, '?')})")
         if "subset_pf" in others and math.isfinite(others["subset_pf"]):
             ax.axhline(others["subset_pf"], color="#0072B2", linestyle="-.", linewidth=1.2, gid=f"subset:{s}")
             cov = float(value(ds, "subset_cov", s)) if "subset_cov" in ds else math.nan
             if math.isfinite(cov):
                 words.append(f"subset c.o.v. {cov:.2g}")
         elif "subset_pf" in others:
-            words.append(f"subset: {text(ds, 'subset_status', s, 'no estimate')}")
+            words.append(f"subset: no estimate ({text(ds, 'subset_status', s, '?')})")
         if not np.isfinite(pf).any():
             words.append("no decided sample: no estimate")
         elif log and (pf[np.isfinite(pf)] == 0).any():
             words.append("estimate 0 before the first failure (not drawn on the log axis)")
         ax.set_xscale("log")
+        ax.set_xlim(1, max(2, len(values)))
         if log:
             ax.set_yscale("log")
         else:
