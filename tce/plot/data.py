@@ -64,6 +64,7 @@ __all__ = [
     "plot_spec",
     "sample_counts",
     "scenarios",
+    "settlement_parameter",
     "slug",
     "state_pages",
     "structure_frame",
@@ -726,3 +727,33 @@ def sweep_axes(ds: xr.Dataset, names: Sequence[str]) -> list[str]:
         if len(np.unique(v[np.isfinite(v)])) > 1:
             out.append(str(p))
     return out
+
+
+#: the components of a support motion in a study file, in order (docs/conventions.md)
+MOTION = ("ux", "uy", "uz", "rx", "ry", "rz")
+
+
+def settlement_parameter(ds: xr.Dataset, names: Sequence[str]) -> tuple[str, dict[str, float]] | None:
+    """The one number the settlement cases of ``names`` differ by: ``("right uz (m)",
+    {scenario: value})`` when at least two distinct cases (``[scenarios.NAME]`` of the study
+    text) move the supports alike but for one component of one support (a support not named
+    does not move); None otherwise."""
+    if "settlement" not in ds.coords:
+        return None
+    try:
+        tables = tomllib.loads(str(ds.attrs.get("study", ""))).get("scenarios", {})
+    except tomllib.TOMLDecodeError:
+        return None
+    case = {s: str(value(ds, "settlement", s)) for s in names}
+    motions = {c: {k: v for k, v in tables.get(c, {}).items() if isinstance(v, list) and len(v) == len(MOTION)}
+               for c in set(case.values())}
+    if len(motions) < 2:
+        return None
+    supports = sorted({k for m in motions.values() for k in m})
+    entries = {(sup, j): {c: float(m.get(sup, [0.0] * len(MOTION))[j]) for c, m in motions.items()}
+               for sup in supports for j in range(len(MOTION))}
+    differ = [key for key, by_case in entries.items() if len(set(by_case.values())) > 1]
+    if len(differ) != 1:
+        return None
+    (sup, j), = differ
+    return f"{sup} {MOTION[j]} ({'m' if j < 3 else 'rad'})", {s: entries[(sup, j)][case[s]] for s in names}

@@ -39,6 +39,7 @@ from .data import (
     join_names,
     sample_counts,
     scenarios,
+    settlement_parameter,
     sweep_axes,
     text,
     value,
@@ -135,15 +136,15 @@ def fragility_figure(ds: xr.Dataset) -> Figure:
     band, the threshold a vertical line and the failure probability there a point with its
     interval (gid ``"pf:<scenario>"``); a scenario without a finite capacity is a
     horizontal dashed line at its constant probability. Right (when the scenarios differ
-    in a numeric coordinate, :func:`tce.plot.data.sweep_axes`): ``failure_probability``
-    with its interval against that coordinate, one line per value of the others (gid
-    ``"pf_sweep:<parameter>:<k>"``). At most :data:`MAX_CURVES` scenarios on the left.
+    in a numeric coordinate, or their settlement cases in one number: :func:`_sweeps`):
+    ``failure_probability`` with its interval against it, one line per value of the others
+    (gid ``"pf_sweep:<axis label>:<k>"``). At most :data:`MAX_CURVES` scenarios on the left.
     """
     names = scenarios(ds)
     drawn, left_out = drawn_scenarios(ds, MAX_CURVES)
     threshold = _threshold(ds)
     kinds = _kinds(ds, names)
-    axes_of = sweep_axes(ds, names)
+    axes_of = _sweeps(ds, names)
     colours = dict(zip(drawn, _palette(len(drawn))))
     handles: list = [Line2D([], [], color=colours[s], marker=MARKERS[k % len(MARKERS)], markersize=4, linewidth=1.3,
                             label=s) for k, s in enumerate(drawn)]
@@ -172,8 +173,8 @@ def fragility_figure(ds: xr.Dataset) -> Figure:
         ax.grid(True, linewidth=0.3, alpha=0.6)
         if len(kinds) > 1:
             ax.set_title(_wrap(f"capacity: {kind}", w), fontsize=FONT, loc="left")
-        for c, p in enumerate(axes_of):
-            _pf_sweep(grid.axes[r][c + 1], ds, members, p)
+        for c, (label, values, others) in enumerate(axes_of):
+            _pf_sweep(grid.axes[r][c + 1], ds, [s for s in members if s in values], label, values, others)
     title = f"{_study(ds)}: probability of collapse P(capacity < x)"
     return _finish(grid, handles, notes, title)
 
@@ -197,32 +198,49 @@ def _fragility_curve(ax: Axes, ds: xr.Dataset, s: str, colour: str, marker: str,
         bars.lines[0].set_gid(f"pf:{s}")
 
 
-def _pf_sweep(ax: Axes, ds: xr.Dataset, members: Sequence[str], p: str) -> None:
-    """``failure_probability`` with its interval against the coordinate ``p``; one line per
-    combination of the other numeric coordinates and the settlement case."""
-    others = [q for q in sweep_axes(ds, members) if q != p]
-    case = (lambda s: str(value(ds, "settlement", s))) if "settlement" in ds.coords else (lambda s: "")
+def _sweeps(ds: xr.Dataset, names: Sequence[str]) -> list[tuple[str, dict[str, float], dict[str, tuple]]]:
+    """What the failure probability is drawn against: ``(axis label, scenario -> value,
+    scenario -> the key of its line)``, one per numeric coordinate the scenarios differ in
+    (:func:`tce.plot.data.sweep_axes`; a line per value of the others and settlement case),
+    else the one number their settlement cases differ by
+    (:func:`tce.plot.data.settlement_parameter`)."""
+    numeric = sweep_axes(ds, names)
+    case = {s: str(value(ds, "settlement", s)) if "settlement" in ds.coords else "" for s in names}
+    out = []
+    for p in numeric:
+        unit = SWEPT.get(p, "m" if p == "load_x" else "")
+        values = {s: float(value(ds, p, s)) for s in names}
+        others = {s: (case[s], *((q, float(value(ds, q, s))) for q in numeric if q != p)) for s in names}
+        out.append((p + (f" ({unit})" if unit else ""), values, others))
+    moved = settlement_parameter(ds, names) if not numeric else None
+    if moved:
+        out.append((f"settlement case: {moved[0]}", moved[1], {s: ("",) for s in names}))
+    return out
+
+
+def _pf_sweep(ax: Axes, ds: xr.Dataset, members: Sequence[str], label: str, values: dict[str, float],
+              others: dict[str, tuple]) -> None:
+    """``failure_probability`` with its interval against ``values``, a line per key of
+    ``others`` (gid ``"pf_sweep:<label>:<k>"``)."""
     lines: dict[tuple, list[str]] = {}
     for s in members:
-        lines.setdefault((case(s), *(float(value(ds, q, s)) for q in others)), []).append(s)
+        lines.setdefault(others[s], []).append(s)
     palette = _palette(len(lines))
     undecided = []
+    cases = {key[0] for key in lines}
     for k, (key, ss) in enumerate(lines.items()):
-        ss = sorted(ss, key=lambda s: float(value(ds, p, s)))
-        x = np.array([float(value(ds, p, s)) for s in ss])
-        pf = np.array([float(value(ds, "failure_probability", s)) for s in ss])
-        lo = np.array([float(value(ds, "failure_low", s)) for s in ss])
-        hi = np.array([float(value(ds, "failure_high", s)) for s in ss])
+        ss = sorted(ss, key=lambda s: values[s])
+        x = np.array([values[s] for s in ss])
+        pf, lo, hi = (np.array([float(value(ds, v, s)) for s in ss])
+                      for v in ("failure_probability", "failure_low", "failure_high"))
         undecided += [s for s, v in zip(ss, pf) if not math.isfinite(v)]
-        parts = ([key[0]] if key[0] and len({k_[0] for k_ in lines}) > 1 else []) + \
-                [f"{q} = {v:g}" for q, v in zip(others, key[1:])]
+        parts = ([key[0]] if len(cases) > 1 else []) + [f"{q} = {v:g}" for q, v in key[1:]]
         bars = ax.errorbar(x, pf, yerr=[pf - lo, hi - pf], color=palette[k], linestyle=LINESTYLES[k % len(LINESTYLES)],
                            marker=MARKERS[k % len(MARKERS)], markersize=3.5, capsize=2.5, linewidth=1.2,
                            label=", ".join(parts) or None)
-        bars.lines[0].set_gid(f"pf_sweep:{p}:{k}")
+        bars.lines[0].set_gid(f"pf_sweep:{label}:{k}")
     ax.set_ylim(-0.02, 1.02)
-    unit = SWEPT.get(p, "m" if p == "load_x" else "")
-    ax.set_xlabel(f"{p}" + (f" ({unit})" if unit else ""), fontsize=FONT)
+    ax.set_xlabel(label, fontsize=FONT)
     ax.set_ylabel("P(failure) at the threshold", fontsize=FONT)
     ax.grid(True, linewidth=0.3, alpha=0.6)
     if len(lines) > 1:

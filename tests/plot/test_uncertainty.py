@@ -19,7 +19,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from plot.uncertainty_data import small_study, with_uncertainty
-from tce.plot.data import capacity_label, counts_note, plot_spec
+from tce.plot.data import capacity_label, counts_note, plot_spec, settlement_parameter
 from tce.plot.output import UNCERTAINTY_KINDS, builder, figure_tasks, write_figures
 from tce.plot.uncertainty import (
     MAX_CURVES,
@@ -92,7 +92,7 @@ def test_fragility_draws_the_stored_curves_and_the_sweep(uq: xr.Dataset) -> None
         (pf,) = _gid(fig, f"pf:{s}")
         x, y = pf.get_data()
         assert (x[0], y[0]) == (threshold, float(uq["failure_probability"].sel(scenario=s)))
-    (sweep,) = _gid(fig, "pf_sweep:thickness:0")
+    (sweep,) = _gid(fig, "pf_sweep:thickness (m):0")
     x, y = sweep.get_data()
     np.testing.assert_array_equal(x, [0.2, 0.25, 0.3])
     np.testing.assert_array_equal(y, uq["failure_probability"].values)
@@ -193,3 +193,27 @@ def test_counts_note_words() -> None:
     assert counts_note(ds, "a") == "all 4 samples unbounded: no finite limit (+inf: survives)"
     assert counts_note(ds, "b") == ("1 of 4 infeasible: nothing stands (-inf: fails); "
                                     "2 of 4 numerical: undecided (NaN: left out of the estimate)")
+
+
+def _cases(uq: xr.Dataset, motions: dict[str, str]) -> xr.Dataset:
+    """``uq`` as if its scenarios were the settlement cases ``motions`` (name -> the TOML of
+    its table), nothing swept."""
+    study = "".join(f"[scenarios.{c}]\n{m}\n" for c, m in motions.items())
+    out = uq.drop_vars("thickness").assign_coords(scenario=list(motions), settlement=("scenario", list(motions)))
+    return out.assign_attrs(study=study)
+
+
+def test_settlement_cases_differing_in_one_number_are_a_sweep(uq: xr.Dataset) -> None:
+    """Three cases that move the right support down by 1, 2 and 3 mm: the failure
+    probability is drawn against that motion; cases that differ in two numbers are not a sweep."""
+    ds = _cases(uq, {"a": "right = [0.0, 0.0, -0.001, 0.0, 0.0, 0.0]", "b": "right = [0.0, 0.0, -0.002, 0.0, 0.0, 0.0]",
+                     "c": "right = [0.0, 0.0, -0.003, 0.0, 0.0, 0.0]\nleft = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]"})
+    assert settlement_parameter(ds, ["a", "b", "c"]) == ("right uz (m)", {"a": -0.001, "b": -0.002, "c": -0.003})
+    (sweep,) = _gid(fragility_figure(ds), "pf_sweep:settlement case: right uz (m):0")
+    x, y = sweep.get_data()
+    np.testing.assert_array_equal(x, [-0.003, -0.002, -0.001])
+    np.testing.assert_array_equal(y, uq["failure_probability"].values[::-1])
+    two = _cases(uq, {"a": "right = [0.001, 0.0, 0.0, 0.0, 0.0, 0.0]", "b": "right = [0.0, 0.0, -0.002, 0.0, 0.0, 0.0]",
+                      "c": "right = [0.0, 0.0, -0.003, 0.0, 0.0, 0.0]"})
+    assert settlement_parameter(two, ["a", "b", "c"]) is None
+    assert not any("pf_sweep" in str(a.get_gid()) for ax in fragility_figure(two).axes for a in ax.get_children())

@@ -53,7 +53,11 @@ K = 41
 MODES = ("unbounded", "infeasible", "numerical", "some_numerical")
 
 
-def small_study(folder: Path, name: str = "uq", kinds: str = '["summary", "fragility", "capacity_samples", "sensitivity", "convergence"]') -> xr.Dataset:
+#: the figures of :func:`small_study`: its summary and the uncertainty kinds
+KINDS = '["summary", "fragility", "capacity_samples", "sensitivity", "convergence"]'
+
+
+def small_study(folder: Path, name: str = "uq", kinds: str = KINDS) -> xr.Dataset:
     """The results of :data:`STUDY` run in ``folder`` (about 2 s), the figures ``kinds``."""
     text = STUDY.replace('name = "uq"', f'name = "{name}"') + f"[plots]\nkinds = {kinds}\n"
     report = run_study(parse_study(text, folder / f"{name}.toml"), folder, jobs=1)
@@ -152,7 +156,7 @@ def with_uncertainty(ds: xr.Dataset, n: int = 400, seed: int = 0, modes: dict[st
         # alpha = -grad g / |grad g|: raising the friction raises the capacity, away from failure
         out["form_alpha"] = (("scenario", "variable"), np.where(ok[:, None], [-0.98, -0.2, 0.0], math.nan))
     if subset:
-        out["subset_pf"] = (("scenario",), pf * 1.1)
+        out["subset_pf"] = (("scenario",), np.minimum(1.1 * pf, 1.0))
         out["subset_cov"] = (("scenario",), np.full(len(names), 0.2))
         out["subset_status"] = (("scenario",), np.array(["converged"] * len(names)))
         out["subset_evaluations"] = (("scenario",), np.array([2800] * len(names)))
