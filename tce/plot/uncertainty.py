@@ -370,7 +370,8 @@ def convergence_figure(ds: xr.Dataset) -> Figure:
     nrows = math.ceil(len(drawn) / ncols)
     w, h = 3.2, 2.3
     width = 0.8 + ncols * w + (ncols - 1) * 0.75 + 0.2
-    handles: list = [Line2D([], [], color="#000000", linewidth=1.3, label="Monte Carlo estimate of the first n samples"),
+    handles: list = [Line2D([], [], color="#000000", linewidth=1.3,
+                            label="Monte Carlo estimate of the first n samples"),
                      Patch(facecolor="#000000", alpha=BAND_ALPHA, label=_interval_name(ds))]
     if "form_pf" in ds:
         handles.append(Line2D([], [], color="#D55E00", linestyle="--", linewidth=1.2, label="FORM Φ(−β)"))

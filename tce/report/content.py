@@ -477,8 +477,8 @@ def uncertainty_rows(ds: xr.Dataset) -> list[dict[str, str]]:
     figures, ``NaN`` without a decided sample); ``beta`` (the reliability index
     ``-Phi^-1(pf)``, ``inf`` for ``pf = 0``); ``failed``, ``decided``, ``numerical`` (sample
     counts); ``samples`` (N); ``dominant`` (the variable of largest ``|sensitivity|`` with its
-    value, ``undefined`` without a decided sample or variation); ``form`` and ``subset`` (their estimate, accuracy, status
-    and evaluations; "" where not computed); ``note`` (:func:`tce.plot.data.counts_note`).
+    value, ``undefined`` without a decided sample or variation); ``form`` and ``subset``
+    (their estimate, accuracy, status and evaluations; "" where not computed); ``note`` (:func:`tce.plot.data.counts_note`).
     """
     if not has_uncertainty(ds):
         return []

@@ -187,9 +187,8 @@ def test_every_sample_outcome_draws_and_is_said(base: xr.Dataset, variant: str, 
 
 def test_counts_note_words() -> None:
     """What the notes say of each outcome word, read on a dataset with every word."""
-    ds = xr.Dataset({"sample_status": (("scenario", "sample"), [["unbounded"] * 4, ["optimal", "numerical", "infeasible",
-                                                                                    "numerical"]])},
-                    coords={"scenario": ["a", "b"]})
+    words = [["unbounded"] * 4, ["optimal", "numerical", "infeasible", "numerical"]]
+    ds = xr.Dataset({"sample_status": (("scenario", "sample"), words)}, coords={"scenario": ["a", "b"]})
     assert counts_note(ds, "a") == "all 4 samples unbounded: no finite limit (+inf: survives)"
     assert counts_note(ds, "b") == ("1 of 4 infeasible: nothing stands (-inf: fails); "
                                     "2 of 4 numerical: undecided (NaN: left out of the estimate)")

@@ -101,7 +101,8 @@ def with_uncertainty(ds: xr.Dataset, n: int = 400, seed: int = 0, modes: dict[st
     threshold = float(lam[0]) if threshold is None else threshold
     rng = np.random.default_rng(seed)
     keys = list(VARIABLES)
-    friction = stats.lognorm(s=math.sqrt(math.log1p(0.15**2)), scale=0.6 / math.sqrt(1 + 0.15**2)).rvs(n, random_state=rng)
+    sigma = math.sqrt(math.log1p(0.15**2))  # the lognormal of mean 0.6, c.o.v. 0.15
+    friction = stats.lognorm(s=sigma, scale=0.6 * math.exp(-sigma**2 / 2)).rvs(n, random_state=rng)
     weight = rng.normal(20.0, 1.0, n)
     alpha = rng.uniform(-math.sqrt(3) * 2, math.sqrt(3) * 2, n)
     inputs = np.column_stack([friction, weight, alpha])
