@@ -44,6 +44,7 @@ __all__ = [
     "StructureFrame",
     "CAPACITY_WORDS",
     "SAMPLE_WORDS",
+    "UNCERTAINTY_KINDS",
     "assembly",
     "capacity_label",
     "chain_interfaces",
@@ -82,8 +83,11 @@ Target = float | str  # a load multiplier or "max"
 SWEPT = {"alpha": "degree", "friction": "–", "cohesion": "kN/m²", "tensile_strength": "kN/m²",
          "compressive_strength": "kN/m²", "magnitude": "× the settlements", "inner_radius": "m", "thickness": "m",
          "depth": "m", "radius": "m"}
-#: figure kinds drawn by default (``base`` is asked for by name)
+#: figure kinds drawn by default (``base`` is asked for by name; those of :data:`UNCERTAINTY_KINDS`
+#: where the results hold samples)
 DEFAULT_KINDS = tuple(k for k in PLOT_KINDS if k != "base")
+#: the figures of an ``[uncertainty]`` study (:mod:`tce.plot.uncertainty`)
+UNCERTAINTY_KINDS = ("fragility", "capacity_samples", "sensitivity", "convergence")
 
 #: note of a state flagged non-unique (``unique == 0``)
 NOT_UNIQUE = "not unique: of the many optimal states, the canonical one (least unit-stiffness energy) is drawn"
@@ -269,7 +273,8 @@ def plot_spec(
     return PlotSpec(
         steps=tuple(section.steps),
         scenarios=tuple(drawn),
-        kinds=tuple(section.kinds or DEFAULT_KINDS),
+        kinds=tuple(section.kinds
+                    or (k for k in DEFAULT_KINDS if k not in UNCERTAINTY_KINDS or has_uncertainty(ds))),
     )
 
 

@@ -37,6 +37,7 @@ import numpy as np
 import xarray as xr
 
 from .data import (
+    UNCERTAINTY_KINDS,
     PlotSpec,
     assembly,
     chain_interfaces,
@@ -58,9 +59,6 @@ log = logging.getLogger(__name__)
 
 #: render in parallel (when ``jobs > 1``) from this many files on
 PARALLEL_AT = 8
-#: the figures of an ``[uncertainty]`` study (:data:`tce.plot.uncertainty.KINDS`; that module imports the solvers'
-#: reliability estimators, so it is imported when one is drawn)
-UNCERTAINTY_KINDS = ("fragility", "capacity_samples", "sensitivity", "convergence")
 #: resolution of the PNG files (dots per inch): a screen's
 DPI = 100
 

@@ -23,7 +23,7 @@ from pathlib import Path
 import xarray as xr
 
 from ..files import atomic_write
-from ..plot.output import UNCERTAINTY_KINDS  # shown in the report's Uncertainty section
+from ..plot.data import UNCERTAINTY_KINDS  # shown in the report's Uncertainty section
 
 __all__ = ["ReportFiles", "find_browser", "print_pdf", "report_html", "write_report"]
 

@@ -19,8 +19,8 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from plot.uncertainty_data import small_study, with_uncertainty
-from tce.plot.data import capacity_label, counts_note, plot_spec, settlement_parameter
-from tce.plot.output import UNCERTAINTY_KINDS, builder, figure_tasks, write_figures
+from tce.plot.data import UNCERTAINTY_KINDS, capacity_label, counts_note, plot_spec, settlement_parameter
+from tce.plot.output import builder, figure_tasks, write_figures
 from tce.plot.uncertainty import (
     MAX_CURVES,
     capacity_samples_figure,
@@ -71,9 +71,13 @@ def _png(fig: Figure) -> bytes:
 
 
 def test_a_study_without_uncertainty_draws_no_new_figure(base: xr.Dataset, uq: xr.Dataset, tmp_path: Path) -> None:
-    """The uncertainty kinds are asked for in both; they are drawn only where the samples are."""
+    """The uncertainty kinds are asked for in both; they are drawn only where the samples
+    are. Without [plots] kinds, they are the default kinds only where the samples are (a
+    study without [uncertainty] does not even say it does not draw them)."""
     kinds = {t.kind for t in figure_tasks(base, plot_spec(base))}
     assert kinds == {"summary"}
+    assert not set(plot_spec(base.assign_attrs(study="")).kinds) & set(UNCERTAINTY_KINDS)
+    assert set(plot_spec(uq.assign_attrs(study="")).kinds) >= set(UNCERTAINTY_KINDS)
     files = write_figures(uq, tmp_path, plot_spec(uq))
     assert sorted(p.name for p in files) == sorted(["summary.png", *(f"{k}.png" for k in UNCERTAINTY_KINDS)])
     assert all(p.stat().st_size > 0 for p in files)
