@@ -485,7 +485,7 @@ def uncertainty_rows(ds: xr.Dataset) -> list[dict[str, str]]:
     n = int(ds.sizes["sample"])
     rows = []
     for k, name in enumerate(scenarios(ds)):
-        def num(var: str) -> float:
+        def num(var: str, k: int = k) -> float:  # NaN where the variable is absent
             return float(ds[var].values[k]) if var in ds else math.nan
 
         dom = dominant_variable(ds, name)
