@@ -402,7 +402,25 @@ def _show(args: argparse.Namespace) -> int:
         _show_assessment(ds)
     if "settlement_capacity" in ds:
         _show_settlement(ds)
+    if "sample_capacity" in ds:
+        _show_uncertainty(ds)
     return 0
+
+
+def _show_uncertainty(ds) -> None:
+    """The failure probability of each scenario of an ``[uncertainty]`` study, one line each
+    (:func:`tce.report.content.uncertainty_rows`)."""
+    from .report.content import uncertainty_content
+
+    u = uncertainty_content(ds)
+    print(f"uncertainty ({u['method']}, N = {u['samples']}, seed {u['seed']}; failure: "
+          f"{u['failure'].replace('λ', 'lambda')}; pf with its {u['interval']} interval, beta = -Phi^-1(pf); "
+          f"dominant: largest |{u['sensitivity']}|):")
+    for r in u["rows"]:
+        extra = [f"FORM {r['form']}" if r["form"] else "", f"subset {r['subset']}" if r["subset"] else "", r["note"]]
+        print(f"  {r['scenario']}: pf {r['pf']} [{r['low']}, {r['high']}], beta {r['beta']}, N {r['samples']} "
+              f"({r['failed']} failed of {r['decided']} decided, {r['numerical']} numerical), dominant {r['dominant']}"
+              + "".join(f"; {e.replace('β', 'beta')}" for e in extra if e))
 
 
 def _show_small_displacements(ds) -> None:
