@@ -360,7 +360,8 @@ def _run(args: argparse.Namespace) -> int:
     bar.close()
     counts = {o: list(report.outcomes.values()).count(o) for o in OUTCOMES}
     counts.update({o: n for o, n in Counter(report.outcomes.values()).items() if o not in counts})
-    what = f"{len(report.solved)} solved" + (f", {len(report.reused)} reused" if report.reused else "")
+    jobs = " jobs" if study.spec.uncertainty is not None else ""  # the scenarios and their jobs of samples
+    what = f"{len(report.solved)}{jobs} solved" + (f", {len(report.reused)} reused" if report.reused else "")
     tally = ", ".join(f"{n} {o}" for o, n in counts.items() if n)
     if study.spec.settlement_path is not None:
         tally += f"; settlement path: {_settlement_tally(report.results)}"
