@@ -244,3 +244,91 @@ def test_critical_position_is_searched_for_each_sample(tmp_path, monkeypatch):
         at = [analysis.limit(loads=pattern.moved(x), mechanism=False).lambda_max for x in (-0.8, -0.5, -0.3, 0.0, 0.4)]
         assert ds["sample_capacity"].values[0, k] <= min(at) * (1 + 1e-6)
         assert ds["sample_capacity"].values[0, k] >= 0.9 * min(at)
+
+
+ASSESSED = """
+[study]
+name = "assessed"
+
+[structure]
+type = "semicircular_arch"
+voussoirs = 6
+
+[material]
+friction = 0.7
+
+[loads]
+lateral = false
+lambda_step = 1.0
+tolerance = 1e-2
+
+[[loads.point]]
+on_top = [-0.4, 0.0]
+force = [0.0, 0.0, -1.0]
+
+[assessment]
+dead_factor = 0.9
+live_factor = 1.5
+
+[uncertainty]
+samples = 3
+
+[uncertainty.variables]
+"material.friction" = { distribution = "lognormal", mean = 0.7, cov = 0.2 }
+"assessment.live_factor" = { distribution = "normal", mean = 1.5, std = 0.1 }
+"""
+
+
+def test_adequacy_factor_of_each_sample(tmp_path):
+    """With [assessment] the samples' capacity is the adequacy factor at their friction and live
+    factor: tce.analysis.assessment.adequacy_factor of the rebuilt scenario, to 1e-6."""
+    from tce.analysis import Analysis
+    from tce.analysis.assessment import adequacy_factor
+    from tce.core.loads import LoadPattern
+    from tce.study.schema import build_material, build_structure
+
+    study = parse_study(ASSESSED, tmp_path / "study.toml")
+    ds = xr.load_dataset(runner.run_study(study, tmp_path, jobs=1).results)
+    assert list(ds["capacity_kind"].values) == ["adequacy_factor"]
+    sc = study.scenarios()[0]
+    for k, row in enumerate(ds["sample_input"].values):
+        d = sc.drawn(dict(zip(ds["variable"].values, map(float, row))))
+        analysis = Analysis(build_structure(d.structure), build_material(d.material))
+        want = adequacy_factor(analysis, LoadPattern.from_dict(d.pattern), d.factors["dead_factor"], d.factors["live_factor"])
+        assert ds["sample_capacity"].values[0, k] == pytest.approx(want.lambda_max, rel=1e-6)
+
+
+SETTLED = """
+[study]
+name = "settled"
+
+[structure]
+type = "semicircular_arch"
+voussoirs = 6
+
+[scenarios.spreading]
+right = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+
+[settlement_path]
+increment = 0.02
+s_max = 0.4
+
+[uncertainty]
+samples = 2
+
+[uncertainty.variables]
+"settlement.magnitude" = { distribution = "uniform", mean = 1.0, std = 0.2 }
+"""
+
+
+def test_settlement_capacity_scales_with_the_drawn_magnitude(tmp_path):
+    """With [settlement_path] and a moving support the samples' capacity is the settlement
+    capacity in multiples of their own (drawn) settlement vectors: the nominal capacity over
+    the magnitude, within the paths' brackets (increment / 64 each)."""
+    study = parse_study(SETTLED, tmp_path / "study.toml")
+    ds = xr.load_dataset(runner.run_study(study, tmp_path, jobs=1).results)
+    assert list(ds["capacity_kind"].values) == ["settlement_capacity"]
+    nominal = float(ds["settlement_capacity"].values[0])
+    magnitude = ds["sample_input"].values[:, 0]
+    assert np.all(np.abs(ds["sample_capacity"].values[0] * magnitude - nominal) <= 1e-3)
+    assert list(ds["sample_status"].values[0]) == ["optimal"] * 2
