@@ -295,17 +295,32 @@ def _interval(estimate: Any, interval: str) -> tuple[float, float]:
     return estimate.clopper_pearson if interval == "clopper-pearson" else estimate.wilson
 
 
+#: significant digits of a capacity that its rank reads: the solver's answers agree to about 1e-10
+#: relative, so capacities equal to this many digits are ties, not ordered by their last digits' noise
+RANK_DIGITS = 8
+
+
+def _significant(values: np.ndarray, digits: int = RANK_DIGITS) -> np.ndarray:
+    """``values`` rounded to ``digits`` significant digits (0, infinities and NaN kept)."""
+    finite = np.isfinite(values) & (values != 0)
+    scale = np.ones_like(values)
+    scale[finite] = 10.0 ** (digits - 1 - np.floor(np.log10(np.abs(values[finite]))))
+    return np.where(finite, np.round(values * scale) / scale, values)
+
+
 def _spearman(values: np.ndarray, inputs: np.ndarray) -> np.ndarray:
     """Spearman's rank correlation of ``values`` with each column of ``inputs`` over the
-    decided values (NaN left out; +-inf ranked as the extremes); NaN where either is constant."""
+    decided values (NaN left out; +-inf ranked as the extremes; values equal to
+    :data:`RANK_DIGITS` significant digits tied); NaN where either is constant."""
     keep = ~np.isnan(values)
     out = np.full(inputs.shape[1], np.nan)
     if keep.sum() < 3:
         return out
+    ranked = _significant(values[keep])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", stats.ConstantInputWarning)
         for j in range(inputs.shape[1]):
-            out[j] = stats.spearmanr(values[keep], inputs[keep, j]).statistic
+            out[j] = stats.spearmanr(ranked, inputs[keep, j]).statistic
     return out
 
 

@@ -332,3 +332,21 @@ def test_settlement_capacity_scales_with_the_drawn_magnitude(tmp_path):
     magnitude = ds["sample_input"].values[:, 0]
     assert np.all(np.abs(ds["sample_capacity"].values[0] * magnitude - nominal) <= 1e-3)
     assert list(ds["sample_status"].values[0]) == ["optimal"] * 2
+
+
+def test_sensitivity_ignores_the_solvers_last_digits():
+    """Capacities that differ only in their last digits (a mechanism that friction does not
+    govern, solved to 1e-10) are ties: their noise, here correlated with a variable the capacity
+    does not depend on, gives that variable no rank correlation."""
+    rng = np.random.default_rng(1)
+    friction, weight = rng.uniform(0.4, 0.8, 400), rng.uniform(18, 22, 400)
+    cap = np.minimum(friction, 0.5) * (1 + 1e-13 * weight)  # a plateau at 0.5 above friction 0.5
+    ds = xr.Dataset(
+        {"sample_capacity": (("scenario", "sample"), cap[None]),
+         "sample_status": (("scenario", "sample"), np.full((1, 400), "optimal", dtype=object)),
+         "sample_input": (("sample", "variable"), np.column_stack([friction, weight]))},
+        coords={"scenario": ["a"], "sample": np.arange(400), "variable": ["friction", "weight"]},
+        attrs={"uncertainty_threshold": 0.45, "uncertainty_interval": "wilson", "uncertainty_confidence": 0.95},
+    )
+    sens = statistics(ds)["sensitivity"].values[0]
+    assert sens[0] > 0.7 and abs(sens[1]) < 0.15
