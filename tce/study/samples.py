@@ -40,7 +40,7 @@ from ..analysis.assessment import adequacy_factor
 from ..analysis.critical import critical_position, search_bounds
 from ..analysis.reliability import Capacity, WarmLimit, evaluate, form, subset_simulation
 from ..core.analysis import Analysis
-from ..core.loads import LoadPattern
+from ..core.loads import LoadError, LoadPattern
 from ..structures.assembly import Assembly
 from .schema import Scenario, Study, build_material, build_structure
 from .settlement import follow
@@ -175,9 +175,28 @@ def solve_job(job: Scenario, assembly: Assembly) -> xr.Dataset:
     return label(xr.Dataset(data, coords=coords, attrs={"scenario_key": job.key, "job": job.name}))
 
 
+#: the status of a point FORM or subset simulation reaches whose values the study's sections refuse
+OUT_OF_RANGE = "out_of_range"
+
+
+def _within_range(capacity: Capacity) -> Capacity:
+    """``capacity``, with :data:`OUT_OF_RANGE` (NaN) for values the study's sections refuse:
+    FORM and subset simulation go beyond the drawn values (a lognormal friction of 1e30 at
+    ``u = 40``); FORM stops there, saying so, and subset simulation counts it undecided."""
+
+    def checked(sample: Mapping[str, float]) -> tuple[str, float]:
+        try:
+            return capacity(sample)
+        except (ValueError, ValidationError, LoadError) as exc:
+            log.debug("capacity at %s: %s", dict(sample), exc)
+            return OUT_OF_RANGE, math.nan
+
+    return checked
+
+
 def _estimators(section: UncertaintySection, capacity: Capacity) -> dict[str, tuple]:
     """FORM and subset simulation of ``capacity < threshold``, as the section asks for them."""
-    joint, data = section.joint(), {}
+    joint, data, capacity = section.joint(), {}, _within_range(capacity)
     one = lambda v: (("scenario",), np.asarray([v], dtype=object if isinstance(v, str) else None))  # noqa: E731
     if section.form:
         f = form(joint, capacity, section.threshold)

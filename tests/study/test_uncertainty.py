@@ -350,3 +350,13 @@ def test_sensitivity_ignores_the_solvers_last_digits():
     )
     sens = statistics(ds)["sensitivity"].values[0]
     assert sens[0] > 0.7 and abs(sens[1]) < 0.15
+
+
+def test_form_beyond_the_keys_range_stops_saying_so(tmp_path):
+    """FORM's design point of a threshold the friction reaches only at u = 14 (where its value
+    is infinite) ends the FORM job with a status, not the run."""
+    text = SLIDING.replace("threshold = 0.55", "threshold = 5.0\nform = true")
+    report = runner.run_study(parse_study(text, sliding(tmp_path, text)), tmp_path, jobs=1)
+    ds = xr.load_dataset(report.results)
+    assert ds["form_status"].values[0].startswith("capacity out_of_range at u = ")
+    assert math.isnan(float(ds["form_beta"][0])) and float(ds["failure_probability"][0]) == 1.0
