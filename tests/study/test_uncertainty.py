@@ -353,9 +353,9 @@ def test_sensitivity_ignores_the_solvers_last_digits():
 
 
 def test_form_beyond_the_keys_range_stops_saying_so(tmp_path):
-    """FORM's design point of a threshold the friction reaches only at u = 14 (where its value
-    is infinite) ends the FORM job with a status, not the run."""
-    text = SLIDING.replace("threshold = 0.55", "threshold = 5.0\nform = true")
+    """FORM's first step towards a threshold the friction reaches only at about u = 8 lands where
+    the friction is infinite (u = 15.9): the FORM job ends with a status, not the run."""
+    text = SLIDING.replace("threshold = 0.55", "threshold = 2.0\nform = true")
     report = runner.run_study(parse_study(text, sliding(tmp_path, text)), tmp_path, jobs=1)
     ds = xr.load_dataset(report.results)
     assert ds["form_status"].values[0].startswith("capacity out_of_range at u = ")
