@@ -1195,6 +1195,7 @@ def _real(annotation: Any) -> bool:
 
 
 def _numeric(fields: Mapping[str, Any]) -> list[str]:
+    """The fields of a section that take a real number."""
     return [k for k, f in fields.items() if _real(f.annotation)]
 
 
@@ -1233,6 +1234,7 @@ def _key_problem(study: Study, key: str) -> str | None:
 
 
 def _reason(exc: Exception) -> str:
+    """A refusal in a few words (the first two problems of a ValidationError)."""
     if isinstance(exc, ValidationError):
         return "; ".join(f"{'.'.join(map(str, e['loc']))}: {e['msg']}" for e in exc.errors()[:2])
     return str(exc)
