@@ -167,6 +167,8 @@ class ArchStructure(_Generated):
     voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
     support_height: Length | None = None
     joints: Literal["radial", "vertical"] = "radial"
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
 
     builder = semicircular_arch
 
@@ -182,6 +184,8 @@ class PointedArchStructure(_Generated):
     depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=2)] = 14
     pier_height: Length | None = None
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
 
     builder = pointed_arch
 
@@ -196,6 +200,8 @@ class SegmentalArchStructure(_Generated):
     depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 12
     pier_height: Length | None = None
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
 
     builder = segmental_arch
 
@@ -324,6 +330,30 @@ class MaterialSection(_Strict):
     def build(self) -> Material:
         """The :class:`tce.core.material.Material` of this section."""
         return Material(**self.model_dump())
+
+
+class RingInterfaceSection(_Strict):
+    """``[ring_interface]``: the contact law of the faces between the rings of a multi-ring arch
+    (interfaces of kind ``"ring"``, :mod:`tce.structures.arch`): friction, cohesion, tensile and
+    compressive strength (kN/m^2), each ``[material]``'s when left out, or ``bonded = true``:
+    rings that cannot separate (any tension and shear carried, ``Material(bonded=True)``)."""
+
+    friction: Friction | None = None
+    cohesion: Stress | None = None
+    tensile_strength: Stress | None = None
+    compressive_strength: Strength | None = None
+    bonded: bool = False
+
+    @model_validator(mode="after")
+    def _bonded_alone(self) -> RingInterfaceSection:
+        if self.bonded and self.model_dump(exclude_none=True, exclude={"bonded"}):
+            raise ValueError("bonded rings carry any force; fix: leave friction, cohesion and strengths out, or set "
+                             "bonded = false")
+        return self
+
+
+#: interface kind that ``[ring_interface]`` gives its law to
+RING_KIND = "ring"
 
 
 class PointLoadSection(_Strict):
@@ -585,6 +615,7 @@ class StudyFile(_Strict):
     study: StudySection
     structure: Structure
     material: MaterialSection = MaterialSection()
+    ring_interface: RingInterfaceSection | None = None
     loads: LoadsSection = LoadsSection()
     sweep: SweepSection = SweepSection()
     scenarios: Annotated[
@@ -634,7 +665,9 @@ class Scenario:
     params : dict
         Values of the swept parameters (and ``alpha``, ``magnitude``) for this scenario.
     structure, material : dict
-        Validated ``[structure]`` and ``[material]`` sections with the swept values applied.
+        Validated ``[structure]`` and ``[material]`` sections with the swept values applied;
+        the material holds the ``[ring_interface]`` keys given (``"ring_interface"``) when the
+        study has that section.
     loads : dict
         ``lambda_step``, ``tolerance``, ``lambda_cap`` (and ``critical_position``,
         ``positions`` when the study searches the critical position).
@@ -802,11 +835,21 @@ class Study:
                     pattern=spec.loads.pattern(p["alpha"], p.get("load_x")).to_dict(),
                     params=p,
                     structure=structure,
-                    material=_with(spec.material.model_dump(), p, MATERIAL_SWEEPS),
+                    material=self.material(p),
                     loads=loads,
                     assembly_digest=self._digest(structure),
                     settlement_path=spec.settlement_path.model_dump() if spec.settlement_path else None,
                 )
+
+    def material(self, params: dict[str, float] | None = None) -> dict[str, Any]:
+        """The ``[material]`` section with the swept values ``params`` applied, and the
+        ``[ring_interface]`` keys given (under ``"ring_interface"``) when the study has that
+        section: what :func:`build_material` builds."""
+        spec = self.spec
+        out = _with(spec.material.model_dump(), params or {}, MATERIAL_SWEEPS)
+        if spec.ring_interface is not None:
+            out["ring_interface"] = spec.ring_interface.model_dump(exclude_unset=True)
+        return out
 
     def _digest(self, structure: dict[str, Any]) -> str:
         key = json.dumps(structure, sort_keys=True)
@@ -926,8 +969,21 @@ def build_structure(section: dict[str, Any]) -> Assembly:
 
 
 def build_material(section: dict[str, Any]) -> Material:
-    """The material of a validated ``[material]`` section given as a plain dict."""
-    return MaterialSection.model_validate(section).build()
+    """The material of a validated ``[material]`` section given as a plain dict
+    (:meth:`Study.material`): with a ``"ring_interface"`` entry, the interfaces of kind
+    ``"ring"`` get its law, the keys it leaves out taken from ``[material]``."""
+    section = dict(section)
+    ring = section.pop("ring_interface", None)
+    material = MaterialSection.model_validate(section).build()
+    if ring is None:
+        return material
+    given = RingInterfaceSection.model_validate(ring)
+    if given.bonded:
+        law = Material(bonded=True)
+    else:
+        own = {k: getattr(material, k) for k in ("friction", "cohesion", "tensile_strength", "compressive_strength")}
+        law = Material(**(own | given.model_dump(exclude_none=True, exclude={"bonded"})))
+    return replace(material, interfaces={RING_KIND: law})
 
 
 def _check_scenarios(study: Study) -> None:
@@ -964,8 +1020,13 @@ def _check_scenarios(study: Study) -> None:
             swept = {k: v for k, v in sc.params.items() if k in MATERIAL_SWEEPS}
             raise StudyError(
                 f"{study.path}: {key}: {exc}{f' (with {swept})' if swept else ''}; "
-                "fix: change the [material] or [sweep] values"
+                f"fix: change the [material]{', [ring_interface]' if study.spec.ring_interface else ''} or [sweep] values"
             ) from None
+        if study.spec.ring_interface is not None and RING_KIND not in study.assembly(sc.structure).interface_table.kind:
+            raise StudyError(
+                f"{study.path}: ring_interface: the structure has no faces between rings, so the law would have no "
+                "effect; fix: give the arch rings = 2 or more, or remove [ring_interface]"
+            )
         supports = study.assembly(sc.structure).support_names
         unknown = sorted(set(sc.settlements) - set(supports))
         if unknown:
