@@ -119,8 +119,8 @@ META: dict[str, tuple[str, str]] = {
                        "multi-ring arch), whose contact law the material may set apart"),
     "ring_separation": ("1", "1 if the rings separate in the collapse mechanism (a face between rings slides, opens "
                         "or hinges), 0 if they act together, NaN without a mechanism"),
-    "ring_separation_at": ("-", "the faces between rings that move in the collapse mechanism, by mode, as 'A|B' block "
-                           "names (empty if none)"),
+    "ring_separation_at": ("-", "where the rings separate: per mode (sliding, opening, hinge), how many faces between "
+                           "rings move in the collapse mechanism and the x range of their centroids (empty if none)"),
     "hinge_point": ("m", "trace point of the hinge line (NaN if no hinge)"),
     "interface_a": ("-", "block A of the interface (the normal points from A into B)"),
     "interface_b": ("-", "block B of the interface"),
@@ -318,17 +318,22 @@ def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int
 
 def _ring_vars(a: Assembly, modes: np.ndarray) -> dict[str, tuple]:
     """Whether the rings of a multi-ring arch separate in the mechanism (``modes``: each
-    interface's, ``""`` without a mechanism): ``ring_separation``, ``ring_separation_at`` and
-    the interface kinds; nothing for an assembly without faces between rings."""
+    interface's, ``""`` without a mechanism): ``ring_separation``, ``ring_separation_at`` (per
+    mode, how many faces between rings move and the x range of their centroids) and the
+    interface kinds; nothing for an assembly without faces between rings."""
     kinds = a.interface_table.kind
     ring = np.flatnonzero(kinds == RING)
     if not len(ring):
         return {}
-    names = _interface_names(a)
+    x = a.interface_table.centroid[:, 0]
     moving = [k for k in ring if modes[k] not in ("closed", _FILL_TEXT)]
     decided = any(modes[k] != _FILL_TEXT for k in ring)
-    where = "; ".join(f"{m}: " + ", ".join(names[k] for k in moving if modes[k] == m)
-                      for m in ("sliding", "opening", "hinge") if any(modes[k] == m for k in moving))
+    parts = []
+    for m in ("sliding", "opening", "hinge"):
+        at = [k for k in moving if modes[k] == m]
+        if at:
+            parts.append(f"{m} at {len(at)} faces, x = {x[at].min():.3g} to {x[at].max():.3g} m")
+    where = "; ".join(parts) + (f" (of {len(ring)} faces between rings)" if parts else "")
     return {
         "interface_kind": (("interface",), _text(kinds.tolist())),
         "ring_separation": (("scenario",), np.asarray([float(bool(moving)) if decided else np.nan])),
