@@ -219,11 +219,12 @@ class Material:
         """The contact law in words, e.g. ``Coulomb friction mu = 0.8, no tension, unlimited
         compression, rigid contacts, associative flow`` (units kN, m); each interface kind
         with its own law follows as ``; "ring" interfaces: ...``."""
-        own = "".join(f'; "{kind}" interfaces: {law._words()}' for kind, law in self.interfaces)
+        own = "".join(f'; "{kind}" interfaces: {law._words(joint=True)}' for kind, law in self.interfaces)
         return self._words() + own
 
-    def _words(self) -> str:
-        """:meth:`describe` of this law alone."""
+    def _words(self, joint: bool = False) -> str:
+        """:meth:`describe` of this law alone; ``joint``: an interface kind's law, without the
+        stiffness and flow rule (the material's)."""
         if self.bonded:
             return "bonded: any tension and shear carried"
         parts = ["Heyman: unlimited friction" if self.heyman else f"Coulomb friction mu = {self.friction:g}"]
@@ -232,6 +233,8 @@ class Material:
         parts.append(f"tensile strength {self.tensile_strength:g} kN/m^2" if self.tensile_strength else "no tension")
         parts.append("unlimited compression" if self.compressive_strength is None
                      else f"compressive strength {self.compressive_strength:g} kN/m^2")
+        if joint:
+            return ", ".join(parts)
         parts.append("rigid contacts" if self.rigid else
                      f"compliant contacts (kn {self.normal_stiffness:g}, ks {self.shear_stiffness:g} kN/m^3)")
         if not self.heyman:
