@@ -608,14 +608,18 @@ def semicircular_arch_on_piers(
     voussoirs: int = 14,
     pier_height: float = 1.0,
     unit_weight: float = 20.0,
+    rings: Rings = 1,
+    stagger: bool = False,
 ) -> Assembly:
-    """The semicircular arch of :func:`semicircular_arch` on two piers ``pier_height`` tall (m).
+    """The semicircular arch of :func:`semicircular_arch` on two piers ``pier_height`` tall (m),
+    of one ring or of several (``rings``, ``stagger``: :func:`semicircular_arch`).
 
     The piers are the support blocks (their motion is prescribed, their equilibrium is not
     checked); ``meta["generator"] == "semicircular_arch_on_piers"``.
     """
     check_positive(pier_height=pier_height)
-    asm = semicircular_arch(inner_radius, thickness, depth, voussoirs, unit_weight, pier_height)
+    asm = semicircular_arch(inner_radius, thickness, depth, voussoirs, unit_weight, pier_height, rings=rings,
+                            stagger=stagger)
     meta = dict(asm.meta, generator="semicircular_arch_on_piers", pier_height=float(pier_height))
     meta.pop("support_height", None)
     return Assembly(asm.blocks, asm.interfaces, meta)

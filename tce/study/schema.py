@@ -215,6 +215,8 @@ class ArchOnPiersStructure(_Generated):
     depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 14
     pier_height: Length = 1.0
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
 
     builder = semicircular_arch_on_piers
 

@@ -9,7 +9,7 @@ import re
 import numpy as np
 import pytest
 
-from tce.structures.arch import RING, pointed_arch, segmental_arch, semicircular_arch
+from tce.structures.arch import RING, pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
 
 
 def _sector_area(r: float, dtheta: float) -> float:
@@ -65,6 +65,7 @@ def test_staggered_rings_follow_the_half_brick_rule():
     lambda: segmental_arch(rings=3, stagger=True),
     lambda: pointed_arch(voussoirs=7, rings=[0.08, 0.12], stagger=True),
     lambda: pointed_arch(voussoirs=8, rings=2),
+    lambda: semicircular_arch_on_piers(voussoirs=6, rings=2, stagger=True),
 ])
 def test_other_arches_take_rings(build):
     asm = build().validate()
