@@ -210,20 +210,9 @@ def ring_arch(
         joints inside each ring, and the faces between rings (kind ``"ring"``), each normal
         pointing from block A into block B (A the lower index).
     """
-    ji = np.asarray(intrados, dtype=float)
-    je = np.asarray(extrados, dtype=float)
-    if ji.shape != je.shape or ji.ndim != 2 or ji.shape[1] != 2 or len(ji) < 3 or len(ji) % 2 == 0:
-        raise ValueError("intrados and extrados must be (2 N + 1, 2) arrays of joint ends, N >= 1")
+    layout = RingLayout(intrados, extrados, fractions, stagger)
     check_positive(depth=depth, unit_weight=unit_weight)
-    s = np.asarray(fractions, dtype=float)
-    n, R, d = (len(ji) - 1) // 2, len(s) - 1, float(depth) / 2.0
-    joints = [_ring_joints(n, r + 1, stagger) for r in range(R)]
-    # the joints each ring boundary runs through (the intrados: ring 1's; the extrados: the last ring's)
-    bounds = [joints[0]] + [sorted(set(joints[r]) | set(joints[r + 1])) for r in range(R - 1)] + [joints[-1]]
-
-    def at(frac: float, j: int | Sequence[int]) -> np.ndarray:
-        return ji[j] + frac * (je[j] - ji[j])
-
+    ji, je, d = layout.ji, layout.je, float(depth) / 2.0
     height = support_height if support_height is not None else float(np.linalg.norm(je[0] - ji[0]))
     check_positive(support_height=height)
 
@@ -232,49 +221,99 @@ def ring_arch(
         base = top[:, 1].min() - height
         return np.array([top[0], top[1], [top[1, 0], base], [top[0, 0], base]])
 
-    loops, names, first = [support(0)], ["left"], []
-    width = max(2, len(str(max(len(j) - 1 for j in joints))))
-    for r, J in enumerate(joints):
-        first.append(len(loops))
-        for k, (a, c) in enumerate(zip(J[:-1], J[1:])):
-            inner = [j for j in bounds[r] if a <= j <= c]
-            outer = [j for j in bounds[r + 1] if a <= j <= c][::-1]
-            loops.append(np.vstack([at(s[r], inner), at(s[r + 1], outer)]))
-            names.append(f"r{r + 1}v{k + 1:0{width}d}")
-    loops.append(support(2 * n))
+    loops, names = [support(0)], ["left"]
+    loops += layout.loops
+    names += layout.names
+    loops.append(support(len(ji) - 1))
     names.append("right")
     shapes = [prism(_at_depth(loop, -d), _at_depth(loop, d)) for loop in loops]
     uw = float(unit_weight)
     blocks = tuple(Block(name, shape, uw, k in (0, len(loops) - 1)) for k, (name, shape) in enumerate(zip(names, shapes)))
     centroids = np.array([shape.centroid for shape in shapes])
-
-    def face(a: int, b: int, p: np.ndarray, q: np.ndarray, kind: str = "") -> Interface:
-        """The interface between blocks ``a`` and ``b`` on the segment ``p``-``q`` (x, z) across the depth."""
-        t = q - p
-        normal = np.array([t[1], 0.0, -t[0]])
-        if normal @ (centroids[b] - centroids[a]) < 0:
-            normal = -normal
-        pts = np.vstack([_at_depth(np.array([p, q]), -d), _at_depth(np.array([q, p]), d)])
-        return Interface(a, b, pts, normal, kind=kind)
-
-    def block_of(r: int, j0: int, j1: int) -> int:
-        """Ring ``r``'s voussoir holding the boundary segment from joint ``j0`` to ``j1``."""
-        return first[r] + sum(1 for j in joints[r][1:-1] if j <= j0)
-
-    right = len(loops) - 1
-    interfaces = []
-    for r, J in enumerate(joints):
-        lo, hi = at(s[r], J), at(s[r + 1], J)
-        last = first[r] + len(J) - 2
-        interfaces.append(face(0, first[r], lo[0], hi[0]))
-        interfaces += [face(first[r] + k - 1, first[r] + k, lo[k], hi[k]) for k in range(1, len(J) - 1)]
-        interfaces.append(face(last, right, lo[-1], hi[-1]))
-        if r + 1 < R:
-            B = bounds[r + 1]
-            pts = at(s[r + 1], B)
-            interfaces += [face(block_of(r, j0, j1), block_of(r + 1, j0, j1), pts[k], pts[k + 1], RING)
-                           for k, (j0, j1) in enumerate(zip(B[:-1], B[1:]))]
+    interfaces = layout.interfaces(1, 0, len(loops) - 1, centroids, d)
     return Assembly(blocks, tuple(interfaces), dict(meta or {}))
+
+
+def segment_face(a: int, b: int, p: np.ndarray, q: np.ndarray, centroids: np.ndarray, d: float, kind: str = "") -> Interface:
+    """The interface between blocks ``a`` and ``b`` on the segment ``p``-``q`` (``(x, z)``, m) across
+    the depth ``-d .. d``: the points ``(p, q)`` at ``-d``, ``(q, p)`` at ``+d``; the normal in the
+    x-z plane, perpendicular to the segment, pointing from ``a`` into ``b`` (by their
+    ``centroids``)."""
+    t = q - p
+    normal = np.array([t[1], 0.0, -t[0]])
+    if normal @ (centroids[b] - centroids[a]) < 0:
+        normal = -normal
+    pts = np.vstack([_at_depth(np.array([p, q]), -d), _at_depth(np.array([q, p]), d)])
+    return Interface(a, b, pts, normal, kind=kind)
+
+
+class RingLayout:
+    """The voussoirs and joints of the rings of one arch between two supports (module docstring).
+
+    Parameters
+    ----------
+    intrados, extrados : (2 N + 1, 2) array_like
+        Half-step joint ends (m), as :func:`ring_arch` takes them.
+    fractions : (R + 1,) array_like
+        Ring boundaries as fractions of the thickness (:func:`ring_fractions`).
+    stagger : bool
+        The half-brick rule (True) or aligned joints.
+
+    Attributes
+    ----------
+    loops : list of (k, 2) ndarray
+        Section of every voussoir, ring 1's first (m).
+    names : list of str
+        ``r1v01, r1v02, ..., r2v01, ...``, in the order of ``loops``.
+    """
+
+    def __init__(self, intrados: ArrayLike, extrados: ArrayLike, fractions: ArrayLike, stagger: bool) -> None:
+        ji, je = np.asarray(intrados, dtype=float), np.asarray(extrados, dtype=float)
+        if ji.shape != je.shape or ji.ndim != 2 or ji.shape[1] != 2 or len(ji) < 3 or len(ji) % 2 == 0:
+            raise ValueError("intrados and extrados must be (2 N + 1, 2) arrays of joint ends, N >= 1")
+        self.ji, self.je, self.s = ji, je, np.asarray(fractions, dtype=float)
+        n, R = (len(ji) - 1) // 2, len(self.s) - 1
+        self.joints = [_ring_joints(n, r + 1, stagger) for r in range(R)]
+        J = self.joints
+        # the joints each ring boundary runs through (the intrados: ring 1's; the extrados: the last ring's)
+        self.bounds = [J[0]] + [sorted(set(J[r]) | set(J[r + 1])) for r in range(R - 1)] + [J[-1]]
+        self.first = list(np.cumsum([0] + [len(j) - 1 for j in J[:-1]]))  # each ring's first voussoir
+        width = max(2, len(str(max(len(j) - 1 for j in J))))
+        self.loops: list[np.ndarray] = []
+        self.names: list[str] = []
+        for r, Jr in enumerate(J):
+            for k, (a, c) in enumerate(zip(Jr[:-1], Jr[1:])):
+                inner = [j for j in self.bounds[r] if a <= j <= c]
+                outer = [j for j in self.bounds[r + 1] if a <= j <= c][::-1]
+                self.loops.append(np.vstack([self.at(self.s[r], inner), self.at(self.s[r + 1], outer)]))
+                self.names.append(f"r{r + 1}v{k + 1:0{width}d}")
+
+    def at(self, frac: float, j: int | Sequence[int]) -> np.ndarray:
+        """Where the ring boundary at ``frac`` of the thickness meets joint(s) ``j`` (m)."""
+        return self.ji[j] + frac * (self.je[j] - self.ji[j])
+
+    def interfaces(self, offset: int, left: int, right: int, centroids: np.ndarray, d: float) -> list[Interface]:
+        """The supports ``left`` and ``right`` with the first and last voussoir of every ring,
+        the radial joints inside each ring and the faces between rings (kind ``"ring"``), for
+        voussoirs numbered from ``offset`` in the assembly (``centroids``: every block's, m)."""
+        s, J, out = self.s, self.joints, []
+
+        def block_of(r: int, j0: int) -> int:
+            """Ring ``r``'s voussoir holding the boundary segment that starts at joint ``j0``."""
+            return offset + self.first[r] + sum(1 for j in J[r][1:-1] if j <= j0)
+
+        for r, Jr in enumerate(J):
+            lo, hi = self.at(s[r], Jr), self.at(s[r + 1], Jr)
+            first = offset + self.first[r]
+            out.append(segment_face(left, first, lo[0], hi[0], centroids, d))
+            out += [segment_face(first + k - 1, first + k, lo[k], hi[k], centroids, d) for k in range(1, len(Jr) - 1)]
+            out.append(segment_face(first + len(Jr) - 2, right, lo[-1], hi[-1], centroids, d))
+            if r + 1 < len(J):
+                B = self.bounds[r + 1]
+                pts = self.at(s[r + 1], B)
+                out += [segment_face(block_of(r, j0), block_of(r + 1, j0), pts[k], pts[k + 1], centroids, d, RING)
+                        for k, j0 in enumerate(B[:-1])]
+        return out
 
 
 def semicircular_arch(

@@ -234,6 +234,8 @@ class ArchBridgeStructure(_Generated):
     pier_width: Length = 1.0
     pier_height: Length = 3.0
     piers: Literal["free", "fixed"] = "free"
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
 
     builder = arch_bridge
 

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from tce.structures.arch import RING, pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
+from tce.structures.bridge import arch_bridge
 
 
 def _sector_area(r: float, dtheta: float) -> float:
@@ -81,3 +82,17 @@ def test_other_arches_take_rings(build):
 def test_bad_rings_are_named(call, word):
     with pytest.raises(ValueError, match=re.escape(word)):
         call()
+
+
+@pytest.mark.parametrize("spans, piers", [(1, "free"), (2, "free"), (2, "fixed")])
+def test_bridge_spans_take_rings(spans, piers):
+    """Every span's rings between its abutment and pier; aligned rings have the single ring's
+    weight and one face between rings per voussoir and boundary."""
+    one = arch_bridge(spans=spans, voussoirs=6, piers=piers)
+    asm = arch_bridge(spans=spans, voussoirs=6, piers=piers, rings=3).validate()
+    assert asm.total_weight == pytest.approx(one.total_weight, rel=1e-12)
+    assert [i.kind for i in asm.interfaces].count(RING) == spans * 2 * 6
+    assert [n for n in asm.names if n.startswith("s1r2")] == [f"s1r2v{k + 1:02d}" for k in range(6)]
+    assert set(asm.support_names) == set(one.support_names)
+    staggered = arch_bridge(spans=spans, voussoirs=6, piers=piers, rings=2, stagger=True).validate()
+    assert [i.kind for i in staggered.interfaces].count(RING) == spans * 12

@@ -22,6 +22,7 @@ from tce.analysis.thickness import minimum_thickness
 from tce.core.analysis import Analysis
 from tce.core.material import Material
 from tce.structures.arch import RING, pointed_arch, segmental_arch, semicircular_arch
+from tce.structures.bridge import arch_bridge
 
 from reference.ring_arch import two_ring_lambda_max
 
@@ -32,6 +33,7 @@ ARCHES = {
     "semicircular": lambda t, rings: semicircular_arch(1.0, t, 0.25, 10, rings=rings),
     "segmental": lambda t, rings: segmental_arch(2.0, 0.6, t, 0.25, 8, rings=rings),
     "pointed": lambda t, rings: pointed_arch(2.0, thickness=t, voussoirs=9, rings=rings),
+    "bridge": lambda t, rings: arch_bridge(2, 4.0, 1.0, t, 1.0, 6, pier_width=0.8, pier_height=1.0, rings=rings),
 }
 
 
