@@ -76,3 +76,53 @@ def test_ring_law_moves_with_the_scene(t):
     assert math.isfinite(a.lambda_direct)
     b = answer(sc.mapped(t), lam=a.lam, step=path_settings(a.lambda_direct), about=t.points(a.about))
     same_answer(a, b, t)
+
+
+# ----------------------------------------------------------------------------- studies
+RING_SECTION = {"type": "semicircular_arch", "thickness": 0.3, "voussoirs": 6, "rings": 3, "stagger": True}
+
+
+def _ring_study(name: str, structure: dict, material: Material, pattern: LoadPattern,
+                sweep: dict[str, list[float]] | None = None, ring: dict | None = None) -> str:
+    """A study with ``[ring_interface]``: ``ring``, default the ring law of ``material``."""
+    from .studies import _table, material_section, study_text
+
+    text = study_text(name, structure, material, pattern, {"none": {}}, loads={"lambda_step": 0.05, "tolerance": 1e-6},
+                      sweep=sweep)
+    return text + _table("ring_interface", material_section(material.law(RING)) if ring is None else ring)
+
+
+@pytest.mark.parametrize("t", [Similarity.rotation(90.0), Similarity.units(1000.0, 1000.0)], ids=["rotation", "mm_N"])
+def test_ring_study_moved_as_a_block_file(t, tmp_path):
+    """The study of a staggered three-ring arch with a cohesive ring law, against the same
+    study turned about z or in mm and N, its structure a block file (the interfaces' kinds
+    stored in it): the same story (tests/battery/test_studies.py's comparison)."""
+    from .studies import file_section, run
+    from .test_studies import same_results
+
+    asm = ARCHES["semicircular_staggered"]()
+    sc = Scene(asm, _with_ring_law(RING_LAWS["cohesive"]), LOADS["on_top"](asm))
+    a = run(_ring_study("built", RING_SECTION, sc.material, sc.pattern), tmp_path)
+    moved = sc.mapped(t)
+    b = run(_ring_study("moved", file_section(moved.assembly, tmp_path, "moved"), moved.material, moved.pattern), tmp_path)
+    same_results(a, b, t)
+    assert a["ring_separation"].values.tolist() == b["ring_separation"].values.tolist()
+
+
+def test_ring_study_runners(tmp_path):
+    """Two worker processes and a resumed run give the in-process dataset of a ring study with
+    a friction sweep (of the joints and, left out of [ring_interface], of the faces between rings)."""
+    import xarray as xr
+
+    from .studies import run
+
+    asm = ARCHES["semicircular_staggered"]()
+    text = _ring_study("runners", RING_SECTION, JOINTS, LOADS["lateral"](asm), sweep={"friction": [0.7, 0.9]},
+                       ring={"cohesion": 1.0})
+    reference = run(text, tmp_path / "in_process")
+    xr.testing.assert_identical(run(text, tmp_path / "jobs2", jobs=2), reference)
+    out = tmp_path / "resumed"
+    run(text, out)
+    (first, *_) = sorted((out / "results" / "runners" / "scenarios").glob("*.nc"))
+    first.unlink()
+    xr.testing.assert_identical(run(text, out), reference)
