@@ -34,6 +34,8 @@ from .geometry import FaceTable, prism, prisms
 from .params import check_blocks, check_positive, check_whole
 
 __all__ = [
+    "RING",
+    "RingLayout",
     "arch_from_joints",
     "ring_arch",
     "ring_fractions",
@@ -114,15 +116,9 @@ def arch_from_joints(
 
 def _joints(ji: np.ndarray, je: np.ndarray, d: float, centroids: np.ndarray) -> list[Interface]:
     """Interfaces on the plane joints ``k`` from ``ji[k]`` to ``je[k]`` (``(x, z)``, m) across the
-    depth ``-d .. d``, joint ``k`` between blocks ``k`` and ``k + 1`` (``centroids`` theirs):
-    the points ``(ji, je)`` at ``-d``, then ``(je, ji)`` at ``+d``; the normal in the x-z plane,
-    perpendicular to the joint, pointing from block ``k`` into block ``k + 1``."""
-    pts = np.stack([_at_depth(ji, -d), _at_depth(je, -d), _at_depth(je, d), _at_depth(ji, d)], axis=1)
-    t = je - ji
-    normal = np.column_stack([t[:, 1], np.zeros(len(t)), -t[:, 0]])
-    flip = np.einsum("ij,ij->i", normal, centroids[1 : len(t) + 1] - centroids[: len(t)]) < 0
-    normal[flip] *= -1.0
-    return [Interface(k, k + 1, pts[k], normal[k]) for k in range(len(t))]
+    depth ``-d .. d``, joint ``k`` between blocks ``k`` and ``k + 1`` (``centroids`` theirs;
+    :func:`_segment_face`)."""
+    return [_segment_face(k, k + 1, ji[k], je[k], centroids, d) for k in range(len(ji))]
 
 
 #: interface kind of the faces between two rings (:func:`ring_arch`)
@@ -234,7 +230,7 @@ def ring_arch(
     return Assembly(blocks, tuple(interfaces), dict(meta or {}))
 
 
-def segment_face(a: int, b: int, p: np.ndarray, q: np.ndarray, centroids: np.ndarray, d: float, kind: str = "") -> Interface:
+def _segment_face(a: int, b: int, p: np.ndarray, q: np.ndarray, centroids: np.ndarray, d: float, kind: str = "") -> Interface:
     """The interface between blocks ``a`` and ``b`` on the segment ``p``-``q`` (``(x, z)``, m) across
     the depth ``-d .. d``: the points ``(p, q)`` at ``-d``, ``(q, p)`` at ``+d``; the normal in the
     x-z plane, perpendicular to the segment, pointing from ``a`` into ``b`` (by their
@@ -305,13 +301,13 @@ class RingLayout:
         for r, Jr in enumerate(J):
             lo, hi = self.at(s[r], Jr), self.at(s[r + 1], Jr)
             first = offset + self.first[r]
-            out.append(segment_face(left, first, lo[0], hi[0], centroids, d))
-            out += [segment_face(first + k - 1, first + k, lo[k], hi[k], centroids, d) for k in range(1, len(Jr) - 1)]
-            out.append(segment_face(first + len(Jr) - 2, right, lo[-1], hi[-1], centroids, d))
+            out.append(_segment_face(left, first, lo[0], hi[0], centroids, d))
+            out += [_segment_face(first + k - 1, first + k, lo[k], hi[k], centroids, d) for k in range(1, len(Jr) - 1)]
+            out.append(_segment_face(first + len(Jr) - 2, right, lo[-1], hi[-1], centroids, d))
             if r + 1 < len(J):
                 B = self.bounds[r + 1]
                 pts = self.at(s[r + 1], B)
-                out += [segment_face(block_of(r, j0), block_of(r + 1, j0), pts[k], pts[k + 1], centroids, d, RING)
+                out += [_segment_face(block_of(r, j0), block_of(r + 1, j0), pts[k], pts[k + 1], centroids, d, RING)
                         for k, j0 in enumerate(B[:-1])]
         return out
 
