@@ -49,7 +49,8 @@ from ..core.material import Material
 from ..core.fill import DISPERSION_2_TO_1
 from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
-from ..structures.assembly import Assembly
+from ..structures import defects as _defects
+from ..structures.assembly import Assembly, AssemblyError
 from ..structures.bridge import arch_bridge
 from ..structures.dome import hemispherical_dome
 from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
@@ -360,6 +361,55 @@ class RingInterfaceSection(_Strict):
 RING_KIND = "ring"
 
 
+class MortarLossSection(_Strict):
+    """``[[defects.mortar_loss]]``: a joint (``"A|B"``) in contact only between the depths lost
+    from its two sides (m; :func:`tce.structures.defects.with_joint_loss`): mortar lost, or a
+    crack open, to that depth."""
+
+    joint: str = Field(min_length=3)
+    intrados: Annotated[float, Field(ge=0, le=MAX_LENGTH)] = 0.0
+    extrados: Annotated[float, Field(ge=0, le=MAX_LENGTH)] = 0.0
+
+
+class JointLawSection(_Strict):
+    """``[[defects.joint_law]]``: the contact law of the joints ``joints`` (``"A|B"``): friction,
+    cohesion, tensile and compressive strength (kN/m^2), each ``[material]``'s when left out."""
+
+    joints: Annotated[list[Annotated[str, Field(min_length=3)]], Field(min_length=1)]
+    friction: Friction | None = None
+    cohesion: Stress | None = None
+    tensile_strength: Stress | None = None
+    compressive_strength: Strength | None = None
+
+
+class DefectsSection(_Strict):
+    """``[defects]``: what an inspection found (:mod:`tce.structures.defects`): blocks
+    ``missing``, blocks of another ``unit_weight`` (kN/m^3), joints ``separated`` (they carry
+    nothing: rings already apart there), joints that lost ``mortar_loss`` to a depth, and joints
+    with a ``joint_law`` of their own."""
+
+    missing: list[str] = Field(default_factory=list)
+    unit_weight: dict[str, UnitWeight] = Field(default_factory=dict)
+    separated: list[str] = Field(default_factory=list)
+    mortar_loss: list[MortarLossSection] = Field(default_factory=list)
+    joint_law: list[JointLawSection] = Field(default_factory=list)
+
+    def apply(self, assembly: Assembly) -> Assembly:
+        """``assembly`` with these defects: the joint laws' kinds (``joints1``, ``joints2``, ...),
+        the depths lost, the joints separated, the unit weights, then the blocks missing."""
+        asm = _defects.with_kinds(assembly, {j: joint_kind(k) for k, law in enumerate(self.joint_law)
+                                             for j in law.joints})
+        for loss in self.mortar_loss:
+            asm = _defects.with_joint_loss(asm, loss.joint, loss.intrados, loss.extrados)
+        asm = _defects.with_unit_weights(_defects.without_joints(asm, self.separated), self.unit_weight)
+        return _defects.without_blocks(asm, self.missing)
+
+
+def joint_kind(k: int) -> str:
+    """Interface kind of the joints of the ``k``-th (0-based) ``[[defects.joint_law]]``."""
+    return f"joints{k + 1}"
+
+
 class PointLoadSection(_Strict):
     """``[[loads.point]]``: a force (kN) on a free block (``block``, ``at``) or on the top
     surface above a plan point (``on_top``); :class:`tce.core.loads.PointLoad`."""
@@ -620,6 +670,7 @@ class StudyFile(_Strict):
     structure: Structure
     material: MaterialSection = MaterialSection()
     ring_interface: RingInterfaceSection | None = None
+    defects: DefectsSection | None = None
     loads: LoadsSection = LoadsSection()
     sweep: SweepSection = SweepSection()
     scenarios: Annotated[
@@ -801,7 +852,13 @@ class Study:
         study is validated), then the same object for the run, its workers and its results."""
         key = json.dumps(structure, sort_keys=True)
         if key not in self._assemblies:
-            self._assemblies[key] = build_structure(structure)
+            built = build_structure(structure)
+            if self.spec.defects is not None:
+                try:
+                    built = self.spec.defects.apply(built)
+                except AssemblyError as exc:
+                    raise AssemblyError(f"defects: {exc}") from None
+            self._assemblies[key] = built
         return self._assemblies[key]
 
     @cached_property
@@ -853,6 +910,8 @@ class Study:
         out = _with(spec.material.model_dump(), params or {}, MATERIAL_SWEEPS)
         if spec.ring_interface is not None:
             out["ring_interface"] = spec.ring_interface.model_dump(exclude_unset=True)
+        if spec.defects is not None and spec.defects.joint_law:
+            out["joint_law"] = [law.model_dump(exclude_unset=True, exclude={"joints"}) for law in spec.defects.joint_law]
         return out
 
     def _digest(self, structure: dict[str, Any]) -> str:
@@ -975,19 +1034,20 @@ def build_structure(section: dict[str, Any]) -> Assembly:
 def build_material(section: dict[str, Any]) -> Material:
     """The material of a validated ``[material]`` section given as a plain dict
     (:meth:`Study.material`): with a ``"ring_interface"`` entry, the interfaces of kind
-    ``"ring"`` get its law, the keys it leaves out taken from ``[material]``."""
+    ``"ring"`` get its law, and with ``"joint_law"`` entries the joints of kinds ``joints1``,
+    ... theirs (:func:`joint_kind`), the keys they leave out taken from ``[material]``."""
     section = dict(section)
     ring = section.pop("ring_interface", None)
+    joints = section.pop("joint_law", [])
     material = MaterialSection.model_validate(section).build()
-    if ring is None:
-        return material
-    given = RingInterfaceSection.model_validate(ring)
-    if given.bonded:
-        law = Material(bonded=True)
-    else:
-        own = {k: getattr(material, k) for k in ("friction", "cohesion", "tensile_strength", "compressive_strength")}
-        law = Material(**(own | given.model_dump(exclude_none=True, exclude={"bonded"})))
-    return replace(material, interfaces={RING_KIND: law})
+    own = {k: getattr(material, k) for k in ("friction", "cohesion", "tensile_strength", "compressive_strength")}
+    laws = {joint_kind(k): Material(**(own | {k_: v for k_, v in law.items() if v is not None}))
+            for k, law in enumerate(joints)}
+    if ring is not None:
+        given = RingInterfaceSection.model_validate(ring)
+        laws[RING_KIND] = Material(bonded=True) if given.bonded else \
+            Material(**(own | given.model_dump(exclude_none=True, exclude={"bonded"})))
+    return replace(material, interfaces=laws) if laws else material
 
 
 def _check_scenarios(study: Study) -> None:
@@ -1090,9 +1150,11 @@ def _check_positions(study: Study, sc: Scenario, assembly: Assembly) -> None:
 
 def _build_fix(section: BaseModel, exc: Exception, swept: dict[str, float]) -> str:
     """The fix of a structure that cannot be built, for the kind of failure."""
+    text = str(exc)
+    if text.startswith("defects:"):
+        return "name the blocks and joints of [defects] as the structure names them (a joint: 'A|B', its two blocks)"
     if not isinstance(section, FileStructure):
         return f"change the [sweep] values of {sorted(swept)}" if swept else "change the [structure] values"
-    text = str(exc)
     if isinstance(exc, FileNotFoundError):
         return "correct [structure] path (relative to the study file)"
     if isinstance(exc, InputLimitError):
