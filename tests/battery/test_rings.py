@@ -19,6 +19,7 @@ from tce.core.analysis import Analysis
 from tce.core.loads import LoadPattern, PointLoad
 from tce.core.material import Material
 from tce.structures.arch import RING, pointed_arch, segmental_arch, semicircular_arch
+from tce.structures.defects import with_joint_loss, with_kinds, without_blocks, without_joints
 
 from .cases import Scene, answer, path_settings
 from .relations import same_answer
@@ -65,13 +66,26 @@ def test_never_stronger_than_bonded(arch, law, load):
     assert rings.lambda_max <= bonded.lambda_max * (1 + 1e-7) + 1e-9, (rings.lambda_max, bonded.lambda_max)
 
 
+def _with_defects(asm):
+    """The staggered three-ring arch with an inspection's defects (tce.structures.defects)."""
+    asm = with_kinds(asm, {"r2v03|r2v04": "weak"})
+    asm = with_joint_loss(asm, "r1v02|r1v03", intrados=0.02)
+    return without_blocks(without_joints(asm, ["r1v05|r2v05"]), ["r3v02"])
+
+
+@pytest.mark.parametrize("defects", [False, True], ids=["intact", "defects"])
 @pytest.mark.parametrize("t", [Similarity.rotation(90.0), Similarity.mirror(30.0), Similarity.units(1000.0, 1000.0)],
                          ids=["rotation", "mirror", "mm_N"])
-def test_ring_law_moves_with_the_scene(t):
+def test_ring_law_moves_with_the_scene(t, defects):
     """A cohesive ring law (its cohesion and tensile strength in the scene's units) on a
-    staggered arch under a live point load: the answer moves with the scene."""
+    staggered arch, intact or with defects (a missing brick, a trimmed joint, a separated face,
+    a weak joint's own law), under a live point load: the answer moves with the scene."""
     asm = ARCHES["semicircular_staggered"]()
-    sc = Scene(asm, _with_ring_law(RING_LAWS["cohesive"]), LOADS["on_top"](asm))
+    material = _with_ring_law(RING_LAWS["cohesive"])
+    if defects:
+        asm = _with_defects(asm)
+        material = Material(friction=JOINTS.friction, interfaces={RING: RING_LAWS["cohesive"], "weak": Material(friction=0.3)})
+    sc = Scene(asm, material, LOADS["on_top"](asm))
     a = answer(sc)
     assert math.isfinite(a.lambda_direct)
     b = answer(sc.mapped(t), lam=a.lam, step=path_settings(a.lambda_direct), about=t.points(a.about))
