@@ -392,6 +392,7 @@ def _show(args: argparse.Namespace) -> int:
     print(table.to_string(float_format=lambda v: f"{v:.6g}"))
     _show_loads(ds)
     _show_outcomes(ds)
+    _show_rings(ds)
     _show_small_displacements(ds)
     if "load_x" in ds.coords:
         _show_critical(ds)
@@ -432,6 +433,14 @@ def _show_small_displacements(ds) -> None:
     note = small_displacement_note(ds)
     if note:
         print(f"settlements: {note.replace('λ', 'lambda_')}")
+
+
+def _show_rings(ds) -> None:
+    """Whether the rings separate at the limit, per scenario (:func:`tce.report.content.ring_separation`)."""
+    from .report.content import ring_separation
+
+    for line in ring_separation(ds):
+        print(f"ring separation: {line}")
 
 
 def _show_loads(ds) -> None:

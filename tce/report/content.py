@@ -24,7 +24,6 @@ import numpy as np
 import xarray as xr
 
 from .. import __version__
-from ..core.material import Material
 from ..plot.data import (
     assembly,
     capacity_label,
@@ -128,18 +127,39 @@ def _structure(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
 
 
 def _material(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
-    section = json.loads(ds.attrs.get("material", "{}"))
-    mat = Material(**section)
+    from ..study.schema import build_material  # the study's parser: not needed by `tce show`
+
+    mat = build_material(json.loads(ds.attrs.get("material", "{}")))
     swept = {k: sorted({fmt(v) for v in np.atleast_1d(ds[k].values)}) for k in
              ("friction", "cohesion", "tensile_strength", "compressive_strength") if k in ds.coords}
     return {
         "describe": mat.describe(),
-        "parameters": _table(toml.get("material", {})) or [("(none)", "the defaults: Heyman, rigid, no tension")],
+        "parameters": (_table(toml.get("material", {})) or [("(none)", "the defaults: Heyman, rigid, no tension")])
+                      + [(f"[ring_interface] {k}", v) for k, v in _table(toml.get("ring_interface"))]
+                      + [(f"[defects] {k}", v) for k, v in _table(toml.get("defects"))],
         "swept": [(k, ", ".join(v)) for k, v in swept.items()],
         "heyman": mat.heyman,
         "nonassociative": mat.flow == "non-associative",
         "rigid": mat.rigid,
     }
+
+
+def ring_separation(ds: xr.Dataset) -> list[str]:
+    """Whether the rings of a multi-ring arch separate at the limit, one line per scenario
+    (``ring_separation``, ``ring_separation_at``); empty for a study without rings."""
+    if "ring_separation" not in ds:
+        return []
+    out = []
+    for k, name in enumerate(ds["scenario"].values):
+        flag = float(ds["ring_separation"].values[k])
+        if flag != flag:
+            words = "undecided (no collapse mechanism)"
+        elif flag:
+            words = f"the rings separate at the limit ({ds['ring_separation_at'].values[k]})"
+        else:
+            words = "the rings act together at the limit (no face between rings moves)"
+        out.append(f"{name}: {words}")
+    return out
 
 
 def lambda_multiplies(ds: xr.Dataset) -> list[str]:
@@ -273,6 +293,7 @@ def _results(ds: xr.Dataset) -> dict[str, Any]:
     return {
         "assessment": _assessment(ds),
         "search": _search(ds),
+        "rings": ring_separation(ds),
         "notes": [f"{name}: {line}" for name, notes in zip(ds["scenario"].values, ds["load_notes"].values)
                   for line in str(notes).splitlines()] if "load_notes" in ds else [],
         "coords": coords,
