@@ -1339,6 +1339,9 @@ def _key_problem(study: Study, key: str) -> str | None:
     if head in sections:
         if head == "assessment" and spec.assessment is None:
             return "the study has no [assessment]"
+        if head == "structure" and spec.defects is not None:
+            return ("a structure with [defects] is not rebuilt per sample; fix: remove the variable, or the "
+                    "[defects] section")
         numeric = _numeric(sections[head])
         if rest in numeric:
             return None

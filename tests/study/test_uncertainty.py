@@ -360,3 +360,49 @@ def test_form_beyond_the_keys_range_stops_saying_so(tmp_path):
     ds = xr.load_dataset(report.results)
     assert ds["form_status"].values[0].startswith("capacity out_of_range at u = ")
     assert math.isnan(float(ds["form_beta"][0])) and float(ds["failure_probability"][0]) == 1.0
+
+
+def test_ring_and_joint_laws_take_the_sampled_friction(tmp_path):
+    """A joint law of [defects] that leaves its friction to [material] takes each sample's
+    friction; a structure variable with [defects] is refused."""
+    text = """
+[study]
+name = "laws"
+
+[structure]
+type = "semicircular_arch"
+voussoirs = 6
+
+[material]
+friction = 0.6
+
+[loads]
+lambda_step = 0.2
+tolerance = 1e-2
+
+[defects]
+[[defects.joint_law]]
+joints = ["v01|v02"]
+cohesion = 1.0
+
+[uncertainty]
+samples = 2
+
+[uncertainty.variables]
+"material.friction" = { distribution = "uniform", mean = 0.5, std = 0.05 }
+"""
+    study = parse_study(text, tmp_path / "study.toml")
+    ds = xr.load_dataset(runner.run_study(study, tmp_path, jobs=1).results)
+    from tce.analysis import Analysis
+    from tce.study.schema import build_material
+
+    sc = study.scenarios()[0]
+    for k, mu in enumerate(ds["sample_input"].values[:, 0]):
+        d = sc.drawn({"material.friction": float(mu)})
+        want = Analysis(study.assembly(sc.structure), build_material(d.material)).limit(mechanism=False, alpha=0.0)
+        assert want.status == "optimal"
+        assert ds["sample_capacity"].values[0, k] == pytest.approx(want.lambda_max, rel=1e-7)
+    with pytest.raises(StudyError, match='uncertainty.variables."structure.thickness"'):
+        parse_study(text.replace('"material.friction"', '"structure.thickness"').replace("mean = 0.5, std = 0.05",
+                                                                                        "mean = 0.2, std = 0.01"),
+                    tmp_path / "study.toml")
