@@ -50,7 +50,7 @@ from ..core.fill import DISPERSION_2_TO_1
 from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
 from ..structures.assembly import Assembly
-from ..structures.bridge import arch_bridge
+from ..structures.bridge import MAX_SKEW, arch_bridge
 from ..structures.dome import hemispherical_dome
 from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
 from ..structures.vault import barrel_vault, groin_vault
@@ -226,6 +226,9 @@ class ArchBridgeStructure(_Generated):
     pier_width: Length = 1.0
     pier_height: Length = 3.0
     piers: Literal["free", "fixed"] = "free"
+    courses: Annotated[int, Field(ge=1)] = 1
+    bond: Literal["stack", "running"] = "stack"
+    skew: Annotated[float, Field(ge=-MAX_SKEW, le=MAX_SKEW)] = 0.0
 
     builder = arch_bridge
 
