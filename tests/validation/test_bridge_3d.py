@@ -8,6 +8,8 @@
   bond: an odd number of courses keeps the running bond symmetric), and a lane off the
   centreline carries another load than on it; a skew bridge is symmetric under a half turn in plan
   instead, which takes a vehicle at ``(x, y)`` to the reversed vehicle at ``(-x, -y)``;
+- a wheel's contact patch, spread through the fill by the 2:1 rule in both directions, loads
+  the courses and voussoirs under it by area (worked out here from the ring's geometry);
 - the skew bridge tends to the square one as the skew tends to 0, on the spatial model, from
   the one-course square bridge's planar answer too: lambda_max is differentiable at 0 (the
   difference quotients from both sides agree).
@@ -22,8 +24,10 @@ import numpy as np
 import pytest
 
 from tce.core.analysis import Analysis
+from tce.core.fill import Fill
 from tce.core.loads import LoadPattern
 from tce.core.material import Material
+from tce.core.vehicles import Vehicle, wheel_loads
 from tce.structures.bridge import arch_bridge
 
 MATERIAL = Material(friction=0.6)
@@ -98,3 +102,32 @@ def test_skew_tends_to_the_square_bridge(courses, y):
     for h in (1e-3, 1e-4):
         assert abs(slope[h] - slope[-h]) < 1e-3 * scale, slope
     assert abs(slope[1e-3] - slope[1e-4]) < 1e-3 * scale, slope
+
+
+def test_a_wheel_loads_the_courses_under_its_patch_spread_in_both_directions():
+    """A 100 kN wheel (0.3 m square patch) at (0.1, 0.1) near the crown of a bridge of four
+    0.5 m courses: through the fill it spreads at 1 horizontal to 2 vertical on all four
+    sides, so its patch is ``w = 0.3 + h`` square (``h`` the fill under the wheel: the road
+    0.3 m over the crown's extrados, the crown voussoir's extrados chord worked out here), and
+    each course and each voussoir takes its share of that square by area."""
+    b = arch_bridge(depth=2.0, courses=4, **BRIDGE)
+    v = Vehicle(axles=((0.0, 100.0),), patch=(0.3, 0.3), x=0.1, y=0.1)
+    (wheel,), notes = wheel_loads(v, b, "vehicle[0]", Fill(**FILL))
+    assert notes == []
+    # the segmental ring: R = (s^2/4 + f^2) / 2f, centre at z = f - R; 8 joints at equal angles
+    s, f, t = BRIDGE["span"], BRIDGE["rise"], BRIDGE["thickness"]
+    R = (s**2 / 4 + f**2) / (2 * f)
+    half = np.arctan2(s / 2, R - f)
+    a = np.pi / 2 - 2 * half / 8  # the joint right of the crown joint (x = 0)
+    crown, joint = np.array([0.0, f - R + R + t]), np.array([(R + t) * np.cos(a), f - R + (R + t) * np.sin(a)])
+    z = crown[1] + (joint[1] - crown[1]) * 0.1 / joint[0]
+    w = 0.3 + (crown[1] + FILL["depth"] - z)
+    share = {}
+    for block, _, fz in wheel.parts:
+        name = b.names[block]
+        share[name[2:5], name[5:]] = share.get((name[2:5], name[5:]), 0.0) - fz
+    below = (w / 2 - 0.1) / w  # of the square's side on the side y < 0 (and x < 0)
+    assert sorted(share) == [("c02", "v04"), ("c02", "v05"), ("c03", "v04"), ("c03", "v05")]
+    assert share["c02", "v04"] + share["c02", "v05"] == pytest.approx(100.0 * below, rel=1e-9)
+    assert share["c02", "v04"] + share["c03", "v04"] == pytest.approx(100.0 * below, rel=1e-9)
+    assert share["c02", "v04"] == pytest.approx(100.0 * below**2, rel=1e-9)
