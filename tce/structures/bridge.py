@@ -44,20 +44,18 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import shapely
 from numpy.typing import NDArray
-from shapely.geometry import Polygon
 
 from .arch import _at_depth, segmental_arch
 from .assembly import Assembly, Block, Interface
 from .geometry import Polyhedron, prism
 from .params import check_blocks, check_choice, check_positive, check_whole
+from .vault import BONDS, _section_overlap
 
-__all__ = ["BONDS", "MAX_SKEW", "arch_bridge"]
+__all__ = ["MAX_SKEW", "arch_bridge"]
 
-#: joint patterns of neighbouring courses
-BONDS = ("stack", "running")
-#: largest skew angle (degrees): beyond it the acute corners of the face voussoirs vanish
+#: largest skew angle (degrees): bed joints 60 degrees off square, far beyond a false skew
+#: arch's practice (the thrust along the road crosses them obliquely)
 MAX_SKEW = 60.0
 
 
@@ -75,14 +73,6 @@ def _ring_joints(ring: Assembly, shifted: bool) -> tuple[NDArray[np.float64], ND
     r, t = ring.meta["radius"], ring.meta["thickness"]
     cs = np.column_stack([np.cos(mid), np.sin(mid)])
     return (np.vstack([ji[0], r * cs + [0.0, zc], ji[-1]]), np.vstack([je[0], (r + t) * cs + [0.0, zc], je[-1]]))
-
-
-def _overlap(p: NDArray[np.float64], q: NDArray[np.float64], min_area: float) -> NDArray[np.float64] | None:
-    """Overlap of two convex sections ``(x, z)``, or None when its area is below ``min_area``."""
-    inter = shapely.intersection(Polygon(p), Polygon(q))
-    if not isinstance(inter, Polygon) or inter.area <= min_area:
-        return None
-    return np.asarray(inter.exterior.coords)[:-1]
 
 
 def arch_bridge(
@@ -207,7 +197,7 @@ def arch_bridge(
         for c in range(nc - 1):
             for i in course_blocks[c]:
                 for j in course_blocks[c + 1]:
-                    sec = _overlap(loops[i], loops[j], min_area) if bond == "running" else \
+                    sec = _section_overlap(loops[i], loops[j], min_area) if bond == "running" else \
                         (loops[i] if i - course_blocks[c][0] == j - course_blocks[c + 1][0] else None)
                     if sec is not None:
                         rings.append((i, j, sec, ys[c + 1]))
