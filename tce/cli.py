@@ -177,7 +177,8 @@ def _parser() -> argparse.ArgumentParser:
         "bench",
         help="time against error of the solves, on this machine",
         description="Time one TCE solve of each model and contact law, the direct lambda_max, the load path "
-        "against the direct limit and lambda_max against the number of blocks, each against its error; "
+        "against the direct limit, lambda_max against the number of blocks and the samples of a reliability "
+        "study (per sample against raw Clarabel, 10,000 in one call, against workers), each against its error; "
         "print the tables and write bench.csv.",
     )
     bench.add_argument("--out", type=Path, default=Path("results/bench"), metavar="DIR", help="output folder (default: results/bench)")
@@ -390,6 +391,7 @@ def _show(args: argparse.Namespace) -> int:
     print(table.to_string(float_format=lambda v: f"{v:.6g}"))
     _show_loads(ds)
     _show_outcomes(ds)
+    _show_rings(ds)
     _show_small_displacements(ds)
     if "load_x" in ds.coords:
         _show_critical(ds)
@@ -401,7 +403,25 @@ def _show(args: argparse.Namespace) -> int:
         _show_assessment(ds)
     if "settlement_capacity" in ds:
         _show_settlement(ds)
+    if "sample_capacity" in ds:
+        _show_uncertainty(ds)
     return 0
+
+
+def _show_uncertainty(ds) -> None:
+    """The failure probability of each scenario of an ``[uncertainty]`` study, one line each
+    (:func:`tce.report.content.uncertainty_rows`)."""
+    from .report.content import uncertainty_content
+
+    u = uncertainty_content(ds)
+    print(f"uncertainty ({u['method']}, N = {u['samples']}, seed {u['seed']}; failure: "
+          f"{u['failure'].replace('λ', 'lambda')}; pf with its {u['interval']} interval, beta = -Phi^-1(pf); "
+          f"dominant: largest |{u['sensitivity']}|):")
+    for r in u["rows"]:
+        extra = [f"FORM {r['form']}" if r["form"] else "", f"subset {r['subset']}" if r["subset"] else "", r["note"]]
+        print(f"  {r['scenario']}: pf {r['pf']} [{r['low']}, {r['high']}], beta {r['beta']}, N {r['samples']} "
+              f"({r['failed']} failed of {r['decided']} decided, {r['numerical']} numerical), dominant {r['dominant']}"
+              + "".join(f"; {e.replace('β', 'beta')}" for e in extra if e))
 
 
 def _show_small_displacements(ds) -> None:
@@ -412,6 +432,14 @@ def _show_small_displacements(ds) -> None:
     note = small_displacement_note(ds)
     if note:
         print(f"settlements: {note.replace('λ', 'lambda_')}")
+
+
+def _show_rings(ds) -> None:
+    """Whether the rings separate at the limit, per scenario (:func:`tce.report.content.ring_separation`)."""
+    from .report.content import ring_separation
+
+    for line in ring_separation(ds):
+        print(f"ring separation: {line}")
 
 
 def _show_loads(ds) -> None:
@@ -635,7 +663,7 @@ def _check(args: argparse.Namespace) -> int:
 
 
 #: sections of ``tce bench`` (:data:`tce.quality.bench.SECTIONS`; named here so that the parser imports no solver)
-BENCH_SECTIONS = ("solve", "hot_path", "limit", "load_path", "scaling")
+BENCH_SECTIONS = ("solve", "hot_path", "limit", "load_path", "scaling", "reliability")
 
 
 def _bench(args: argparse.Namespace) -> int:

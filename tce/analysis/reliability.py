@@ -373,6 +373,24 @@ class WarmLimit:
         ValueError
             A value the material refuses (a negative friction, ...), named.
         """
+        A, b = self.data(sample)
+        self.solver.update(b=b, A=A)
+        sol = self.solver.solve()
+        if sol.status == "PrimalInfeasible":
+            return "infeasible", math.nan
+        if sol.solved and self.violation(A, b, sol.x) <= 1e-8:
+            return "optimal", float(sol.x[-1])
+        return self.fallback(sample)
+
+    def data(self, sample: Sample) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """A sample's limit problem: the nonzero values of ``A`` (in the CSC order of
+        ``base.A.data``) and ``b``; the sparsity pattern, ``q`` and the cones are ``base``'s.
+
+        Raises
+        ------
+        KeyError, ValueError
+            As :meth:`__call__`.
+        """
         values = self._values(sample)
         self._scene(values)  # a value the material refuses raises here
         A, b = self.base.A.data.copy(), self.base.b.copy()
@@ -381,28 +399,23 @@ class WarmLimit:
             d = v - self._base_value(p)
             A += d * dA
             b += d * db
-        self.solver.update(b=b, A=A)
-        sol = self.solver.solve()
-        if sol.status == "PrimalInfeasible":
-            return "infeasible", math.nan
-        np.copyto(self._A.data, A)
-        if sol.solved and self._violation(b, sol.x) <= 1e-8:
-            return "optimal", float(sol.x[-1])
-        return self._fallback(values)
+        return A, b
 
-    def _violation(self, b: NDArray[np.float64], x: NDArray[np.float64]) -> float:
-        """Largest violation of ``A x + s = b, s in K`` by ``s = b - A x`` with the sample's
-        matrix (the equilibrium rows' residual and the contact law's violation, on the scaled
-        problem)."""
+    def violation(self, A: NDArray[np.float64], b: NDArray[np.float64], x: NDArray[np.float64]) -> float:
+        """Largest violation of ``A x + s = b, s in K`` by ``s = b - A x`` for the problem
+        :meth:`data` gives (the equilibrium rows' residual and the contact law's violation, on
+        the scaled problem: an answer is accepted at 1e-8)."""
+        np.copyto(self._A.data, A)
         s = b - self._A @ x
         zero, nonneg, soc = self._rows
         cones = s[soc]
         return max(float(np.abs(s[zero]).max(initial=0.0)), float(-s[nonneg].min(initial=0.0)),
                    float((np.linalg.norm(cones[:, 1:], axis=1) - cones[:, 0]).max(initial=0.0)))
 
-    def _fallback(self, values: Mapping[str, float]) -> tuple[str, float]:
-        """A fresh :class:`LimitSolver` with the sample's material (retry, unbounded proof)."""
-        material, b_fixed, b_live = self._scene(values)
+    def fallback(self, sample: Sample) -> tuple[str, float]:
+        """``(status, lambda_max)`` of a sample by a fresh :class:`LimitSolver` with its
+        material (retry, unbounded proof): for an answer that fails :meth:`violation`."""
+        material, b_fixed, b_live = self._scene(self._values(sample))
         res = LimitSolver(self.model, material).solve_loads(b_fixed, b_live, mechanism=False)
         log.info("warm limit solve not clean; fresh solve: %s (%s)", res.status, res.message)
         return res.status, res.lambda_max

@@ -88,37 +88,50 @@ class ConeRows:
         return self.M[self.n_zero + self.n_nonneg :]
 
 
-def _strength_terms(
-    model: Model,
-    cohesion: float,
-    compressive_strength: float | None,
-    shear_capacity: NDArray[np.float64] | None,
-) -> NDArray[np.float64]:
-    """Shear capacity at zero normal force of every contact, ``c A + shear_capacity`` (kN);
-    checks that the contacts have an area where a compressive strength needs one."""
+Law = float | NDArray[np.float64]
+
+
+def _per_contact(model: Model, friction: float | NDArray[np.float64] | None, cohesion: Law, tensile_strength: Law,
+                 compressive_strength: Law | None, shear_capacity: NDArray[np.float64] | None
+                 ) -> tuple[NDArray[np.float64], ...]:
+    """``(mu, t A, fc A, g, extended)`` per contact (NaN mu: unlimited friction; ``inf``: no
+    bound; kN; ``extended``: a cohesion, a tensile strength or a shear capacity is given):
+    a law given as scalars or as ``(nc,)`` arrays (:meth:`tce.core.material.Material.contact_law`),
+    with ``g = c A + shear_capacity`` the shear capacity at zero normal force. Checks that the
+    contacts have an area where a compressive strength needs one."""
+    nc = model.n_contacts
     area = np.asarray(model.contact_area, dtype=float)
-    if compressive_strength is not None and np.any(area <= 0):
-        bad = int(np.count_nonzero(area <= 0))
+
+    def each(v: Law | None, absent: float) -> NDArray[np.float64]:
+        return np.broadcast_to(np.asarray(absent if v is None else v, dtype=float), (nc,))
+
+    mu, fc = each(friction, np.nan), each(compressive_strength, np.inf)
+    if np.any(np.isfinite(fc) & (area <= 0)):
+        bad = int(np.count_nonzero(np.isfinite(fc) & (area <= 0)))
         raise ValueError(
             f"compressive_strength needs a tributary area at every contact: {bad} contact(s) have none "
             "(interfaces given by fewer than 3 points)"
         )
-    g = float(cohesion) * area
+    g = each(cohesion, 0.0) * area
     if shear_capacity is not None:
         extra = np.asarray(shear_capacity, dtype=float)
-        if extra.shape != (model.n_contacts,) or not np.all(np.isfinite(extra)) or np.any(extra < 0):
-            raise ValueError(f"shear_capacity must be {model.n_contacts} finite numbers >= 0 (kN)")
+        if extra.shape != (nc,) or not np.all(np.isfinite(extra)) or np.any(extra < 0):
+            raise ValueError(f"shear_capacity must be {nc} finite numbers >= 0 (kN)")
         g = g + extra
-    return g
+    with np.errstate(invalid="ignore"):  # inf strength times a zero area: no bound
+        floor = np.where(np.isinf(each(tensile_strength, 0.0)), np.inf, each(tensile_strength, 0.0) * area)
+        ceiling = np.where(np.isinf(fc), np.inf, fc * area)
+    extended = (each(cohesion, 0.0) > 0) | (each(tensile_strength, 0.0) > 0) | (shear_capacity is not None)
+    return mu, floor, ceiling, g, extended
 
 
 def cone_rows(
     model: Model,
-    friction: float | None,
+    friction: float | NDArray[np.float64] | None,
     *,
-    cohesion: float = 0.0,
-    tensile_strength: float = 0.0,
-    compressive_strength: float | None = None,
+    cohesion: Law = 0.0,
+    tensile_strength: Law = 0.0,
+    compressive_strength: Law | None = None,
     shear_capacity: NDArray[np.float64] | None = None,
 ) -> ConeRows:
     """The contact law of ``model`` as cone rows (see module doc).
@@ -126,13 +139,14 @@ def cone_rows(
     Parameters
     ----------
     model : Model
-    friction : float or None
-        mu >= 0, or None for unlimited friction (Heyman).
-    cohesion, tensile_strength : float
+    friction : float, (nc,) array or None
+        mu >= 0, or None for unlimited friction (Heyman); per contact, NaN is unlimited.
+    cohesion, tensile_strength : float or (nc,) array
         ``c`` and ``t`` (kN/m^2), times each contact's tributary area
-        (:attr:`tce.core.model.Model.contact_area`).
-    compressive_strength : float or None
-        ``fc`` (kN/m^2): ``fn <= fc A`` per contact; None: unlimited.
+        (:attr:`tce.core.model.Model.contact_area`). A tensile strength of ``inf`` with
+        unlimited friction is a bonded contact: no row at all.
+    compressive_strength : float, (nc,) array or None
+        ``fc`` (kN/m^2): ``fn <= fc A`` per contact; None (or ``inf``): unlimited.
     shear_capacity : (nc,) array, optional
         Shear capacity (kN) added to ``c A`` at each contact: the friction capacity fixed
         from earlier normal forces in the non-associative scheme
@@ -142,13 +156,17 @@ def cone_rows(
     -------
     ConeRows
         The paper's laws (no cohesion, tension or crushing) give exactly the rows listed in
-        the module docstring with ``h = None``.
+        the module docstring with ``h = None``. Each contact gets the rows of its own law:
+        its normal row ``fn + t A >= 0`` where its friction is unlimited or zero, or it has
+        cohesion, tension or a shear capacity; a compressive row where its strength is
+        finite; its friction rows (tangential components fixed to zero where ``mu = 0``
+        and ``g = 0``) where its friction is limited.
     """
     nc, dim = model.n_contacts, model.dim
     idx = np.arange(nc) * dim
     n = model.n_vars
-    area = np.asarray(model.contact_area, dtype=float)
-    g = _strength_terms(model, cohesion, compressive_strength, shear_capacity)
+    mu, floor, ceiling, g, extended = _per_contact(model, friction, cohesion, tensile_strength,
+                                                   compressive_strength, shear_capacity)
 
     def sel(cols: NDArray[np.int64], vals: float | NDArray[np.float64] = 1.0) -> sp.csr_matrix:
         data = np.broadcast_to(np.asarray(vals, dtype=float), cols.shape)
@@ -157,20 +175,21 @@ def cone_rows(
     zero: list[sp.csr_matrix] = []
     nonneg: list[tuple[sp.csr_matrix, NDArray[np.float64]]] = []
     soc: tuple[sp.csr_matrix, NDArray[np.float64]] | None = None
-    mu = None if friction is None else float(friction)
-    extended = cohesion > 0 or tensile_strength > 0 or shear_capacity is not None
-    # normal force: fn + t A >= 0 (implied by the cone for plain Coulomb with mu > 0)
-    if mu is None or mu == 0.0 or extended:
-        nonneg.append((sel(idx), float(tensile_strength) * area))
-    if compressive_strength is not None:
-        nonneg.append((sel(idx, -1.0), float(compressive_strength) * area))
-    if mu is not None:
-        free = g > 0 if mu == 0.0 else np.ones(nc, dtype=bool)  # contacts whose tangential force may be nonzero
-        locked = idx[~free]
+    heyman = np.isnan(mu)
+    # normal force: fn + t A >= 0 (implied by the cone for plain Coulomb with mu > 0; none when bonded)
+    normal = (heyman | (mu == 0.0) | extended) & np.isfinite(floor)
+    if normal.any():
+        nonneg.append((sel(idx[normal]), floor[normal]))
+    crush = np.isfinite(ceiling)
+    if crush.any():
+        nonneg.append((sel(idx[crush], -1.0), ceiling[crush]))
+    if not heyman.all():
+        free = ~heyman & ((mu > 0) | (g > 0))  # contacts whose tangential force may be nonzero
+        locked = idx[~heyman & ~free]
         zero.append(sel((locked[:, None] + np.arange(1, dim)[None, :]).ravel()))
         c = idx[free]
         if dim == 2:
-            cap = sel(c, mu) if mu > 0 else sp.csr_matrix((len(c), n))
+            cap = sel(c, mu[free])
             nonneg.append((cap - sel(c + 1), g[free]))
             nonneg.append((cap + sel(c + 1), g[free]))
         else:
@@ -178,14 +197,14 @@ def cone_rows(
             k = len(c)
             rows = np.repeat(np.arange(k) * 3, 3) + np.tile(np.arange(3), k)
             cols = (c[:, None] + np.arange(3)[None, :]).ravel()
-            vals = np.tile([mu, 1.0, 1.0], k)
+            vals = np.column_stack([mu[free], np.ones(k), np.ones(k)]).ravel()
             M = sp.csr_matrix((vals, (rows, cols)), shape=(3 * k, n))
-            M.eliminate_zeros()
             h = np.zeros(3 * k)
             h[0::3] = g[free]
             soc = (M, h)
     blocks = zero + [m for m, _ in nonneg] + ([soc[0]] if soc else [])
     M = sp.vstack(blocks).tocsr() if blocks else sp.csr_matrix((0, n))
+    M.eliminate_zeros()
     n_zero = sum(z.shape[0] for z in zero)
     n_nonneg = sum(m.shape[0] for m, _ in nonneg)
     h = np.concatenate([np.zeros(n_zero)] + [v for _, v in nonneg] + ([soc[1]] if soc else []))
@@ -198,27 +217,29 @@ class LawCheck:
 
     Per contact with area ``A`` and ``g = c A + shear_capacity``: ``max(0, -(fn + t A))``,
     ``max(0, fn - fc A)`` with a compressive strength, and ``||ft|| - mu fn - g`` with
-    friction (``||ft|| - g`` for ``mu = 0``); nothing more for Heyman. For the paper's law
-    this is ``max(0, -fn, ||ft|| - mu fn)``. Arguments as :func:`cone_rows`.
+    friction (``||ft|| - g`` for ``mu = 0``); nothing more for Heyman, nothing at all for a
+    bonded contact. For the paper's law this is ``max(0, -fn, ||ft|| - mu fn)``. Arguments
+    as :func:`cone_rows`.
     """
 
     def __init__(
         self,
         model: Model,
-        friction: float | None,
+        friction: float | NDArray[np.float64] | None,
         *,
-        cohesion: float = 0.0,
-        tensile_strength: float = 0.0,
-        compressive_strength: float | None = None,
+        cohesion: Law = 0.0,
+        tensile_strength: Law = 0.0,
+        compressive_strength: Law | None = None,
         shear_capacity: NDArray[np.float64] | None = None,
     ) -> None:
-        area = np.asarray(model.contact_area, dtype=float)
-        g = _strength_terms(model, cohesion, compressive_strength, shear_capacity)
+        mu, floor, ceiling, g, _ = _per_contact(model, friction, cohesion, tensile_strength, compressive_strength,
+                                                shear_capacity)
         self.shape = (model.n_contacts, model.dim)
-        self.friction = None if friction is None else float(friction)
-        self.floor = tensile_strength * area if tensile_strength else None  # fn >= -t A
-        self.ceiling = None if compressive_strength is None else compressive_strength * area
-        self.g = g if np.any(g) else None
+        self.floor = floor if np.any(floor) else None  # fn >= -t A
+        self.ceiling = ceiling if np.isfinite(ceiling).any() else None
+        self.limited = ~np.isnan(mu)
+        self.friction = mu[self.limited] if self.limited.any() else None
+        self.g = g[self.limited] if np.any(g) else None
 
     def __call__(self, forces: NDArray[np.float64]) -> float:
         """Largest violation by ``forces`` ((nc, dim) or flat, kN), in kN."""
@@ -230,20 +251,21 @@ class LawCheck:
         if self.ceiling is not None:
             worst = max(worst, float((fn - self.ceiling).max()))
         if self.friction is not None:
-            ft = np.abs(f[:, 1]) if self.shape[1] == 2 else np.sqrt(f[:, 1] ** 2 + f[:, 2] ** 2)
-            excess = ft - self.friction * fn
-            worst = max(worst, float((excess if self.g is None else excess - self.g).max()))
+            fl = f[self.limited]
+            ft = np.abs(fl[:, 1]) if self.shape[1] == 2 else np.sqrt(fl[:, 1] ** 2 + fl[:, 2] ** 2)
+            excess = ft - self.friction * fl[:, 0]
+            worst = max(worst, float((excess if self.g is None else excess - self.g).max(initial=0.0)))
         return worst
 
 
 def cone_violation(
     model: Model,
-    friction: float | None,
+    friction: float | NDArray[np.float64] | None,
     forces: NDArray[np.float64],
     *,
-    cohesion: float = 0.0,
-    tensile_strength: float = 0.0,
-    compressive_strength: float | None = None,
+    cohesion: Law = 0.0,
+    tensile_strength: Law = 0.0,
+    compressive_strength: Law | None = None,
     shear_capacity: NDArray[np.float64] | None = None,
 ) -> float:
     """Largest violation of the contact law by ``forces`` ((nc, dim), kN), in kN (see

@@ -71,9 +71,12 @@ class CvxTCE:
     ----------
     model : Model
     material : Material
+        One law for every contact: laws of interface kinds are refused (ValueError).
     """
 
     def __init__(self, model: Model, material: Material) -> None:
+        if material.interfaces:
+            raise ValueError("CvxTCE takes one law for every contact, not laws of interface kinds")
         self.model = model
         self.material = material
         W = model.assembly.total_weight

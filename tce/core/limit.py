@@ -379,23 +379,27 @@ class LimitSolver:
 
     def _dual_cone_violation(self, rel: NDArray[np.float64]) -> float:
         """Violation of ``dn >= mu ||dt||`` (tangential free of constraint for mu = 0; no sliding
-        for Heyman), relative to the largest relative velocity. With a compressive strength
-        a contact may also close (crushing at ``fn = fc A``): ``dn`` is then free.
-        Cohesion and tensile strength shift the law without changing its recession cone,
-        so they leave the flow rule as it is."""
+        for Heyman; no relative motion at all at a bonded contact), relative to the largest
+        relative velocity, each contact by its own law. With a compressive strength a contact
+        may also close (crushing at ``fn = fc A``): ``dn`` is then free. Cohesion and tensile
+        strength shift the law without changing its recession cone, so they leave the flow
+        rule as it is."""
         d = rel.reshape(self.model.n_contacts, self.model.dim)
         scale = max(np.abs(rel).max(initial=0.0), 1e-300)
         dn = d[:, 0]
         dt = np.abs(d[:, 1]) if self.model.dim == 2 else np.hypot(d[:, 1], d[:, 2])
-        if self.material.compressive_strength is not None:
-            dn = np.full_like(dn, np.inf)
-        mu = self.material.friction
-        if mu is None:
-            viol = np.maximum(-dn, dt)
-        elif mu == 0.0:
-            viol = np.maximum(-dn, 0.0)
-        else:
-            viol = np.maximum(mu * dt - dn, 0.0)
+        law = self.formulation.contact_law
+
+        def each(key: str, absent: float) -> NDArray[np.float64]:
+            v = law[key]
+            return np.broadcast_to(np.asarray(absent if v is None else v, dtype=float), dn.shape)
+
+        mu, crush, bonded = each("friction", np.nan), np.isfinite(each("compressive_strength", np.inf)), \
+            np.isinf(each("tensile_strength", 0.0))
+        dn = np.where(crush, np.inf, dn)
+        with np.errstate(invalid="ignore"):
+            viol = np.where(np.isnan(mu), np.maximum(-dn, dt), np.maximum(np.nan_to_num(mu) * dt - dn, 0.0))
+        viol = np.where(bonded, np.maximum(np.abs(d[:, 0]), dt), viol)
         return float(viol.max(initial=0.0) / scale)
 
     def _unbounded_proof(self, b_fixed: NDArray[np.float64], b_live: NDArray[np.float64]) -> str:

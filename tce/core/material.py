@@ -21,14 +21,26 @@ What the parameters mean at the ends of the friction range:
   raise, so a cohesion with it is refused (an option with no effect);
 - with ``friction > 0`` the Mohr-Coulomb cone itself caps tension at ``fn >= -(c/mu) A``
   (its apex): a tensile strength above ``c / mu`` could never be reached and is refused.
+
+Per-interface laws: an interface carries a ``kind`` (a label, ``""`` by default:
+:class:`tce.structures.assembly.Interface`), and a material may give a kind its own law
+(``Material(friction=0.6, interfaces={"ring": Material(friction=0.5)})``: the joints between
+the rings of a multi-ring arch). Every interface of another kind keeps the material's own law.
+A kind's law carries friction and strengths only (stiffness and flow rule are the material's);
+``bonded=True`` is a law that carries any tension and shear (two blocks glued: no row at all).
+:meth:`Material.contact_law` gives the parameters of every contact of a model.
 """
 
 from __future__ import annotations
 
 import math
 import numbers
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = ["FLOWS", "Material"]
 
@@ -75,13 +87,23 @@ class Material:
         Flow rule of the friction law. The static problems (TCE, load path, the direct
         limit) are the same for both; ``non-associative`` adds the iterative estimate of
         :func:`tce.analysis.nonassoc.nonassociative_limit` wherever a limit is reported.
+    bonded : bool
+        True: a contact that carries any tension and shear (two blocks glued together, no
+        contact law at all); then friction, cohesion and strengths must be left out. Meant
+        for an interface kind (``interfaces``), e.g. rings that cannot separate.
+    interfaces : mapping of str to Material
+        The law of each interface kind (:attr:`tce.structures.assembly.Interface.kind`) that
+        does not follow this material's own; each is a Material without stiffness, flow rule
+        or laws of its own. Stored as a tuple of ``(kind, Material)`` pairs sorted by kind.
 
     Raises
     ------
     ValueError
         A negative, NaN or infinite parameter, an unknown ``flow``, a cohesion with
         unlimited friction, a tensile strength above ``cohesion / friction``, or a shear
-        stiffness without a normal one. The message names the parameter.
+        stiffness without a normal one, a bonded law with friction or strengths, an
+        interface law with stiffness, flow rule or laws of its own, or interface laws with
+        the non-associative flow. The message names the parameter.
     TypeError
         A parameter that is not a real number (the string ``"0.8"``, a bool); the message
         names the parameter and the type expected.
@@ -94,8 +116,23 @@ class Material:
     tensile_strength: float = 0.0
     compressive_strength: float | None = None
     flow: str = "associative"
+    bonded: bool = False
+    interfaces: Mapping[str, Material] | tuple[tuple[str, Material], ...] = ()
 
     def __post_init__(self) -> None:
+        laws = dict(self.interfaces)
+        for kind, law in laws.items():
+            if not isinstance(kind, str) or not kind or not isinstance(law, Material):
+                raise TypeError(f"interfaces must map interface kinds (non-empty str) to Materials, got {kind!r}: {law!r}")
+            if not law.rigid or law.flow != "associative" or law.interfaces:
+                raise ValueError(f"interfaces[{kind!r}]: an interface law gives friction and strengths only "
+                                 "(stiffness, flow rule and laws of kinds are the material's)")
+        if laws and self.flow != "associative":
+            raise ValueError("interface laws with the non-associative flow are not supported: use flow = 'associative'")
+        object.__setattr__(self, "interfaces", tuple(sorted(laws.items())))
+        if self.bonded and (self.friction is not None or self.cohesion or self.tensile_strength
+                            or self.compressive_strength is not None):
+            raise ValueError("bonded: a bonded contact carries any force; leave friction, cohesion and strengths out")
         _finite("friction", self.friction, 0.0, strict=False)
         _finite("normal_stiffness", self.normal_stiffness, 0.0, strict=True)
         _finite("shear_stiffness", self.shear_stiffness, 0.0, strict=True)
@@ -143,15 +180,61 @@ class Material:
             "compressive_strength": self.compressive_strength,
         }
 
+    def law(self, kind: str) -> Material:
+        """The law of the interfaces of ``kind``: its own when :attr:`interfaces` gives one,
+        this material otherwise."""
+        return dict(self.interfaces).get(kind, self)
+
+    def contact_law(self, kinds: ArrayLike) -> dict[str, Any]:
+        """The law of every contact as keyword arguments of :func:`tce.core.conic.cone_rows`
+        and :class:`tce.core.conic.LawCheck`: ``friction``, ``cohesion``,
+        ``tensile_strength`` and ``compressive_strength``.
+
+        Parameters
+        ----------
+        kinds : (nc,) array_like of str
+            The interface kind of each contact (:attr:`tce.core.model.Model.contact_kind`).
+
+        Returns
+        -------
+        dict
+            The material's own scalars (:attr:`strengths` and its friction) when no contact
+            has a law of its own; otherwise ``(nc,)`` arrays with NaN friction for unlimited
+            friction (Heyman), ``inf`` compressive strength for unlimited compression and
+            ``inf`` tensile strength (with NaN friction) for a bonded contact (kN/m^2).
+        """
+        kinds = np.asarray(kinds, dtype=object)
+        own = [(k, law) for k, law in self.interfaces if np.any(kinds == k)]
+        if not own:
+            return {"friction": self.friction, **self.strengths}
+        mu, c, t, fc = (np.empty(len(kinds)) for _ in range(4))
+        for law, at in [(self, ~np.isin(kinds, [k for k, _ in own]))] + [(law, kinds == k) for k, law in own]:
+            mu[at] = np.nan if law.friction is None else law.friction
+            c[at] = law.cohesion
+            t[at] = np.inf if law.bonded else law.tensile_strength
+            fc[at] = np.inf if law.compressive_strength is None else law.compressive_strength
+        return {"friction": mu, "cohesion": c, "tensile_strength": t, "compressive_strength": fc}
+
     def describe(self) -> str:
         """The contact law in words, e.g. ``Coulomb friction mu = 0.8, no tension, unlimited
-        compression, rigid contacts, associative flow`` (units kN, m)."""
+        compression, rigid contacts, associative flow`` (units kN, m); each interface kind
+        with its own law follows as ``; "ring" interfaces: ...``."""
+        own = "".join(f'; "{kind}" interfaces: {law._words(joint=True)}' for kind, law in self.interfaces)
+        return self._words() + own
+
+    def _words(self, joint: bool = False) -> str:
+        """:meth:`describe` of this law alone; ``joint``: an interface kind's law, without the
+        stiffness and flow rule (the material's)."""
+        if self.bonded:
+            return "bonded: any tension and shear carried"
         parts = ["Heyman: unlimited friction" if self.heyman else f"Coulomb friction mu = {self.friction:g}"]
         if self.cohesion:
             parts.append(f"cohesion {self.cohesion:g} kN/m^2")
         parts.append(f"tensile strength {self.tensile_strength:g} kN/m^2" if self.tensile_strength else "no tension")
         parts.append("unlimited compression" if self.compressive_strength is None
                      else f"compressive strength {self.compressive_strength:g} kN/m^2")
+        if joint:
+            return ", ".join(parts)
         parts.append("rigid contacts" if self.rigid else
                      f"compliant contacts (kn {self.normal_stiffness:g}, ks {self.shear_stiffness:g} kN/m^3)")
         if not self.heyman:
@@ -160,5 +243,7 @@ class Material:
 
     @property
     def plain(self) -> bool:
-        """True for the paper's dry joint: no cohesion, no tension, unlimited compression."""
-        return self.cohesion == 0 and self.tensile_strength == 0 and self.compressive_strength is None
+        """True for the paper's dry joint: no cohesion, no tension, unlimited compression
+        (and no interface kind with a law of its own)."""
+        return (self.cohesion == 0 and self.tensile_strength == 0 and self.compressive_strength is None
+                and not self.interfaces)

@@ -245,6 +245,11 @@ class Model:
         return 6 if self.kind == "spatial" else 3
 
     @cached_property
+    def contact_kind(self) -> NDArray[np.object_]:
+        """Interface kind of each contact (:attr:`tce.structures.assembly.Interface.kind`), (nc,)."""
+        return self.assembly.interface_table.kind[self.contact_interface]
+
+    @cached_property
     def vertex_frames(self) -> NDArray[np.float64]:
         """Interface frame of every 3D vertex, (nv, 3, 3), rows ``(n, t1, t2)``."""
         return self.assembly.interface_table.frame[self.vertex_interface]

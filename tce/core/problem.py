@@ -142,7 +142,8 @@ class Formulation:
     ----------
     model : Model
     material : Material
-        Its friction and strengths give the contact law (:func:`tce.core.conic.cone_rows`);
+        Its friction and strengths, and those of its interface kinds, give the contact law
+        (:func:`tce.core.conic.cone_rows` with :meth:`tce.core.material.Material.contact_law`);
         its stiffnesses the compliance.
     rows : ConeRows, optional
         Another contact law (e.g. friction pyramids, :mod:`tce.core.pyramid`); default: the
@@ -173,12 +174,12 @@ class Formulation:
         W = self.scaling.force
         self.row_div = self.scaling.rows(model)
         self.A_eq = sp.csc_matrix(sp.diags(W / self.row_div) @ model.A_eq)
-        self.law = rows if rows is not None else cone_rows(model, material.friction, **material.strengths)
+        #: the material's law per contact (keyword arguments of :func:`tce.core.conic.cone_rows`)
+        self.contact_law = material.contact_law(model.contact_kind)
+        self.law = rows if rows is not None else cone_rows(model, **self.contact_law)
         self.own_law = rows is None
         if rows is None:
-            self.law_check: Callable[[NDArray[np.float64]], float] = LawCheck(
-                model, material.friction, **material.strengths
-            )
+            self.law_check: Callable[[NDArray[np.float64]], float] = LawCheck(model, **self.contact_law)
         else:
             self.law_check = partial(law_violation, rows)
         self.kkt = kkt_method(model)

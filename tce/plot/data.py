@@ -42,13 +42,20 @@ __all__ = [
     "PlotSpecError",
     "State",
     "StructureFrame",
+    "CAPACITY_WORDS",
+    "SAMPLE_WORDS",
+    "UNCERTAINTY_KINDS",
     "assembly",
+    "capacity_label",
     "chain_interfaces",
+    "counts_note",
+    "dominant_variable",
     "find_state",
     "geometry",
     "geometry_groups",
     "group_identical",
     "groups_of",
+    "has_uncertainty",
     "hinge_segments",
     "join_names",
     "mechanism_groups",
@@ -56,13 +63,17 @@ __all__ = [
     "optimal_steps",
     "outcome_note",
     "plot_spec",
+    "sample_counts",
     "scenarios",
+    "settlement_parameter",
     "slug",
     "state_pages",
     "structure_frame",
     "study_cap",
     "support_forces",
+    "sweep_axes",
     "swept_parameters",
+    "uncertainty_variables",
     "unique_note",
 ]
 
@@ -72,8 +83,11 @@ Target = float | str  # a load multiplier or "max"
 SWEPT = {"alpha": "degree", "friction": "–", "cohesion": "kN/m²", "tensile_strength": "kN/m²",
          "compressive_strength": "kN/m²", "magnitude": "× the settlements", "inner_radius": "m", "thickness": "m",
          "depth": "m", "radius": "m"}
-#: figure kinds drawn by default (``base`` is asked for by name)
+#: figure kinds drawn by default (``base`` is asked for by name; those of :data:`UNCERTAINTY_KINDS`
+#: where the results hold samples)
 DEFAULT_KINDS = tuple(k for k in PLOT_KINDS if k != "base")
+#: the figures of an ``[uncertainty]`` study (:mod:`tce.plot.uncertainty`)
+UNCERTAINTY_KINDS = ("fragility", "capacity_samples", "sensitivity", "convergence")
 
 #: note of a state flagged non-unique (``unique == 0``)
 NOT_UNIQUE = "not unique: of the many optimal states, the canonical one (least unit-stiffness energy) is drawn"
@@ -259,7 +273,8 @@ def plot_spec(
     return PlotSpec(
         steps=tuple(section.steps),
         scenarios=tuple(drawn),
-        kinds=tuple(section.kinds or DEFAULT_KINDS),
+        kinds=tuple(section.kinds
+                    or (k for k in DEFAULT_KINDS if k not in UNCERTAINTY_KINDS or has_uncertainty(ds))),
     )
 
 
@@ -636,3 +651,114 @@ def join_names(names: Iterable[str], limit: int = 4) -> str:
     names = list(names)
     head = ", ".join(names[:limit])
     return head + (f", … (+{len(names) - limit})" if len(names) > limit else "")
+
+
+# ---------------------------------------------------------------------------- uncertainty studies
+#: what a sample's status stands for in the failure probability
+#: (:func:`tce.analysis.reliability.outcome_value`), in the order they are counted
+SAMPLE_WORDS = {"optimal": "a finite capacity", "unbounded": "no finite limit (+inf: survives)",
+                "infeasible": "nothing stands (-inf: fails)", "numerical": "undecided (NaN: left out of the estimate)"}
+#: what each ``capacity_kind`` measures: the intensity ``x`` of ``P(capacity < x)``
+CAPACITY_WORDS = {"lambda_max": "the load multiplier λ of the scenario's loads",
+                  "adequacy_factor": "the adequacy factor (multiplier of the factored live load)",
+                  "settlement_capacity": "the settlement magnitude (× the scenario's settlement vectors)"}
+
+
+def has_uncertainty(ds: xr.Dataset) -> bool:
+    """Whether ``ds`` holds the samples of an ``[uncertainty]`` study (``sample_capacity``)."""
+    return "sample_capacity" in ds
+
+
+def capacity_label(kind: str) -> str:
+    """What the capacity of ``kind`` measures (:data:`CAPACITY_WORDS`; an unknown kind named as is)."""
+    return CAPACITY_WORDS.get(kind, kind)
+
+
+def uncertainty_variables(ds: xr.Dataset) -> dict[str, dict[str, Any]]:
+    """The random variables' specs (attr ``uncertainty_variables``, JSON), key -> spec, in
+    the order of the ``variable`` coordinate (a list of specs with a ``name`` is keyed by it)."""
+    try:
+        specs = json.loads(str(ds.attrs.get("uncertainty_variables", "{}")))
+    except ValueError:
+        specs = {}
+    if isinstance(specs, list):
+        specs = {str(s.get("name", k)): {k2: v for k2, v in s.items() if k2 != "name"} for k, s in enumerate(specs)}
+    keys = [str(v) for v in ds["variable"].values] if "variable" in ds.coords else list(specs)
+    return {k: dict(specs.get(k, {})) for k in keys}
+
+
+def sample_counts(ds: xr.Dataset, scenario: str) -> dict[str, int]:
+    """The number of samples of ``scenario`` per status word (``sample_status``), those of
+    :data:`SAMPLE_WORDS` first, in its order, then any other word; words with no sample left out."""
+    words, counts = np.unique(value(ds, "sample_status", scenario).astype(str), return_counts=True)
+    found = dict(zip(words.tolist(), counts.tolist()))
+    order = [w for w in SAMPLE_WORDS if w in found] + sorted(w for w in found if w not in SAMPLE_WORDS)
+    return {w: int(found[w]) for w in order}
+
+
+def counts_note(ds: xr.Dataset, scenario: str) -> str:
+    """The samples of ``scenario`` that did not end ``optimal``, counted with what they stand
+    for (``"12 unbounded: no finite limit (+inf: survives); 3 numerical: ..."``); "" when
+    every sample did."""
+    counts = sample_counts(ds, scenario)
+    total = sum(counts.values())
+    others = {w: n for w, n in counts.items() if w != "optimal"}
+    if len(others) == 1 and "optimal" not in counts:
+        (word,) = others
+        return f"all {total} samples {word}: {SAMPLE_WORDS.get(word, 'counted apart')}"
+    return "; ".join(f"{n} of {total} {w}: {SAMPLE_WORDS.get(w, 'counted apart')}" for w, n in others.items())
+
+
+def dominant_variable(ds: xr.Dataset, scenario: str) -> tuple[str, float] | None:
+    """The variable of largest ``|sensitivity|`` for ``scenario`` and its sensitivity (None
+    when every sensitivity is NaN: no decided sample, or a constant capacity)."""
+    if "sensitivity" not in ds:
+        return None
+    s = np.asarray(value(ds, "sensitivity", scenario, ["variable"]), dtype=float)
+    if not np.isfinite(s).any():
+        return None
+    k = int(np.nanargmax(np.abs(s)))
+    return str(ds["variable"].values[k]), float(s[k])
+
+
+def sweep_axes(ds: xr.Dataset, names: Sequence[str]) -> list[str]:
+    """Numeric coordinates along ``scenario`` that take more than one value among ``names``:
+    the swept parameters (:func:`swept_parameters`, in their order) then any other (``load_x``)."""
+    out = swept_parameters(ds, names)
+    for p, coord in ds.coords.items():
+        if p in out or p == "scenario" or coord.dims != ("scenario",) or coord.dtype.kind not in "fiu":
+            continue
+        v = np.asarray(coord.sel(scenario=list(names)).values, dtype=float)
+        if len(np.unique(v[np.isfinite(v)])) > 1:
+            out.append(str(p))
+    return out
+
+
+#: the components of a support motion in a study file, in order (docs/conventions.md)
+MOTION = ("ux", "uy", "uz", "rx", "ry", "rz")
+
+
+def settlement_parameter(ds: xr.Dataset, names: Sequence[str]) -> tuple[str, dict[str, float]] | None:
+    """The one number the settlement cases of ``names`` differ by: ``("right uz (m)",
+    {scenario: value})`` when at least two distinct cases (``[scenarios.NAME]`` of the study
+    text) move the supports alike but for one component of one support (a support not named
+    does not move); None otherwise."""
+    if "settlement" not in ds.coords:
+        return None
+    try:
+        tables = tomllib.loads(str(ds.attrs.get("study", ""))).get("scenarios", {})
+    except tomllib.TOMLDecodeError:
+        return None
+    case = {s: str(value(ds, "settlement", s)) for s in names}
+    motions = {c: {k: v for k, v in tables.get(c, {}).items() if isinstance(v, list) and len(v) == len(MOTION)}
+               for c in set(case.values())}
+    if len(motions) < 2:
+        return None
+    supports = sorted({k for m in motions.values() for k in m})
+    entries = {(sup, j): {c: float(m.get(sup, [0.0] * len(MOTION))[j]) for c, m in motions.items()}
+               for sup in supports for j in range(len(MOTION))}
+    differ = [key for key, by_case in entries.items() if len(set(by_case.values())) > 1]
+    if len(differ) != 1:
+        return None
+    (sup, j), = differ
+    return f"{sup} {MOTION[j]} ({'m' if j < 3 else 'rad'})", {s: entries[(sup, j)][case[s]] for s in names}

@@ -18,6 +18,8 @@ given):
 ``view.html``           the interactive 3D view (:mod:`tce.plot.view`)
 ``settlement.png``      ``[settlement_path]`` only (:mod:`tce.plot.settlement`), and
 ``settlement_shapes.png``
+``fragility.png``       ``[uncertainty]`` only (:mod:`tce.plot.uncertainty`), and
+``capacity_samples.png``, ``sensitivity.png``, ``convergence.png``
 
 Each stem is its kind. A geometry sweep draws each structure apart in the figures that draw
 blocks (``base_2.png`` ... for the second structure). The number of figures does not grow
@@ -35,10 +37,12 @@ import numpy as np
 import xarray as xr
 
 from .data import (
+    UNCERTAINTY_KINDS,
     PlotSpec,
     assembly,
     chain_interfaces,
     geometry_groups,
+    has_uncertainty,
     is_planar,
     mechanism_groups,
     plot_spec,
@@ -111,6 +115,12 @@ def figure_tasks(ds: xr.Dataset, spec: PlotSpec, tag: str = "") -> list[Task]:
             else:
                 skipped.append(f"{kind} (no settlement path: add [settlement_path] and a moving support)")
             continue
+        if kind in UNCERTAINTY_KINDS:
+            if has_uncertainty(ds):
+                tasks.append(Task(name(kind), kind, ()))
+            else:
+                skipped.append(f"{kind} (no sampled capacities: add [uncertainty])")
+            continue
         if not names:
             skipped.append(f"{kind} (no scenario drawn: name them in [plots] scenarios)")
             continue
@@ -165,6 +175,11 @@ def builder(kind: str) -> Callable:
         from . import settlement
 
         return settlement.settlement_curves if kind == "settlement" else settlement.settlement_shapes
+    if kind in UNCERTAINTY_KINDS:
+        from . import uncertainty
+
+        return {"fragility": uncertainty.fragility_figure, "capacity_samples": uncertainty.capacity_samples_figure,
+                "sensitivity": uncertainty.sensitivity_figure, "convergence": uncertainty.convergence_figure}[kind]
     if kind == "view":
         from .view import view_html
 
@@ -199,7 +214,7 @@ def render(ds: xr.Dataset, task: Task, outdir: Path) -> Path:
 
 def _subset(ds: xr.Dataset, task: Task) -> xr.Dataset:
     """The part of ``ds`` a task reads (what a worker process receives)."""
-    if task.kind in ("summary", "bracket", "capacity"):
+    if task.kind in ("summary", "bracket", "capacity", *UNCERTAINTY_KINDS):
         return ds.drop_vars([k for k, v in ds.data_vars.items() if "step" in v.dims or "interface" in v.dims])
     names = {a for arg in task.args for a in arg if isinstance(a, str)}
     names |= {a[0] for arg in task.args for a in arg if isinstance(a, tuple)}

@@ -30,6 +30,21 @@ The sections :func:`run_bench` measures, in one table (:data:`COLUMNS`) printed 
 ``scaling``
     Arches and domes of about 100, 1,000 and 10,000 blocks, each in a fresh process: build
     and solve times, peak resident memory, fitted growth of the solve time.
+``reliability``
+    Samples of the paper's arch that keep its geometry (:func:`reliability_case`: a 1 kN point
+    load at ``x = -0.25`` m, friction lognormal, unit weight normal). The CPU time per sample
+    of :class:`tce.analysis.reliability.WarmLimit` against one direct-limit solve of the same
+    problem (:func:`tce.core.problem.limit_problem`, built beforehand) on raw Clarabel, a new
+    ``clarabel.DefaultSolver`` set up and solved per sample, in interleaved rounds, with the
+    samples as one batch of :class:`tce.analysis.batched.BatchedLimit` beside them where the
+    extra ``batched`` is installed (``error``: the largest difference of lambda_max).
+    :data:`RELIABILITY_SAMPLES` samples in one call (``error``: the half-width of the 95 %
+    Clopper-Pearson interval of ``P(capacity < RELIABILITY_THRESHOLD)``). Samples in chunks of
+    :data:`RELIABILITY_CHUNK`, each a cold ``WarmLimit`` (:func:`reliability_chunk`), in
+    process, in 1 and 2 worker processes (``concurrent.futures``, spawned) and on a Dask
+    ``LocalCluster`` of 2 workers (a note without ``dask[distributed]``): ``time_s`` is the
+    second pass on the started workers, ``build_s`` what the first pass cost more (their
+    start), ``error`` the largest difference from the in-process capacities.
 
 Times are medians of repeated calls after one warm-up (wall clock, ``hot_path`` CPU time; s
 in the table, ms in the report); a ``solve`` row's time includes reading the state it is judged
@@ -39,6 +54,7 @@ by. The report's first line names the day, the commit and the load it was measur
 from __future__ import annotations
 
 import gc
+import importlib.util
 import itertools
 import json
 import os
@@ -52,6 +68,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..analysis.reliability import JointDistribution, RandomVariable, WarmLimit, evaluate, failure_probability
 from ..core.limit import LimitSolver
 from ..core.material import Material
 from ..core.model import build_model
@@ -60,7 +77,8 @@ from ..core.solve import SolverOptions, TCESolver
 from ..structures.arch import semicircular_arch
 from ..study.progress import track
 
-__all__ = ["COLUMNS", "SECTIONS", "growth_exponent", "median_time", "report", "row", "run_bench", "scaling_case"]
+__all__ = ["COLUMNS", "SECTIONS", "growth_exponent", "median_time", "reliability_case", "reliability_chunk",
+           "reliability_joint", "report", "row", "run_bench", "scaling_case"]
 
 FRICTION = 0.8
 #: load multipliers the ``solve`` section cycles over
@@ -358,12 +376,234 @@ def _scaling(quick: bool) -> list[dict[str, Any]]:
     return rows
 
 
+# ---------------------------------------------------------------- reliability
+#: the ``reliability`` section's failure threshold: a collapse load of the 1 kN point load below 0.8 kN
+RELIABILITY_THRESHOLD = 0.8
+#: samples of the one-call row (``--quick``: a fifth); each throughput run takes half (``--quick``: a tenth)
+RELIABILITY_SAMPLES = 10_000
+#: samples per job of the throughput rows (the study layout's default ``chunk``)
+RELIABILITY_CHUNK = 250
+UNIT_WEIGHT = 20.0  # kN/m^3, the paper's arch
+
+
+def reliability_joint() -> JointDistribution:
+    """The section's inputs: friction lognormal (mean 0.6, c.o.v. 0.15) and unit weight normal
+    (mean 20 kN/m^3, std 1 kN/m^3), independent."""
+    return JointDistribution([RandomVariable("friction", "lognormal", 0.6, cov=0.15),
+                              RandomVariable("unit_weight", "normal", UNIT_WEIGHT, std=1.0)])
+
+
+def reliability_case(kind: str = "planar") -> WarmLimit:
+    """A :class:`tce.analysis.reliability.WarmLimit` of the paper's arch (14 voussoirs, friction
+    0.6) under a live point load of 1 kN downwards on the extrados at ``x = -0.25`` m
+    (``studies/arch_point_load.toml``'s critical position of its grid): lambda_max is the
+    collapse load in kN. Sample keys ``mu`` (friction) and ``g`` (unit weight over 20 kN/m^3,
+    the fixed load factor); :func:`_warm_samples` makes them from physical values."""
+    from ..core.analysis import Analysis
+    from ..core.loads import LoadPattern, PointLoad
+
+    loads = LoadPattern(lateral=False, point=[PointLoad(force=[0.0, 0.0, -1.0], on_top=(-0.25, 0.0))])
+    analysis = Analysis(semicircular_arch(), Material(friction=0.6), model=kind)
+    return WarmLimit(analysis, {"mu": "friction", "g": "fixed_factor"}, loads=loads)
+
+
+def _warm_samples(x: np.ndarray) -> list[dict[str, float]]:
+    """``(n, 2)`` physical values (friction, unit weight in kN/m^3) as :func:`reliability_case` samples."""
+    return [{"mu": float(mu), "g": float(gamma) / UNIT_WEIGHT} for mu, gamma in np.atleast_2d(x)]
+
+
+def reliability_chunk(kind: str, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Statuses and capacities (kN; :func:`tce.analysis.reliability.outcome_value`) of the
+    samples ``x`` ``(n, 2)`` by a cold :func:`reliability_case`: one job of the throughput rows."""
+    return evaluate(reliability_case(kind), _warm_samples(x))
+
+
+def _raw_limit(problem: Any, settings: Any) -> float:
+    """lambda_max of a limit problem by a new Clarabel solver set up and solved (NaN unless solved)."""
+    import clarabel
+
+    from ..core.clarabel_solver import _cones
+
+    sol = clarabel.DefaultSolver(problem.P, problem.q, problem.A, problem.b, _cones(problem), settings).solve()
+    return float(sol.x[-1]) if str(sol.status) == "Solved" else float("nan")
+
+
+def _reliability_cost(quick: bool) -> list[dict[str, Any]]:
+    """WarmLimit per sample against raw Clarabel per sample (and the samples as one Moreau batch
+    where the extra ``batched`` is installed), CPU time, interleaved rounds."""
+    from ..core.problem import Formulation, limit_problem
+
+    n, rounds = (60, 3) if quick else (200, 8)
+    x = reliability_joint().sample(n, "lhs", seed=1)[1]
+    have_moreau = importlib.util.find_spec("moreau") is not None
+    methods = {"raw": "raw clarabel: a new solver set up and solved per sample",
+               "warm": "WarmLimit sample (update, solve, checks)",
+               "batched": "BatchedLimit: the samples as one Moreau batch (CPU), checks"}
+    rows: list[dict[str, Any]] = []
+    for kind, label in MODELS.items():
+        warm = reliability_case(kind)
+        samples = _warm_samples(x)
+        problems = [limit_problem(Formulation(warm.model, Material(friction=s["mu"])), warm.b_fixed * s["g"],
+                                  warm.b_live) for s in samples]
+        runs = {"raw": lambda: [_raw_limit(p, warm.settings) for p in problems],
+                "warm": lambda: [warm(s)[1] for s in samples]}
+        if have_moreau:
+            from ..analysis.batched import BatchedLimit
+
+            batched = BatchedLimit(warm, batch_size=n)
+            runs["batched"] = lambda: list(batched(samples)[1])
+        times: dict[str, list[float]] = {k: [] for k in runs}
+        out: dict[str, list[float]] = {}
+        for r in range(rounds):
+            for name in runs if r % 2 == 0 else reversed(runs):
+                t0 = time.process_time()
+                out[name] = runs[name]()
+                times[name].append((time.process_time() - t0) / n)
+        raw = np.array(out["raw"])
+        med = {k: statistics.median(v) for k, v in times.items()}
+        case = f"arch, {label}, 1 kN point load, friction and unit weight"
+        common = dict(model=kind, n_blocks=len(warm.model.assembly.blocks), error_of="lambda_max vs raw")
+        for name, method in methods.items():
+            if name not in runs:
+                rows.append(row("reliability", case, method, note="skipped: moreau is not installed "
+                                "(pip install tce[batched])", **common))
+                continue
+            got = np.array(out[name])
+            same = np.array_equal(np.isfinite(raw), np.isfinite(got))
+            err = float(np.abs(raw - got)[np.isfinite(raw)].max(initial=0.0)) if same else np.inf
+            note = ("CPU time; limit problems built beforehand" if name == "raw" else
+                    f"{med[name] / med['raw']:.2f}x raw (CPU time, interleaved; issue 39: at most 1.5x)")
+            rows.append(row("reliability", case, method, n_solves=n * rounds, time_s=med[name], error=err, note=note,
+                            **common))
+    return rows
+
+
+def _reliability_one_call(quick: bool) -> dict[str, Any]:
+    """:data:`RELIABILITY_SAMPLES` samples of the planar arch through one WarmLimit, wall time."""
+    n = RELIABILITY_SAMPLES // 5 if quick else RELIABILITY_SAMPLES
+    x = reliability_joint().sample(n, "lhs", seed=2)[1]
+    t0 = time.perf_counter()
+    warm = reliability_case("planar")
+    t1, c1 = time.perf_counter(), time.process_time()
+    statuses, values = evaluate(warm, _warm_samples(x))
+    t2, c2 = time.perf_counter(), time.process_time()
+    est = failure_probability(values, RELIABILITY_THRESHOLD, statuses)
+    lo, hi = est.clopper_pearson
+    counts = ", ".join(f"{k} {v}" for k, v in est.statuses.items())
+    return row("reliability", f"arch, planar LP, {n:,} LHS samples in one call", "WarmLimit, evaluate()",
+               model="planar", n_blocks=len(warm.model.assembly.blocks), n_solves=n, time_s=t2 - t1,
+               build_s=t1 - t0, error=(hi - lo) / 2, error_of="pf: 95% Clopper-Pearson half-width",
+               note=f"{n / (t2 - t1):.0f} samples/s (wall; {c2 - c1:.2f} CPU-s); "
+                    f"P(capacity < {RELIABILITY_THRESHOLD} kN) = {est.pf:.4f} [{lo:.4f}, {hi:.4f}]; {counts}")
+
+
+class _InProcess:
+    """The throughput rows' reference runner: the chunks one after the other in this process."""
+
+    def map(self, fn: Callable[..., Any], *args: Any) -> list[Any]:
+        return list(map(fn, *args))
+
+    def close(self) -> None:
+        pass
+
+
+class _Pool:
+    """``n`` spawned worker processes of ``concurrent.futures``."""
+
+    def __init__(self, n: int) -> None:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        self.pool = ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("spawn"))
+
+    def map(self, fn: Callable[..., Any], *args: Any) -> list[Any]:
+        return list(self.pool.map(fn, *args))
+
+    def close(self) -> None:
+        self.pool.shutdown()
+
+
+class _Dask:
+    """A Dask ``LocalCluster`` of ``n`` single-threaded worker processes and its client."""
+
+    def __init__(self, n: int) -> None:
+        import logging
+
+        from dask.distributed import Client, LocalCluster
+
+        self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                                    silence_logs=logging.ERROR)
+        self.client = Client(self.cluster)
+
+    def map(self, fn: Callable[..., Any], *args: Any) -> list[Any]:
+        return self.client.gather(self.client.map(fn, *args, pure=False))
+
+    def close(self) -> None:
+        self.client.close()
+        self.cluster.close()
+
+
+def _reliability_workers(quick: bool) -> list[dict[str, Any]]:
+    """Throughput of the chunked samples in process, in 1 and 2 processes and on Dask (module doc)."""
+    n = RELIABILITY_SAMPLES // (10 if quick else 2)
+    x = reliability_joint().sample(n, "lhs", seed=3)[1]
+    chunks = [x[i:i + RELIABILITY_CHUNK] for i in range(0, n, RELIABILITY_CHUNK)]
+    runners: dict[str, Callable[[], Any]] = {
+        "in process, chunks in turn": _InProcess,
+        "process pool, 1 worker": lambda: _Pool(1),
+        "process pool, 2 workers": lambda: _Pool(2),
+    }
+    have_dask = importlib.util.find_spec("distributed") is not None
+    if have_dask:
+        runners["Dask LocalCluster, 2 workers"] = lambda: _Dask(2)
+    case = f"arch, planar LP, {n:,} samples in {len(chunks)} chunks"
+    n_blocks = len(semicircular_arch().blocks)
+    times: dict[str, list[tuple[float, float]]] = {k: [] for k in runners}
+    answers: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+    for _ in range(1 if quick else 2):
+        for name, make in runners.items():
+            passes = []
+            t0 = time.perf_counter()
+            runner = make()
+            try:
+                for _ in range(2):
+                    got = runner.map(reliability_chunk, ["planar"] * len(chunks), chunks)
+                    passes.append(time.perf_counter() - t0)
+                    t0 = time.perf_counter()
+            finally:
+                runner.close()
+            answers[name] = (np.concatenate([s for s, _ in got]), np.concatenate([v for _, v in got]))
+            times[name].append((passes[1], passes[0] - passes[1]))
+    ref_status, ref = answers["in process, chunks in turn"]
+    rows: list[dict[str, Any]] = []
+    for name, measured in times.items():
+        status, values = answers[name]
+        finite = np.isfinite(ref)
+        same = np.array_equal(status, ref_status) and np.array_equal(values[~finite], ref[~finite], equal_nan=True)
+        err = float(np.abs(values[finite] - ref[finite]).max(initial=0.0)) if same else np.inf
+        t, start = statistics.median(m[0] for m in measured), statistics.median(m[1] for m in measured)
+        rows.append(row("reliability", case, name, model="planar", n_blocks=n_blocks, n_solves=n, time_s=t,
+                        build_s=start if name != "in process, chunks in turn" else np.nan, error=err,
+                        error_of="capacity vs in process",
+                        note=f"{n / t:.0f} samples/s (wall, started workers)"))
+    if not have_dask:
+        rows.append(row("reliability", case, "Dask LocalCluster, 2 workers", model="planar", n_blocks=n_blocks,
+                        note="skipped: dask[distributed] is not installed (pip install tce[dask])"))
+    return rows
+
+
+def _reliability(quick: bool) -> list[dict[str, Any]]:
+    """Cost per sample against raw Clarabel, samples in one call, throughput against workers (module doc)."""
+    return _reliability_cost(quick) + [_reliability_one_call(quick)] + _reliability_workers(quick)
+
+
 SECTIONS: dict[str, Callable[[bool], list[dict[str, Any]]]] = {
     "solve": _solve,
     "hot_path": _hot_path,
     "limit": _limit,
     "load_path": _load_path,
     "scaling": _scaling,
+    "reliability": _reliability,
 }
 
 

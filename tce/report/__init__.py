@@ -23,6 +23,7 @@ from pathlib import Path
 import xarray as xr
 
 from ..files import atomic_write
+from ..plot.data import UNCERTAINTY_KINDS  # shown in the report's Uncertainty section
 
 __all__ = ["ReportFiles", "find_browser", "print_pdf", "report_html", "write_report"]
 
@@ -45,6 +46,16 @@ CAPTIONS = {
     "base": ("Support reactions at the base", "The reactions and pressure points at the supports."),
     "transversal": ("Transversal shift of the pressure points", "End and plan views of the interfaces with the "
                     "resultant's position across the depth."),
+    "fragility": ("Probability of collapse (fragility)", "P(capacity < x) against the intensity x for each scenario, "
+                  "with its band; the threshold marked with the failure probability there and its interval; with a "
+                  "sweep, the failure probability against the swept parameter."),
+    "capacity_samples": ("Sampled capacities", "The histogram of each scenario's finite sampled capacities; the "
+                         "samples without one (unbounded: +inf, infeasible: −inf, numerical: NaN) counted in the "
+                         "legend."),
+    "sensitivity": ("Sensitivity of the capacity", "The sensitivity of the capacity to each random variable (the "
+                    "method in the title), and FORM's importance factors where computed."),
+    "convergence": ("Failure probability against the number of samples", "The estimate from the first n samples "
+                    "with its interval; FORM and subset simulation estimates as horizontal lines where computed."),
 }
 #: command-line flags of headless Chromium for printing (no network, no profile left behind)
 CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
@@ -115,7 +126,9 @@ def report_html(ds: xr.Dataset, results: Path, figures: list[Path]) -> str:
     content = report_content(ds, results)
     for geometry in content.structure["geometries"]:
         geometry["drawing"] = _data_uri(_figure_png(structure_figure(geometry.pop("assembly"))))
-    content.figures = _figures(figures)
+    content.figures = _figures([p for p in figures if _kind(p) not in UNCERTAINTY_KINDS])
+    if content.uncertainty:
+        content.uncertainty["figures"] = _figures([p for p in figures if _kind(p) in UNCERTAINTY_KINDS])
     env = jinja2.Environment(loader=jinja2.PackageLoader("tce.report", "templates"),
                              autoescape=jinja2.select_autoescape(["html", "j2"]), undefined=jinja2.StrictUndefined)
     return env.get_template("report.html.j2").render(c=content)

@@ -24,14 +24,23 @@ import numpy as np
 import xarray as xr
 
 from .. import __version__
-from ..core.material import Material
-from ..plot.data import assembly, geometry_groups, outcome_note, scenarios
+from ..plot.data import (
+    assembly,
+    capacity_label,
+    counts_note,
+    dominant_variable,
+    geometry_groups,
+    has_uncertainty,
+    outcome_note,
+    scenarios,
+    uncertainty_variables,
+)
 from ..study.positions import critical_positions
 from ..study.names import LAMBDA_TOL, same_lambda
 
 __all__ = ["SHOW_COLUMNS", "Content", "fmt", "lambda_multiplies", "live_settlement_rows", "report_content",
-           "small_displacement_note",
-           "settlement_rows", "settlement_units"]
+           "small_displacement_note", "settlement_rows", "settlement_units", "uncertainty_content",
+           "uncertainty_rows"]
 
 #: the columns of ``tce show`` (:func:`tce.cli._show`), in its order, with the report's headings
 SHOW_COLUMNS = {
@@ -69,6 +78,7 @@ class Content:
     references: list[str]
     results: dict[str, Any]
     settlement: dict[str, Any]
+    uncertainty: dict[str, Any]
     warnings: list[str]
     provenance: dict[str, Any]
     figures: list[dict[str, str]] = field(default_factory=list)
@@ -117,18 +127,39 @@ def _structure(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
 
 
 def _material(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
-    section = json.loads(ds.attrs.get("material", "{}"))
-    mat = Material(**section)
+    from ..study.schema import build_material  # the study's parser: not needed by `tce show`
+
+    mat = build_material(json.loads(ds.attrs.get("material", "{}")))
     swept = {k: sorted({fmt(v) for v in np.atleast_1d(ds[k].values)}) for k in
              ("friction", "cohesion", "tensile_strength", "compressive_strength") if k in ds.coords}
     return {
         "describe": mat.describe(),
-        "parameters": _table(toml.get("material", {})) or [("(none)", "the defaults: Heyman, rigid, no tension")],
+        "parameters": (_table(toml.get("material", {})) or [("(none)", "the defaults: Heyman, rigid, no tension")])
+                      + [(f"[ring_interface] {k}", v) for k, v in _table(toml.get("ring_interface"))]
+                      + [(f"[defects] {k}", v) for k, v in _table(toml.get("defects"))],
         "swept": [(k, ", ".join(v)) for k, v in swept.items()],
         "heyman": mat.heyman,
         "nonassociative": mat.flow == "non-associative",
         "rigid": mat.rigid,
     }
+
+
+def ring_separation(ds: xr.Dataset) -> list[str]:
+    """Whether the rings of a multi-ring arch separate at the limit, one line per scenario
+    (``ring_separation``, ``ring_separation_at``); empty for a study without rings."""
+    if "ring_separation" not in ds:
+        return []
+    out = []
+    for k, name in enumerate(ds["scenario"].values):
+        flag = float(ds["ring_separation"].values[k])
+        if flag != flag:
+            words = "undecided (no collapse mechanism)"
+        elif flag:
+            words = f"the rings separate at the limit ({ds['ring_separation_at'].values[k]})"
+        else:
+            words = "the rings act together at the limit (no face between rings moves)"
+        out.append(f"{name}: {words}")
+    return out
 
 
 def lambda_multiplies(ds: xr.Dataset) -> list[str]:
@@ -262,6 +293,7 @@ def _results(ds: xr.Dataset) -> dict[str, Any]:
     return {
         "assessment": _assessment(ds),
         "search": _search(ds),
+        "rings": ring_separation(ds),
         "notes": [f"{name}: {line}" for name, notes in zip(ds["scenario"].values, ds["load_notes"].values)
                   for line in str(notes).splitlines()] if "load_notes" in ds else [],
         "coords": coords,
@@ -443,6 +475,114 @@ def _moves_support(ds: xr.Dataset, toml: dict, i: int) -> bool:
     return moved and ("magnitude" not in ds.coords or float(ds["magnitude"].values[i]) != 0.0)
 
 
+#: sampling methods of ``[uncertainty] method``, in words
+SAMPLING = {"mc": "plain Monte Carlo", "lhs": "Latin hypercube", "sobol": "scrambled Sobol"}
+#: the statuses of FORM and subset simulation that are answers
+ANSWERED = ("converged", "optimal")
+
+
+def _probability(v: float) -> str:
+    return "NaN" if math.isnan(v) else f"{v:.4g}"
+
+
+def _beta(v: float) -> str:
+    return "NaN" if math.isnan(v) else ("inf" if v == math.inf else "-inf" if v == -math.inf else f"{v:.4g}")
+
+
+def uncertainty_rows(ds: xr.Dataset) -> list[dict[str, str]]:
+    """The failure probability of each scenario of an ``[uncertainty]`` study, as ``tce show``
+    prints it (empty without one).
+
+    Each row holds, as text: ``scenario``; ``kind`` (``capacity_kind``); ``pf``, ``low``,
+    ``high`` (the estimate of ``P(capacity < threshold)`` and its interval, 4 significant
+    figures, ``NaN`` without a decided sample); ``beta`` (the reliability index
+    ``-Phi^-1(pf)``, ``inf`` for ``pf = 0``); ``failed``, ``decided``, ``numerical`` (sample
+    counts); ``samples`` (N); ``dominant`` (the variable of largest ``|sensitivity|`` with its
+    value, ``undefined`` without a decided sample or variation); ``form`` and ``subset``
+    (their estimate, accuracy, status and evaluations; "" where not computed); ``note`` (:func:`tce.plot.data.counts_note`).
+    """
+    if not has_uncertainty(ds):
+        return []
+    n = int(ds.sizes["sample"])
+    rows = []
+    for k, name in enumerate(scenarios(ds)):
+        def num(var: str, k: int = k) -> float:  # NaN where the variable is absent
+            return float(ds[var].values[k]) if var in ds else math.nan
+
+        dom = dominant_variable(ds, name)
+        form = subset = ""
+        if "form_beta" in ds:
+            status = str(ds["form_status"].values[k])
+            form = (f"β {_beta(num('form_beta'))}, pf {_probability(num('form_pf'))}, " if status in ANSWERED else
+                    "no estimate, ") + f"{status}, {int(ds['form_evaluations'].values[k])} evaluations"
+        if "subset_pf" in ds:
+            status = str(ds["subset_status"].values[k])
+            subset = (f"pf {_probability(num('subset_pf'))} (c.o.v. {num('subset_cov'):.2g}), " if status in ANSWERED
+                      else "no estimate, ") + f"{status}, {int(ds['subset_evaluations'].values[k])} evaluations"
+        rows.append({
+            "scenario": name, "kind": str(ds["capacity_kind"].values[k]) if "capacity_kind" in ds else "lambda_max",
+            "pf": _probability(num("failure_probability")), "low": _probability(num("failure_low")),
+            "high": _probability(num("failure_high")), "beta": _beta(num("reliability_index")),
+            "failed": str(int(ds["n_failed"].values[k])), "decided": str(int(ds["n_decided"].values[k])),
+            "numerical": str(int(ds["n_numerical"].values[k])), "samples": str(n),
+            "dominant": f"{dom[0]} ({dom[1]:+.2f})" if dom else "undefined", "form": form, "subset": subset,
+            "note": counts_note(ds, name),
+        })
+    return rows
+
+
+def uncertainty_content(ds: xr.Dataset) -> dict[str, Any]:
+    """What the report's Uncertainty section says (empty without ``[uncertainty]``): the
+    sampling (``method``, ``seed``, ``samples``), the ``threshold`` and what failure means
+    (``failure``), the ``interval``, the ``variables`` (key, distribution, its parameters as
+    text), the ``sensitivity`` method, the :func:`uncertainty_rows` and the row of the
+    ``largest`` failure probability (None when no scenario has one)."""
+    if not has_uncertainty(ds):
+        return {}
+    a = ds.attrs
+    threshold = float(a.get("uncertainty_threshold", math.nan))
+    kinds = list(dict.fromkeys(str(k) for k in ds["capacity_kind"].values)) if "capacity_kind" in ds else \
+        ["lambda_max"]
+    measures = "; ".join(f"{kind}: {capacity_label(kind)}" for kind in kinds) if len(kinds) > 1 else \
+        capacity_label(kinds[0])
+    interval = str(a.get("uncertainty_interval", "clopper-pearson"))
+    method = str(a.get("uncertainty_method", "?"))
+    rows = uncertainty_rows(ds)
+    pf = np.asarray(ds["failure_probability"].values, dtype=float)
+    return {
+        "method": SAMPLING.get(method, method),
+        "seed": str(a.get("uncertainty_seed", "?")),
+        "samples": str(int(ds.sizes["sample"])),
+        "threshold": f"{threshold:g}",
+        "failure": f"the capacity below {threshold:g}, the capacity being {measures}",
+        "interval": f"{100 * float(a.get('uncertainty_confidence', 0.95)):g} % "
+                    f"{'Wilson' if interval == 'wilson' else 'Clopper-Pearson'}",
+        "variables": [(key, str(spec.get("distribution", "?")),
+                       ", ".join(f"{k} = {v}" for k, v in spec.items() if k != "distribution") or "–")
+                      for key, spec in uncertainty_variables(ds).items()],
+        "sensitivity": str(a.get("sensitivity_method", "?")),
+        "rows": rows,
+        "largest": rows[int(np.nanargmax(pf))] if np.isfinite(pf).any() else None,
+        "form": "form_beta" in ds,
+        "subset": "subset_pf" in ds,
+        "figures": [],
+    }
+
+
+def _uncertainty_warnings(ds: xr.Dataset) -> list[str]:
+    """The scenarios of an ``[uncertainty]`` study whose samples did not all end ``optimal``,
+    or whose FORM or subset estimate is not an answer."""
+    out = []
+    for r in uncertainty_rows(ds):
+        if r["note"]:
+            out.append(f"{r['scenario']}: samples: {r['note']}"
+                       + ("; no decided sample: no failure probability" if r["decided"] == "0" else "") + ".")
+        for what in ("form", "subset"):
+            if r[what] and r[what].startswith("no estimate"):
+                out.append(f"{r['scenario']}: {'FORM' if what == 'form' else 'subset simulation'}: {r[what]}.")
+    return out
+
+
 def _warnings(ds: xr.Dataset, toml: dict) -> list[str]:
     note = small_displacement_note(ds)
     out = [note + "."] if note else []
@@ -465,7 +605,7 @@ def _warnings(ds: xr.Dataset, toml: dict) -> list[str]:
         gap = float(ds["certificate_gap"].values[i]) if "certificate_gap" in ds else 0.0
         if math.isfinite(gap) and gap > CERTIFICATE_TOL:
             out.append(f"{name}: the mechanism's kinematic multiplier differs from λ direct by {gap:.3g} (relative).")
-    return out
+    return out + _uncertainty_warnings(ds)
 
 
 def _versions() -> list[tuple[str, str]]:
@@ -505,6 +645,7 @@ def report_content(ds: xr.Dataset, results: Path) -> Content:
         results=_results(ds),
         settlement={"units": settlement_units(ds), "rows": settlement_rows(ds), "live": live_settlement_rows(ds)}
         if "settlement_capacity" in ds else {},
+        uncertainty=uncertainty_content(ds),
         warnings=_warnings(ds, toml),
         provenance={
             "tce_run": str(ds.attrs.get("tce_version", "?")),

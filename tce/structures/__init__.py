@@ -2,6 +2,7 @@
 
 ``geometry`` polyhedra and polygons (exact volumes and centroids) · ``assembly`` blocks,
 interfaces, supports · ``contacts`` interface detection and overlap checks · ``io`` block
-files (tce JSON, OBJ, COMPAS, with their stored interfaces) · ``arch``, ``vault``, ``dome``
-generators · ``params`` argument checks shared by the generators.
+files (tce JSON, OBJ, COMPAS, with their stored interfaces) · ``arch`` (one ring or several),
+``bridge``, ``vault``, ``dome`` generators · ``defects`` what an inspection finds, applied to an
+assembly · ``params`` argument checks shared by the generators.
 """

@@ -5,6 +5,19 @@ Axes (docs/conventions.md): the arch spans along x, its depth runs along y (from
 at +x. Voussoirs are named ``v01``, ``v02``, ... from left to right; the two support
 blocks are ``left`` and ``right``. Every voussoir is a hexahedron bounded by two plane
 joints and plane (chord) intrados and extrados faces.
+
+Multi-ring arches (``rings`` > 1 or a list of ring thicknesses; :func:`ring_arch`): brick
+arches built as several rings, one on the other. Ring 1 is the intrados ring. Each ring has
+its own voussoirs (``r1v01``, ``r1v02``, ... for ring 1) between its own radial joints; the
+rings share the two support blocks. The faces between two rings are interfaces of kind
+``"ring"`` (:attr:`tce.structures.assembly.Interface.kind`), which a material may give their
+own contact law (:attr:`tce.core.material.Material.interfaces`). Joints are either aligned
+(``stagger = False``: every ring cut at the same joints, so that rings that cannot separate
+are one ring of the summed thickness) or staggered by the **half-brick rule**
+(``stagger = True``): the odd rings (1, 3, ...) are cut at the voussoir joints, the even
+rings (2, 4, ...) half a voussoir further, so that an even ring has one voussoir more and a
+half voussoir at each springing. A face between two rings then runs through the joints of
+both (a voussoir's face towards a staggered ring is two chords).
 """
 
 from __future__ import annotations
@@ -14,12 +27,18 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
+from collections.abc import Callable, Sequence
+
 from .assembly import Assembly, Block, Interface
-from .geometry import FaceTable, prisms
+from .geometry import FaceTable, prism, prisms
 from .params import check_blocks, check_positive, check_whole
 
 __all__ = [
+    "RING",
+    "RingLayout",
     "arch_from_joints",
+    "ring_arch",
+    "ring_fractions",
     "semicircle_joints",
     "pointed_arch",
     "segmental_arch",
@@ -97,15 +116,200 @@ def arch_from_joints(
 
 def _joints(ji: np.ndarray, je: np.ndarray, d: float, centroids: np.ndarray) -> list[Interface]:
     """Interfaces on the plane joints ``k`` from ``ji[k]`` to ``je[k]`` (``(x, z)``, m) across the
-    depth ``-d .. d``, joint ``k`` between blocks ``k`` and ``k + 1`` (``centroids`` theirs):
-    the points ``(ji, je)`` at ``-d``, then ``(je, ji)`` at ``+d``; the normal in the x-z plane,
-    perpendicular to the joint, pointing from block ``k`` into block ``k + 1``."""
-    pts = np.stack([_at_depth(ji, -d), _at_depth(je, -d), _at_depth(je, d), _at_depth(ji, d)], axis=1)
-    t = je - ji
-    normal = np.column_stack([t[:, 1], np.zeros(len(t)), -t[:, 0]])
-    flip = np.einsum("ij,ij->i", normal, centroids[1 : len(t) + 1] - centroids[: len(t)]) < 0
-    normal[flip] *= -1.0
-    return [Interface(k, k + 1, pts[k], normal[k]) for k in range(len(t))]
+    depth ``-d .. d``, joint ``k`` between blocks ``k`` and ``k + 1`` (``centroids`` theirs;
+    :func:`_segment_face`)."""
+    return [_segment_face(k, k + 1, ji[k], je[k], centroids, d) for k in range(len(ji))]
+
+
+#: interface kind of the faces between two rings (:func:`ring_arch`)
+RING = "ring"
+
+Rings = int | Sequence[float]
+
+
+def ring_fractions(rings: Rings, thickness: float) -> np.ndarray:
+    """The ring boundaries as fractions of the thickness, from the intrados (0) to the
+    extrados (1), ``(R + 1,)``.
+
+    Parameters
+    ----------
+    rings : int or sequence of float
+        The number of equal rings (>= 1), or the thickness of each ring (m, > 0) from the
+        intrados out, summing to ``thickness``.
+    thickness : float
+        The whole arch's thickness (m).
+
+    Raises
+    ------
+    ValueError
+        Not a whole number >= 1, a thickness that is not > 0, or thicknesses whose sum is
+        not ``thickness`` (to 1e-9, relative).
+    """
+    if isinstance(rings, (int, np.integer)) and not isinstance(rings, bool):
+        r = check_whole(rings, "rings")
+        return np.linspace(0.0, 1.0, r + 1)
+    if isinstance(rings, (str, bool)) or not isinstance(rings, Sequence) or not len(rings):
+        raise ValueError(f"rings must be a whole number >= 1 or a list of ring thicknesses (m), got {rings!r}")
+    check_positive(**{f"rings[{k}]": v for k, v in enumerate(rings)})
+    total = float(sum(float(v) for v in rings))
+    if abs(total - float(thickness)) > 1e-9 * float(thickness):
+        raise ValueError(f"the ring thicknesses {list(rings)} sum to {total:g} m, not the thickness {float(thickness):g} m")
+    cum = np.concatenate([[0.0], np.cumsum(np.asarray(rings, dtype=float))]) / total
+    cum[-1] = 1.0
+    return cum
+
+
+def _ring_joints(n: int, ring: int, stagger: bool) -> list[int]:
+    """Half-step joint indices (0 .. 2 n) of ring ``ring`` (1 from the intrados): the
+    voussoir joints ``0, 2, ..., 2 n``, or for an even ring of a staggered arch ``0, 1, 3,
+    ..., 2 n - 1, 2 n`` (the half-brick rule, module docstring)."""
+    if stagger and ring % 2 == 0:
+        return [0] + list(range(1, 2 * n, 2)) + [2 * n]
+    return list(range(0, 2 * n + 1, 2))
+
+
+def ring_arch(
+    intrados: ArrayLike,
+    extrados: ArrayLike,
+    depth: float,
+    fractions: ArrayLike,
+    stagger: bool = False,
+    unit_weight: float = 20.0,
+    support_height: float | None = None,
+    meta: dict | None = None,
+) -> Assembly:
+    """Multi-ring arch between given radial joints, on two support blocks (module docstring).
+
+    Parameters
+    ----------
+    intrados, extrados : (2 N + 1, 2) array_like
+        ``(x, z)`` of the intrados and extrados ends of the joints of an N-voussoir ring and of
+        the joints half-way between them (m): entry ``2 k`` is voussoir joint ``k``, entry
+        ``2 k + 1`` the joint through the middle of voussoir ``k + 1``. A ring boundary at
+        fraction ``s`` of the thickness meets joint ``j`` at ``intrados[j] + s (extrados[j] -
+        intrados[j])`` (on a radial joint of a circular arc: on the circle of radius
+        ``R + s t``).
+    depth : float
+        Depth of the arch along y (m).
+    fractions : (R + 1,) array_like
+        Ring boundaries as fractions of the thickness, 0 to 1 (:func:`ring_fractions`).
+    stagger : bool
+        Joints staggered by the half-brick rule (True) or aligned (False).
+    unit_weight, support_height, meta
+        As :func:`arch_from_joints`; the support blocks stand under the whole springing joints.
+
+    Returns
+    -------
+    Assembly
+        Blocks ``left``, ring 1's voussoirs ``r1v01 ..``, ring 2's, ..., ``right``;
+        interfaces: the supports with the first and last voussoir of every ring, the radial
+        joints inside each ring, and the faces between rings (kind ``"ring"``), each normal
+        pointing from block A into block B (A the lower index).
+    """
+    layout = RingLayout(intrados, extrados, fractions, stagger)
+    check_positive(depth=depth, unit_weight=unit_weight)
+    ji, je, d = layout.ji, layout.je, float(depth) / 2.0
+    height = support_height if support_height is not None else float(np.linalg.norm(je[0] - ji[0]))
+    check_positive(support_height=height)
+
+    def support(j: int) -> np.ndarray:
+        top = np.array([ji[j], je[j]])
+        base = top[:, 1].min() - height
+        return np.array([top[0], top[1], [top[1, 0], base], [top[0, 0], base]])
+
+    loops, names = [support(0)], ["left"]
+    loops += layout.loops
+    names += layout.names
+    loops.append(support(len(ji) - 1))
+    names.append("right")
+    shapes = [prism(_at_depth(loop, -d), _at_depth(loop, d)) for loop in loops]
+    uw = float(unit_weight)
+    blocks = tuple(Block(name, shape, uw, k in (0, len(loops) - 1)) for k, (name, shape) in enumerate(zip(names, shapes)))
+    centroids = np.array([shape.centroid for shape in shapes])
+    interfaces = layout.interfaces(1, 0, len(loops) - 1, centroids, d)
+    return Assembly(blocks, tuple(interfaces), dict(meta or {}))
+
+
+def _segment_face(a: int, b: int, p: np.ndarray, q: np.ndarray, centroids: np.ndarray, d: float, kind: str = "") -> Interface:
+    """The interface between blocks ``a`` and ``b`` on the segment ``p``-``q`` (``(x, z)``, m) across
+    the depth ``-d .. d``: the points ``(p, q)`` at ``-d``, ``(q, p)`` at ``+d``; the normal in the
+    x-z plane, perpendicular to the segment, pointing from ``a`` into ``b`` (by their
+    ``centroids``)."""
+    t = q - p
+    normal = np.array([t[1], 0.0, -t[0]])
+    if normal @ (centroids[b] - centroids[a]) < 0:
+        normal = -normal
+    pts = np.vstack([_at_depth(np.array([p, q]), -d), _at_depth(np.array([q, p]), d)])
+    return Interface(a, b, pts, normal, kind=kind)
+
+
+class RingLayout:
+    """The voussoirs and joints of the rings of one arch between two supports (module docstring).
+
+    Parameters
+    ----------
+    intrados, extrados : (2 N + 1, 2) array_like
+        Half-step joint ends (m), as :func:`ring_arch` takes them.
+    fractions : (R + 1,) array_like
+        Ring boundaries as fractions of the thickness (:func:`ring_fractions`).
+    stagger : bool
+        The half-brick rule (True) or aligned joints.
+
+    Attributes
+    ----------
+    loops : list of (k, 2) ndarray
+        Section of every voussoir, ring 1's first (m).
+    names : list of str
+        ``r1v01, r1v02, ..., r2v01, ...``, in the order of ``loops``.
+    """
+
+    def __init__(self, intrados: ArrayLike, extrados: ArrayLike, fractions: ArrayLike, stagger: bool) -> None:
+        ji, je = np.asarray(intrados, dtype=float), np.asarray(extrados, dtype=float)
+        if ji.shape != je.shape or ji.ndim != 2 or ji.shape[1] != 2 or len(ji) < 3 or len(ji) % 2 == 0:
+            raise ValueError("intrados and extrados must be (2 N + 1, 2) arrays of joint ends, N >= 1")
+        self.ji, self.je, self.s = ji, je, np.asarray(fractions, dtype=float)
+        n, R = (len(ji) - 1) // 2, len(self.s) - 1
+        self.joints = [_ring_joints(n, r + 1, stagger) for r in range(R)]
+        J = self.joints
+        # the joints each ring boundary runs through (the intrados: ring 1's; the extrados: the last ring's)
+        self.bounds = [J[0]] + [sorted(set(J[r]) | set(J[r + 1])) for r in range(R - 1)] + [J[-1]]
+        self.first = list(np.cumsum([0] + [len(j) - 1 for j in J[:-1]]))  # each ring's first voussoir
+        width = max(2, len(str(max(len(j) - 1 for j in J))))
+        self.loops: list[np.ndarray] = []
+        self.names: list[str] = []
+        for r, Jr in enumerate(J):
+            for k, (a, c) in enumerate(zip(Jr[:-1], Jr[1:])):
+                inner = [j for j in self.bounds[r] if a <= j <= c]
+                outer = [j for j in self.bounds[r + 1] if a <= j <= c][::-1]
+                self.loops.append(np.vstack([self.at(self.s[r], inner), self.at(self.s[r + 1], outer)]))
+                self.names.append(f"r{r + 1}v{k + 1:0{width}d}")
+
+    def at(self, frac: float, j: int | Sequence[int]) -> np.ndarray:
+        """Where the ring boundary at ``frac`` of the thickness meets joint(s) ``j`` (m)."""
+        return self.ji[j] + frac * (self.je[j] - self.ji[j])
+
+    def interfaces(self, offset: int, left: int, right: int, centroids: np.ndarray, d: float) -> list[Interface]:
+        """The supports ``left`` and ``right`` with the first and last voussoir of every ring,
+        the radial joints inside each ring and the faces between rings (kind ``"ring"``), for
+        voussoirs numbered from ``offset`` in the assembly (``centroids``: every block's, m)."""
+        s, J, out = self.s, self.joints, []
+
+        def block_of(r: int, j0: int) -> int:
+            """Ring ``r``'s voussoir holding the boundary segment that starts at joint ``j0``."""
+            return offset + self.first[r] + sum(1 for j in J[r][1:-1] if j <= j0)
+
+        for r, Jr in enumerate(J):
+            lo, hi = self.at(s[r], Jr), self.at(s[r + 1], Jr)
+            first = offset + self.first[r]
+            out.append(_segment_face(left, first, lo[0], hi[0], centroids, d))
+            out += [_segment_face(first + k - 1, first + k, lo[k], hi[k], centroids, d) for k in range(1, len(Jr) - 1)]
+            out.append(_segment_face(first + len(Jr) - 2, right, lo[-1], hi[-1], centroids, d))
+            if r + 1 < len(J):
+                B = self.bounds[r + 1]
+                pts = self.at(s[r + 1], B)
+                out += [_segment_face(block_of(r, j0), block_of(r + 1, j0), pts[k], pts[k + 1], centroids, d, RING)
+                        for k, j0 in enumerate(B[:-1])]
+        return out
 
 
 def semicircular_arch(
@@ -116,6 +320,8 @@ def semicircular_arch(
     unit_weight: float = 20.0,
     support_height: float | None = None,
     joints: str = "radial",
+    rings: Rings = 1,
+    stagger: bool = False,
 ) -> Assembly:
     """The paper's semicircular arch on two support blocks.
 
@@ -142,12 +348,19 @@ def semicircular_arch(
         the shape of the thrust-line and the minimum thickness of semicircular masonry
         arches*, Archive of Applied Mechanics 83, 1511-1533) give the minimum thickness
         ``t/R = 0.1095`` with vertical cuts against Milankovitch's 0.1075 with radial ones
-        (docs/validation.md).
+        (docs/validation.md). Several rings need radial joints.
+    rings : int or list of float
+        Number of equal rings (default 1: one ring of voussoirs), or the thickness of each
+        ring from the intrados out (m), summing to ``thickness`` (:func:`ring_arch`).
+    stagger : bool
+        With several rings: radial joints staggered by the half-brick rule (True) or aligned
+        (False, the default); module docstring.
 
     Returns
     -------
     Assembly
-        See :func:`arch_from_joints`; ``meta["joints"]`` records the stereotomy.
+        See :func:`arch_from_joints` (one ring) or :func:`ring_arch`; ``meta["joints"]``
+        records the stereotomy, ``meta["rings"]`` and ``meta["stagger"]`` the rings.
     """
     check_positive(inner_radius=inner_radius, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs")
@@ -157,11 +370,26 @@ def semicircular_arch(
     height = thickness if support_height is None else support_height
     meta = dict(generator="semicircular_arch", inner_radius=float(inner_radius), thickness=float(thickness),
                 depth=float(depth), voussoirs=n, unit_weight=float(unit_weight), support_height=float(height))
+    fractions = ring_fractions(rings, thickness)
     if joints == "vertical":
+        if len(fractions) > 2:
+            raise ValueError("rings: several rings need joints = 'radial'")
         return _vertical_joint_arch(float(inner_radius), float(thickness), float(depth), n, float(unit_weight),
                                     float(height), {**meta, "joints": "vertical"})
-    ji, je = semicircle_joints(inner_radius, inner_radius + thickness, np.linspace(np.pi, 0.0, n + 1))
-    return arch_from_joints(ji, je, depth, unit_weight, height, meta)
+    return _rings_or_one(lambda m: semicircle_joints(inner_radius, inner_radius + thickness, np.linspace(np.pi, 0.0, m + 1)),
+                         n, fractions, rings, stagger, depth, unit_weight, height, meta)
+
+
+def _rings_or_one(joints: Callable[[int], tuple[np.ndarray, np.ndarray]], n: int, fractions: np.ndarray, rings: Rings,
+                  stagger: bool, depth: float, unit_weight: float, height: float, meta: dict) -> Assembly:
+    """One ring of ``n`` voussoirs on the joints ``joints(n)`` (:func:`arch_from_joints`), or
+    several on the half-step joints ``joints(2 n)`` (:func:`ring_arch`), with ``rings`` and
+    ``stagger`` recorded in the meta."""
+    if len(fractions) == 2:
+        return arch_from_joints(*joints(n), depth, unit_weight, height, meta)
+    check_blocks((len(fractions) - 1) * (n + 1) + 2, "rings x (voussoirs + 1) + 2 supports")
+    meta = dict(meta, rings=rings if isinstance(rings, int) else [float(v) for v in rings], stagger=bool(stagger))
+    return ring_arch(*joints(2 * n), depth, fractions, stagger, unit_weight, height, meta)
 
 
 #: joint directions of :func:`semicircular_arch`
@@ -250,6 +478,8 @@ def pointed_arch(
     centre_offset: float | None = None,
     unit_weight: float = 20.0,
     pier_height: float | None = None,
+    rings: Rings = 1,
+    stagger: bool = False,
 ) -> Assembly:
     """Pointed (two-centred) arch on two support blocks (piers).
 
@@ -280,11 +510,17 @@ def pointed_arch(
     pier_height : float, optional
         Height of the support blocks below the springing joints (m); defaults to the
         thickness. A tall value models an arch on piers.
+    rings : int or list of float
+        Number of equal rings (default 1: one ring of voussoirs), or the thickness of each
+        ring from the intrados out (m), summing to ``thickness`` (:func:`ring_arch`).
+    stagger : bool
+        With several rings: radial joints staggered by the half-brick rule (True) or aligned
+        (False, the default); module docstring.
 
     Returns
     -------
     Assembly
-        See :func:`arch_from_joints`; ``meta["generator"] == "pointed_arch"``.
+        See :func:`arch_from_joints` or :func:`ring_arch`; ``meta["generator"] == "pointed_arch"``.
     """
     check_positive(span=span, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs", 2)
@@ -304,22 +540,27 @@ def pointed_arch(
     R = s / 2.0 + e
     f = math.sqrt(R**2 - e**2)
     t = float(thickness)
-    # left half: arc centred at (+e, 0), angles from pi (left springing) to the crown
-    a0, a1 = math.pi, math.atan2(f, -e)
-    m = n // 2
-    frac = np.arange(m + 1) / (n / 2.0)
-    ang = a0 + (a1 - a0) * frac
-    ji = np.column_stack([e + R * np.cos(ang), R * np.sin(ang)])
-    je = np.column_stack([e + (R + t) * np.cos(ang), (R + t) * np.sin(ang)])
-    ji[0] = [-s / 2.0, 0.0]
-    je[0] = [-s / 2.0 - t, 0.0]
-    if n % 2 == 0:  # vertical crown joint where the two arcs meet
-        ji[-1] = [0.0, f]
-        je[-1] = [0.0, math.sqrt((R + t) ** 2 - e**2)]
+    fractions = ring_fractions(rings, t)
+
+    def joints(n: int) -> tuple[np.ndarray, np.ndarray]:
+        # left half: arc centred at (+e, 0), angles from pi (left springing) to the crown
+        a0, a1 = math.pi, math.atan2(f, -e)
+        m = n // 2
+        frac = np.arange(m + 1) / (n / 2.0)
+        ang = a0 + (a1 - a0) * frac
+        ji = np.column_stack([e + R * np.cos(ang), R * np.sin(ang)])
+        je = np.column_stack([e + (R + t) * np.cos(ang), (R + t) * np.sin(ang)])
+        ji[0] = [-s / 2.0, 0.0]
+        je[0] = [-s / 2.0 - t, 0.0]
+        if n % 2 == 0:  # vertical crown joint where the two arcs meet
+            ji[-1] = [0.0, f]
+            je[-1] = [0.0, math.sqrt((R + t) ** 2 - e**2)]
+        return _mirror_joints(ji, n), _mirror_joints(je, n)
+
     h = t if pier_height is None else pier_height
     meta = dict(generator="pointed_arch", span=s, rise=f, centre_offset=e, radius=R, thickness=t, depth=float(depth),
                 voussoirs=n, unit_weight=float(unit_weight), pier_height=float(h))
-    return arch_from_joints(_mirror_joints(ji, n), _mirror_joints(je, n), depth, unit_weight, h, meta)
+    return _rings_or_one(joints, n, fractions, rings, stagger, depth, unit_weight, h, meta)
 
 
 def segmental_arch(
@@ -330,6 +571,8 @@ def segmental_arch(
     voussoirs: int = 12,
     unit_weight: float = 20.0,
     pier_height: float | None = None,
+    rings: Rings = 1,
+    stagger: bool = False,
 ) -> Assembly:
     """Segmental (circular, less than a semicircle) arch on two skewback supports.
 
@@ -356,11 +599,17 @@ def segmental_arch(
     pier_height : float, optional
         Height of the support blocks below the lower end of their springing joint (m);
         defaults to the thickness. A tall value models an arch on piers.
+    rings : int or list of float
+        Number of equal rings (default 1: one ring of voussoirs), or the thickness of each
+        ring from the intrados out (m), summing to ``thickness`` (:func:`ring_arch`).
+    stagger : bool
+        With several rings: radial joints staggered by the half-brick rule (True) or aligned
+        (False, the default); module docstring.
 
     Returns
     -------
     Assembly
-        See :func:`arch_from_joints`; ``meta["generator"] == "segmental_arch"``.
+        See :func:`arch_from_joints` or :func:`ring_arch`; ``meta["generator"] == "segmental_arch"``.
     """
     check_positive(span=span, rise=rise, thickness=thickness, depth=depth, unit_weight=unit_weight)
     n = check_whole(voussoirs, "voussoirs")
@@ -371,15 +620,20 @@ def segmental_arch(
     R = (s**2 / 4.0 + f**2) / (2.0 * f)
     zc = f - R
     half = math.atan2(s / 2.0, -zc)  # half opening angle, measured from the vertical
-    ang = np.linspace(math.pi / 2.0 + half, math.pi / 2.0 - half, n + 1)
-    c, sn = np.cos(ang), np.sin(ang)
-    ji = np.column_stack([R * c, zc + R * sn])
-    je = np.column_stack([(R + t) * c, zc + (R + t) * sn])
-    ji[0], ji[-1] = [-s / 2.0, 0.0], [s / 2.0, 0.0]
+    fractions = ring_fractions(rings, t)
+
+    def joints(n: int) -> tuple[np.ndarray, np.ndarray]:
+        ang = np.linspace(math.pi / 2.0 + half, math.pi / 2.0 - half, n + 1)
+        c, sn = np.cos(ang), np.sin(ang)
+        ji = np.column_stack([R * c, zc + R * sn])
+        je = np.column_stack([(R + t) * c, zc + (R + t) * sn])
+        ji[0], ji[-1] = [-s / 2.0, 0.0], [s / 2.0, 0.0]
+        return ji, je
+
     h = t if pier_height is None else pier_height
     meta = dict(generator="segmental_arch", span=s, rise=f, radius=R, thickness=t, depth=float(depth), voussoirs=n,
                 unit_weight=float(unit_weight), pier_height=float(h))
-    return arch_from_joints(ji, je, depth, unit_weight, h, meta)
+    return _rings_or_one(joints, n, fractions, rings, stagger, depth, unit_weight, h, meta)
 
 
 def semicircular_arch_on_piers(
@@ -389,14 +643,18 @@ def semicircular_arch_on_piers(
     voussoirs: int = 14,
     pier_height: float = 1.0,
     unit_weight: float = 20.0,
+    rings: Rings = 1,
+    stagger: bool = False,
 ) -> Assembly:
-    """The semicircular arch of :func:`semicircular_arch` on two piers ``pier_height`` tall (m).
+    """The semicircular arch of :func:`semicircular_arch` on two piers ``pier_height`` tall (m),
+    of one ring or of several (``rings``, ``stagger``: :func:`semicircular_arch`).
 
     The piers are the support blocks (their motion is prescribed, their equilibrium is not
     checked); ``meta["generator"] == "semicircular_arch_on_piers"``.
     """
     check_positive(pier_height=pier_height)
-    asm = semicircular_arch(inner_radius, thickness, depth, voussoirs, unit_weight, pier_height)
+    asm = semicircular_arch(inner_radius, thickness, depth, voussoirs, unit_weight, pier_height, rings=rings,
+                            stagger=stagger)
     meta = dict(asm.meta, generator="semicircular_arch_on_piers", pier_height=float(pier_height))
     meta.pop("support_height", None)
     return Assembly(asm.blocks, asm.interfaces, meta)

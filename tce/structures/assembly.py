@@ -96,6 +96,10 @@ class Interface:
     stiffness : float
         Multiplier of the material's stiffness on this interface (> 0; default 1): a mortar
         joint or a stiffer bed, for the compliance term only.
+    kind : str
+        What joint this is (``""``, the default: an ordinary joint; ``"ring"``: between two
+        rings of a multi-ring arch). A material may give a kind its own contact law
+        (:attr:`tce.core.material.Material.interfaces`).
     """
 
     a: int
@@ -103,6 +107,7 @@ class Interface:
     points: NDArray[np.float64]
     normal: NDArray[np.float64] | None = field(default=None)
     stiffness: float = 1.0
+    kind: str = ""
 
     def __post_init__(self) -> None:
         p = np.array(self.points, dtype=float)
@@ -163,6 +168,8 @@ class InterfaceTable:
         Unit normals.
     stiffness : (ni,) ndarray
         Stiffness multipliers.
+    kind : (ni,) ndarray of str (object)
+        Interface kinds (:attr:`Interface.kind`).
     """
 
     a: NDArray[np.int64]
@@ -170,6 +177,7 @@ class InterfaceTable:
     polygons: PolygonTable
     normal: NDArray[np.float64]
     stiffness: NDArray[np.float64]
+    kind: NDArray[np.object_]
 
     @classmethod
     def of(cls, interfaces: Sequence[Interface]) -> InterfaceTable:
@@ -180,6 +188,7 @@ class InterfaceTable:
             PolygonTable.of([i.points for i in interfaces]),
             np.array([i.normal for i in interfaces], dtype=float).reshape(n, 3),
             np.fromiter((i.stiffness for i in interfaces), dtype=float, count=n),
+            np.array([i.kind for i in interfaces], dtype=object),
         )
 
     def __len__(self) -> int:
@@ -362,18 +371,20 @@ class Assembly:
         """
         blocks = tuple(replace(b, shape=Polyhedron(b.shape.vertices * length, b.shape.faces),
                                unit_weight=b.unit_weight * force / length**3) for b in self.blocks)
-        interfaces = tuple(Interface(i.a, i.b, i.points * length, i.normal, i.stiffness) for i in self.interfaces)
+        interfaces = tuple(replace(i, points=i.points * length) for i in self.interfaces)
         return replace(self, blocks=blocks, interfaces=interfaces)
 
     # ------------------------------------------------------------------ serialisation
     def to_dict(self) -> dict:
         """Plain-data form (tce's block format): blocks with ``name``, ``vertices`` (m),
         ``faces``, ``support``, ``unit_weight`` (kN/m^3); interfaces with block names
-        ``a``, ``b``, ``points`` (m) and ``normal``; and ``meta``."""
+        ``a``, ``b``, ``points`` (m), ``normal``, ``stiffness`` and, when not ``""``,
+        ``kind``; and ``meta``."""
         blocks = [{"name": b.name, "vertices": b.shape.vertices.tolist(), "faces": [list(f) for f in b.shape.faces],
                    "support": bool(b.support), "unit_weight": float(b.unit_weight)} for b in self.blocks]
         interfaces = [{"a": self.names[i.a], "b": self.names[i.b], "points": i.points.tolist(),
-                       "normal": i.normal.tolist(), "stiffness": float(i.stiffness)} for i in self.interfaces]
+                       "normal": i.normal.tolist(), "stiffness": float(i.stiffness)} | ({"kind": i.kind} if i.kind else {})
+                      for i in self.interfaces]
         return {"blocks": blocks, "interfaces": interfaces, "meta": dict(self.meta)}
 
     @classmethod
@@ -391,7 +402,8 @@ class Assembly:
         index = {b.name: k for k, b in enumerate(blocks)}
         interfaces = tuple(
             Interface(
-                index[i["a"]], index[i["b"]], np.asarray(i["points"], float), i.get("normal"), float(i.get("stiffness", 1.0))
+                index[i["a"]], index[i["b"]], np.asarray(i["points"], float), i.get("normal"), float(i.get("stiffness", 1.0)),
+                str(i.get("kind", "")),
             )
             for i in data.get("interfaces", [])
         )

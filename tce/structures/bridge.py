@@ -1,5 +1,5 @@
-"""Arch bridges: segmental barrels of several spans on piers between two abutments, built in
-courses across their width, square or skew.
+"""Arch bridges: segmental barrels of several spans on piers between two abutments, in one or
+several rings through their thickness and in courses across their width, square or skew.
 
 Axes as for arches (``docs/conventions.md``): the bridge spans along x (the road's axis) and
 is centred on x = 0, its width (``depth``) runs along y from ``-depth/2`` to ``+depth/2``, z is
@@ -7,14 +7,16 @@ up, the intrados springings at z = 0 on the centreline y = 0.
 
 The square bridge (``skew = 0``)
     Every span is the segmental ring of :func:`tce.structures.arch.segmental_arch` (same
-    span, rise, thickness and number of voussoirs) extruded across the width and cut into
-    ``courses`` rings of equal width by vertical planes ``y = const`` (the ring joints).
-    In **stack bond** every course has the same radial joints; in **running bond** every
-    other course (the 2nd, 4th, ...) is shifted by half a voussoir: it has a half voussoir at
-    each springing and one voussoir more (the barrel vault's bond,
-    :func:`tce.structures.vault.barrel_vault`). With one course the voussoirs are named
-    ``s1v01``, ``s1v02``, ... for span 1 (from the left); with several, ``s1c01v01`` (span,
-    course from ``y = -depth/2``, voussoir). A pier is the prism under the two springing
+    span, rise, thickness and number of voussoirs), or with several rings (``rings``,
+    ``stagger``) the rings of :func:`tce.structures.arch.ring_arch` (the faces between rings
+    of kind ``"ring"``), extruded across the width and cut into ``courses`` courses of equal
+    width by vertical planes ``y = const`` (the course joints). In **stack bond** every course
+    has the same radial joints; in **running bond** every other course (the 2nd, 4th, ...) is
+    shifted by half a voussoir: it has a half voussoir at each springing and one voussoir more
+    (the barrel vault's bond, :func:`tce.structures.vault.barrel_vault`; with one ring only).
+    The voussoirs of span 1 (from the left) are named ``s1v01``, ``s1v02``, ...; with several
+    rings ``s1r1v01`` (ring 1 the intrados ring); with several courses ``s1c01v01`` or
+    ``s1c01r1v01`` (course from ``y = -depth/2``). A pier is the prism under the two springing
     joints it carries, ``pier_width`` wide between the intrados springings, its base
     ``pier_height`` below the springings; an abutment is the prism under its springing joint
     (a skewback), its base at the same level. Abutments, piers and pier foundations are each
@@ -29,7 +31,7 @@ The skew bridge (``skew = phi`` degrees)
     The square bridge sheared in plan, ``(x, y, z) -> (x + y tan(phi), y, z)``: the "false
     skew" (or oblique) barrel, whose bed joints, abutment and pier faces are parallel to each
     other, at ``phi`` from the y axis (the vertical planes ``x = x0 + y tan(phi)``), and whose
-    ring joints and faces stay parallel to the road's axis (planes ``y = const``). Every
+    course joints and faces stay parallel to the road's axis (planes ``y = const``). Every
     vertical section parallel to the road (``y = const``, a face of the bridge included) is
     the square bridge's section, so ``span`` is the skew span, measured along x; the square
     span, perpendicular to the abutments, is ``span cos(phi)``, and the ring's thickness
@@ -46,7 +48,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from .arch import _at_depth, segmental_arch
+from .arch import RingLayout, Rings, _at_depth, ring_fractions, segmental_arch
 from .assembly import Assembly, Block, Interface
 from .geometry import Polyhedron, prism
 from .params import check_blocks, check_choice, check_positive, check_whole
@@ -86,6 +88,8 @@ def arch_bridge(
     pier_width: float = 1.0,
     pier_height: float = 3.0,
     piers: str = "free",
+    rings: Rings = 1,
+    stagger: bool = False,
     courses: int = 1,
     bond: str = "stack",
     skew: float = 0.0,
@@ -113,10 +117,15 @@ def arch_bridge(
     piers : {"free", "fixed"}
         Free piers on support foundations (as wide as the pier, ``pier_width`` tall, as wide
         as the bridge), or piers that are supports.
+    rings : int or list of float
+        Rings of every span: a number of equal rings (default 1), or their thicknesses from the
+        intrados out (m), summing to ``thickness``.
+    stagger : bool
+        With several rings: the half-brick rule (True) or aligned joints (False, the default).
     courses : int
-        Voussoir courses (rings) across the width (>= 1); 1: one block across.
+        Voussoir courses across the width (>= 1); 1: one block across.
     bond : {"stack", "running"}
-        Joint pattern of neighbouring courses.
+        Joint pattern of neighbouring courses; ``"running"`` with one ring only.
     skew : float
         Skew angle (degrees, ``|skew| <= MAX_SKEW``): the angle of the abutment faces and bed
         joints from the y axis, positive from +y towards +x; 0: a square bridge.
@@ -127,13 +136,15 @@ def arch_bridge(
         Blocks ``abutment_left``, the voussoirs of span 1 (course by course), ``pier1``, the
         voussoirs of span 2, ..., ``abutment_right``, then ``foundation1, ...`` with free
         piers; interfaces: span by span, course by course the joints from the left support to
-        the right one, then the ring joints between neighbouring courses, then the pier
-        foundations; ``meta["generator"] == "arch_bridge"`` with the parameters.
+        the right one (with rings: those of :meth:`tce.structures.arch.RingLayout.interfaces`),
+        then the course joints between neighbouring courses, then the pier foundations;
+        ``meta["generator"] == "arch_bridge"`` with the parameters.
 
     Raises
     ------
     ValueError
-        A non-positive size, ``rise > span / 2``, piers narrower than their skewbacks, or a
+        A non-positive size, ``rise > span / 2``, piers narrower than their skewbacks, ring
+        thicknesses that do not sum to the thickness, a running bond with several rings, or a
         skew beyond :data:`MAX_SKEW`.
     """
     check_positive(span=span, rise=rise, thickness=thickness, depth=depth, unit_weight=unit_weight,
@@ -141,14 +152,21 @@ def arch_bridge(
     n_spans = check_whole(spans, "spans")
     n = check_whole(voussoirs, "voussoirs")
     nc = check_whole(courses, "courses")
-    check_blocks(n_spans * (nc * (n + 1) + 1) + n_spans + 1,
-                 f"at most spans x (courses x (voussoirs + 1) + 2) + 1 = {n_spans} x ({nc} x ({n} + 1) + 2) + 1")
+    fractions = ring_fractions(rings, thickness)
+    n_rings = len(fractions) - 1
+    check_blocks(n_spans * (nc * n_rings * (n + 1) + 2) + 1,
+                 f"at most spans x (courses x rings x (voussoirs + 1) + 2) + 1 = {n_spans} x ({nc} x {n_rings} x "
+                 f"({n} + 1) + 2) + 1")
     check_choice(piers, "piers", ("free", "fixed"))
     check_choice(bond, "bond", BONDS)
+    if n_rings > 1 and bond == "running" and nc > 1:
+        raise ValueError("bond = 'running' across the width is built with one ring only; fix: bond = 'stack' or rings = 1")
     if not (math.isfinite(float(skew)) and abs(float(skew)) <= MAX_SKEW):
         raise ValueError(f"skew must be a number of degrees from {-MAX_SKEW:g} to {MAX_SKEW:g}, got {skew!r}")
     ring = segmental_arch(span, rise, thickness, depth, n, unit_weight)
     sections = [_ring_joints(ring, bond == "running" and c % 2 == 1) for c in range(nc)]
+    if n_rings > 1:  # the joints at every half voussoir, as the rings' layout takes them
+        jh, eh = _ring_joints(segmental_arch(span, rise, thickness, depth, 2 * n, unit_weight), False)
     ji, je = sections[0]
     reach = float(je[-1, 0] - ji[-1, 0])  # horizontal extent of a skewback
     if n_spans > 1 and pier_width < 2.0 * reach * (1.0 - 1e-12):
@@ -177,30 +195,42 @@ def arch_bridge(
         """Section of the abutment under the joint from ``a`` (intrados) to ``e`` (extrados)."""
         return np.array([a, e, [e[0], base], [a[0], base]])
 
-    def voussoir(s: int, c: int, k: int) -> str:
-        course = f"c{c + 1:0{wc}d}" if nc > 1 else ""
-        return f"s{s + 1}{course}v{k + 1:0{wv}d}"
+    def course(c: int) -> str:
+        return f"c{c + 1:0{wc}d}" if nc > 1 else ""
 
-    # bed joints (block a, block b, intrados end, extrados end, course), left to right
+    # bed joints of one ring (block a, block b, intrados end, extrados end, course), left to right
     beds: list[tuple[int, int, NDArray[np.float64], NDArray[np.float64], int]] = []
-    rings: list[tuple[int, int, NDArray[np.float64], float]] = []  # ring joints (a, b, section, y)
+    laid: list[tuple[RingLayout, int, int, int, int]] = []  # with rings: (layout, first voussoir, left, right, course)
+    joined: list[tuple[int, int, NDArray[np.float64], float]] = []  # course joints (a, b, section, y)
     min_area = 1e-9 * float(thickness) ** 2
     left = add(skewback(ji[0] + [centres[0], 0.0], je[0] + [centres[0], 0.0]), "abutment_left", True)
     for s, cx in enumerate(centres):
         off = np.array([cx, 0.0])
-        course_blocks = [[add(np.array([a[k], a[k + 1], e[k + 1], e[k]]), voussoir(s, c, k), False, ys[c], ys[c + 1])
-                          for k in range(len(a) - 1)] for c, (a, e) in enumerate((ci + off, ce + off) for ci, ce in sections)]
-        right = len(names)  # the pier or abutment added next
+        course_blocks = []  # the voussoirs of every course
         for c, (ci, ce) in enumerate(sections):
-            chain = [left, *course_blocks[c], right]
-            beds += [(chain[k], chain[k + 1], ci[k] + off, ce[k] + off, c) for k in range(len(ci))]
+            if n_rings > 1:
+                layout = RingLayout(jh + off, eh + off, fractions, stagger)
+                laid.append((layout, len(loops), left, -1, c))
+                course_blocks.append([add(loop, f"s{s + 1}{course(c)}{name}", False, ys[c], ys[c + 1])
+                                      for loop, name in zip(layout.loops, layout.names)])
+            else:
+                a, e = ci + off, ce + off
+                course_blocks.append([add(np.array([a[k], a[k + 1], e[k + 1], e[k]]),
+                                          f"s{s + 1}{course(c)}v{k + 1:0{wv}d}", False, ys[c], ys[c + 1])
+                                      for k in range(len(a) - 1)])
+        right = len(names)  # the pier or abutment added next
+        laid = [(lay, first, lft, right if r < 0 else r, c) for lay, first, lft, r, c in laid]
+        if n_rings == 1:
+            for c, (ci, ce) in enumerate(sections):
+                chain = [left, *course_blocks[c], right]
+                beds += [(chain[k], chain[k + 1], ci[k] + off, ce[k] + off, c) for k in range(len(ci))]
         for c in range(nc - 1):
             for i in course_blocks[c]:
                 for j in course_blocks[c + 1]:
                     sec = _section_overlap(loops[i], loops[j], min_area) if bond == "running" else \
                         (loops[i] if i - course_blocks[c][0] == j - course_blocks[c + 1][0] else None)
                     if sec is not None:
-                        rings.append((i, j, sec, ys[c + 1]))
+                        joined.append((i, j, sec, ys[c + 1]))
         if s < n_spans - 1:
             a, e = ji + off, je + off
             na, ne = ji[0] + [centres[s + 1], 0.0], je[0] + [centres[s + 1], 0.0]
@@ -224,17 +254,17 @@ def arch_bridge(
     def sheared(points: NDArray[np.float64]) -> NDArray[np.float64]:
         return points @ shear.T
 
-    shapes = [prism(_at_depth(loop, y0), _at_depth(loop, y1)) for loop, (y0, y1) in zip(loops, extent)]
-    shapes = [Polyhedron(sheared(p.vertices), p.faces) for p in shapes]
+    square = [prism(_at_depth(loop, y0), _at_depth(loop, y1)) for loop, (y0, y1) in zip(loops, extent)]
+    shapes = [Polyhedron(sheared(p.vertices), p.faces) for p in square]
     blocks = tuple(Block(name, shape, float(unit_weight), sup) for name, shape, sup in zip(names, shapes, support))
     centroids = np.array([shape.centroid for shape in shapes])
 
-    def interface(a: int, b: int, points: NDArray[np.float64], normal: NDArray[np.float64]) -> Interface:
+    def interface(a: int, b: int, points: NDArray[np.float64], normal: NDArray[np.float64], kind: str = "") -> Interface:
         """The interface on ``points`` (square bridge), its ``normal`` turned from block ``a`` into ``b``."""
         m = normals @ normal
         if m @ (centroids[b] - centroids[a]) < 0:
             m = -m
-        return Interface(a, b, sheared(points), m)
+        return Interface(a, b, sheared(points), m, kind=kind)
 
     interfaces = []
     for a, b, i, e, c in beds:
@@ -242,11 +272,24 @@ def arch_bridge(
                         _at_depth(e[None], ys[c + 1])[0], _at_depth(i[None], ys[c + 1])[0]])
         t = e - i
         interfaces.append(interface(a, b, pts, np.array([t[1], 0.0, -t[0]])))
-    interfaces += [interface(a, b, _at_depth(sec, y), np.array([0.0, 1.0, 0.0])) for a, b, sec, y in rings]
+    if laid:
+        square_centroids = np.array([p.centroid for p in square])
+        for layout, first, lft, rgt, c in laid:
+            # the layout's faces (segments (p, q) of the section across the whole width) moved
+            # onto the course's width, their normal perpendicular to the segment as the layout's
+            scale, mid = (ys[c + 1] - ys[c]) / (2.0 * d), (ys[c + 1] + ys[c]) / 2.0
+            for itf in layout.interfaces(first, lft, rgt, square_centroids, d):
+                pts = itf.points.copy()
+                pts[:, 1] = mid + scale * pts[:, 1]
+                t = pts[1, [0, 2]] - pts[0, [0, 2]]
+                interfaces.append(interface(itf.a, itf.b, pts, np.array([t[1], 0.0, -t[0]]), itf.kind))
+    interfaces += [interface(a, b, _at_depth(sec, y), np.array([0.0, 1.0, 0.0])) for a, b, sec, y in joined]
     for pier, foot, x0, x1 in feet:
         pts = np.array([[x0, -d, base], [x1, -d, base], [x1, d, base], [x0, d, base]])
         interfaces.append(interface(pier, foot, pts, np.array([0.0, 0.0, -1.0])))
     meta = dict(generator="arch_bridge", spans=n_spans, span=float(span), rise=float(rise), thickness=float(thickness),
                 depth=float(depth), voussoirs=n, unit_weight=float(unit_weight), pier_width=float(pier_width),
                 pier_height=float(pier_height), piers=piers, courses=nc, bond=bond, skew=float(skew))
+    if n_rings > 1:
+        meta.update(rings=rings if isinstance(rings, int) else [float(v) for v in rings], stagger=bool(stagger))
     return Assembly(blocks, tuple(interfaces), meta)

@@ -341,13 +341,15 @@ class BlockItem(_Strict):
 
 class InterfaceItem(_Strict):
     """One of ``interfaces``: blocks ``a`` and ``b`` by name, the polygon ``points``, an
-    optional ``normal`` from ``a`` into ``b`` and a stiffness multiplier."""
+    optional ``normal`` from ``a`` into ``b``, a stiffness multiplier and a ``kind`` (a label a
+    material may give its own contact law, e.g. ``"ring"``)."""
 
     a: Name
     b: Name
     points: list[Point]
     normal: Point | None = None
     stiffness: Positive = 1.0
+    kind: str = ""
 
 
 class TceAssemblyFile(_Strict):
@@ -745,7 +747,7 @@ def _file_interfaces(
             if n @ n_ab < 0:
                 log.info("%s: %s: the stored normal points from B into A; oriented from A into B", path, name)
             n_ab = n if n @ n_ab > 0 else -n
-        out.append(Interface(a, b, pts, n_ab, stiffness=it.get("stiffness", 1.0)))
+        out.append(Interface(a, b, pts, n_ab, stiffness=it.get("stiffness", 1.0), kind=it.get("kind", "")))
     return out
 
 

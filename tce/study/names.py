@@ -12,7 +12,7 @@ __all__ = ["LAMBDA_TOL", "PLOT_KINDS", "missing_lambdas", "same_lambda", "slug"]
 
 #: figure kinds of ``[plots] kinds`` (docs/studies.md, "Figures")
 PLOT_KINDS = ("capacity", "thrust", "states", "thrust_lines", "transversal", "base", "mechanism", "summary", "bracket",
-              "view", "settlement", "settlement_shapes")
+              "view", "settlement", "settlement_shapes", "fragility", "capacity_samples", "sensitivity", "convergence")
 #: two load multipliers closer than this (relative to max(1, |lambda|)) are the same step
 LAMBDA_TOL = 1e-9
 

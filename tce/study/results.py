@@ -43,6 +43,7 @@ from ..core.resultants import global_vertex_forces
 from ..core.result import DOFS, WRENCH_COMPONENTS, XYZ
 from ..core.solve import SOLVER_NAME, TCEResult
 from ..files import atomic_write, storage_error, temporaries
+from ..structures.arch import RING
 from ..structures.assembly import Assembly
 from .schema import Scenario, Study
 
@@ -114,6 +115,12 @@ META: dict[str, tuple[str, str]] = {
     "vertex_interface": ("-", "interface of the vertex, as 'A|B' block names"),
     "mechanism": ("m, rad", "collapse mechanism velocities at the limit (unit amplitude, supports zero)"),
     "interface_mode": ("-", "interface behaviour in the mechanism (hinge, sliding, opening, closed)"),
+    "interface_kind": ("-", "what joint the interface is ('' an ordinary joint, 'ring' between two rings of a "
+                       "multi-ring arch), whose contact law the material may set apart"),
+    "ring_separation": ("1", "1 if the rings separate in the collapse mechanism (a face between rings slides, opens "
+                        "or hinges), 0 if they act together, NaN without a mechanism"),
+    "ring_separation_at": ("-", "where the rings separate: per mode (sliding, opening, hinge), how many faces between "
+                           "rings move in the collapse mechanism and the x range of their centroids (empty if none)"),
     "hinge_point": ("m", "trace point of the hinge line (NaN if no hinge)"),
     "interface_a": ("-", "block A of the interface (the normal points from A into B)"),
     "interface_b": ("-", "block B of the interface"),
@@ -309,6 +316,31 @@ def _limit_vars(lp: LoadPathResult, slots: np.ndarray, n_itf: int, n_blocks: int
     return out
 
 
+def _ring_vars(a: Assembly, modes: np.ndarray) -> dict[str, tuple]:
+    """Whether the rings of a multi-ring arch separate in the mechanism (``modes``: each
+    interface's, ``""`` without a mechanism): ``ring_separation``, ``ring_separation_at`` (per
+    mode, how many faces between rings move and the x range of their centroids) and the
+    interface kinds; nothing for an assembly without faces between rings."""
+    kinds = a.interface_table.kind
+    ring = np.flatnonzero(kinds == RING)
+    if not len(ring):
+        return {}
+    x = a.interface_table.centroid[:, 0]
+    moving = [k for k in ring if modes[k] not in ("closed", _FILL_TEXT)]
+    decided = any(modes[k] != _FILL_TEXT for k in ring)
+    parts = []
+    for m in ("sliding", "opening", "hinge"):
+        at = [k for k in moving if modes[k] == m]
+        if at:
+            parts.append(f"{m} at {len(at)} faces, x = {x[at].min():.3g} to {x[at].max():.3g} m")
+    where = "; ".join(parts) + (f" (of {len(ring)} faces between rings)" if parts else "")
+    return {
+        "interface_kind": (("interface",), _text(kinds.tolist())),
+        "ring_separation": (("scenario",), np.asarray([float(bool(moving)) if decided else np.nan])),
+        "ring_separation_at": (("scenario",), _text([where])),
+    }
+
+
 def _static_vars(analysis: Analysis, imap: InterfaceMap) -> dict[str, tuple]:
     """Variables of the assembly and of the interface vertices of ``imap``: the coordinates
     (``vertex_point``, ``block_centroid``) per scenario, since a geometry sweep gives each
@@ -413,6 +445,7 @@ def scenario_dataset(
     limit_slots = np.asarray(analysis.model(lp.limit.model).interfaces, dtype=int)
     data = _path_vars(path, step_slots, n_itf)
     data.update(_limit_vars(lp, limit_slots, n_itf, len(analysis.assembly.blocks)))
+    data.update(_ring_vars(analysis.assembly, data["interface_mode"][1][0]))
     data.update(_static_vars(analysis, path[0].interface_map))
     data["no_limit_reason"] = (("scenario",), _text([no_limit_reason(analysis, lp)]))
     data["unbounded_reason"] = (("scenario",), _text([unbounded_reason(analysis, lp)]))
@@ -638,7 +671,7 @@ def study_attrs(study: Study, models: Iterable[str]) -> dict[str, str]:
         "solver": SOLVER_NAME,
         "model": ", ".join(sorted(set(models))),
         "assembly": json.dumps(assembly.to_dict()),
-        "material": json.dumps(study.spec.material.model_dump()),
+        "material": json.dumps(study.material()),
         "loads": json.dumps(study.spec.loads.model_dump()),
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
     }

@@ -49,7 +49,8 @@ from ..core.material import Material
 from ..core.fill import DISPERSION_2_TO_1
 from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
-from ..structures.assembly import Assembly
+from ..structures import defects as _defects
+from ..structures.assembly import Assembly, AssemblyError
 from ..structures.bridge import MAX_SKEW, arch_bridge
 from ..structures.dome import hemispherical_dome
 from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
@@ -167,6 +168,8 @@ class ArchStructure(_Generated):
     voussoirs: Annotated[int, Field(ge=1, le=MAX_BLOCKS)] = 14
     support_height: Length | None = None
     joints: Literal["radial", "vertical"] = "radial"
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
 
     builder = semicircular_arch
 
@@ -182,6 +185,8 @@ class PointedArchStructure(_Generated):
     depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=2)] = 14
     pier_height: Length | None = None
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
 
     builder = pointed_arch
 
@@ -196,6 +201,8 @@ class SegmentalArchStructure(_Generated):
     depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 12
     pier_height: Length | None = None
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
 
     builder = segmental_arch
 
@@ -209,6 +216,8 @@ class ArchOnPiersStructure(_Generated):
     depth: Length = 0.25
     voussoirs: Annotated[int, Field(ge=1)] = 14
     pier_height: Length = 1.0
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
 
     builder = semicircular_arch_on_piers
 
@@ -226,6 +235,8 @@ class ArchBridgeStructure(_Generated):
     pier_width: Length = 1.0
     pier_height: Length = 3.0
     piers: Literal["free", "fixed"] = "free"
+    rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
+    stagger: bool = False
     courses: Annotated[int, Field(ge=1)] = 1
     bond: Literal["stack", "running"] = "stack"
     skew: Annotated[float, Field(ge=-MAX_SKEW, le=MAX_SKEW)] = 0.0
@@ -327,6 +338,79 @@ class MaterialSection(_Strict):
     def build(self) -> Material:
         """The :class:`tce.core.material.Material` of this section."""
         return Material(**self.model_dump())
+
+
+class RingInterfaceSection(_Strict):
+    """``[ring_interface]``: the contact law of the faces between the rings of a multi-ring arch
+    (interfaces of kind ``"ring"``, :mod:`tce.structures.arch`): friction, cohesion, tensile and
+    compressive strength (kN/m^2), each ``[material]``'s when left out, or ``bonded = true``:
+    rings that cannot separate (any tension and shear carried, ``Material(bonded=True)``)."""
+
+    friction: Friction | None = None
+    cohesion: Stress | None = None
+    tensile_strength: Stress | None = None
+    compressive_strength: Strength | None = None
+    bonded: bool = False
+
+    @model_validator(mode="after")
+    def _bonded_alone(self) -> RingInterfaceSection:
+        if self.bonded and self.model_dump(exclude_none=True, exclude={"bonded"}):
+            raise ValueError("bonded rings carry any force; fix: leave friction, cohesion and strengths out, or set "
+                             "bonded = false")
+        return self
+
+
+#: interface kind that ``[ring_interface]`` gives its law to
+RING_KIND = "ring"
+
+
+class MortarLossSection(_Strict):
+    """``[[defects.mortar_loss]]``: a joint (``"A|B"``) in contact only between the depths lost
+    from its two sides (m; :func:`tce.structures.defects.with_joint_loss`): mortar lost, or a
+    crack open, to that depth."""
+
+    joint: str = Field(min_length=3)
+    intrados: Annotated[float, Field(ge=0, le=MAX_LENGTH)] = 0.0
+    extrados: Annotated[float, Field(ge=0, le=MAX_LENGTH)] = 0.0
+
+
+class JointLawSection(_Strict):
+    """``[[defects.joint_law]]``: the contact law of the joints ``joints`` (``"A|B"``): friction,
+    cohesion, tensile and compressive strength (kN/m^2), each ``[material]``'s when left out."""
+
+    joints: Annotated[list[Annotated[str, Field(min_length=3)]], Field(min_length=1)]
+    friction: Friction | None = None
+    cohesion: Stress | None = None
+    tensile_strength: Stress | None = None
+    compressive_strength: Strength | None = None
+
+
+class DefectsSection(_Strict):
+    """``[defects]``: what an inspection found (:mod:`tce.structures.defects`): blocks
+    ``missing``, blocks of another ``unit_weight`` (kN/m^3), joints ``separated`` (they carry
+    nothing: rings already apart there), joints that lost ``mortar_loss`` to a depth, and joints
+    with a ``joint_law`` of their own."""
+
+    missing: list[str] = Field(default_factory=list)
+    unit_weight: dict[str, UnitWeight] = Field(default_factory=dict)
+    separated: list[str] = Field(default_factory=list)
+    mortar_loss: list[MortarLossSection] = Field(default_factory=list)
+    joint_law: list[JointLawSection] = Field(default_factory=list)
+
+    def apply(self, assembly: Assembly) -> Assembly:
+        """``assembly`` with these defects: the joint laws' kinds (``joints1``, ``joints2``, ...),
+        the depths lost, the joints separated, the unit weights, then the blocks missing."""
+        asm = _defects.with_kinds(assembly, {j: joint_kind(k) for k, law in enumerate(self.joint_law)
+                                             for j in law.joints})
+        for loss in self.mortar_loss:
+            asm = _defects.with_joint_loss(asm, loss.joint, loss.intrados, loss.extrados)
+        asm = _defects.with_unit_weights(_defects.without_joints(asm, self.separated), self.unit_weight)
+        return _defects.without_blocks(asm, self.missing)
+
+
+def joint_kind(k: int) -> str:
+    """Interface kind of the joints of the ``k``-th (0-based) ``[[defects.joint_law]]``."""
+    return f"joints{k + 1}"
 
 
 class PointLoadSection(_Strict):
@@ -588,6 +672,8 @@ class StudyFile(_Strict):
     study: StudySection
     structure: Structure
     material: MaterialSection = MaterialSection()
+    ring_interface: RingInterfaceSection | None = None
+    defects: DefectsSection | None = None
     loads: LoadsSection = LoadsSection()
     sweep: SweepSection = SweepSection()
     scenarios: Annotated[
@@ -637,7 +723,9 @@ class Scenario:
     params : dict
         Values of the swept parameters (and ``alpha``, ``magnitude``) for this scenario.
     structure, material : dict
-        Validated ``[structure]`` and ``[material]`` sections with the swept values applied.
+        Validated ``[structure]`` and ``[material]`` sections with the swept values applied;
+        the material holds the ``[ring_interface]`` keys given (``"ring_interface"``) when the
+        study has that section.
     loads : dict
         ``lambda_step``, ``tolerance``, ``lambda_cap`` (and ``critical_position``,
         ``positions`` when the study searches the critical position).
@@ -767,7 +855,13 @@ class Study:
         study is validated), then the same object for the run, its workers and its results."""
         key = json.dumps(structure, sort_keys=True)
         if key not in self._assemblies:
-            self._assemblies[key] = build_structure(structure)
+            built = build_structure(structure)
+            if self.spec.defects is not None:
+                try:
+                    built = self.spec.defects.apply(built)
+                except AssemblyError as exc:
+                    raise AssemblyError(f"defects: {exc}") from None
+            self._assemblies[key] = built
         return self._assemblies[key]
 
     @cached_property
@@ -805,11 +899,23 @@ class Study:
                     pattern=spec.loads.pattern(p["alpha"], p.get("load_x")).to_dict(),
                     params=p,
                     structure=structure,
-                    material=_with(spec.material.model_dump(), p, MATERIAL_SWEEPS),
+                    material=self.material(p),
                     loads=loads,
                     assembly_digest=self._digest(structure),
                     settlement_path=spec.settlement_path.model_dump() if spec.settlement_path else None,
                 )
+
+    def material(self, params: dict[str, float] | None = None) -> dict[str, Any]:
+        """The ``[material]`` section with the swept values ``params`` applied, and the
+        ``[ring_interface]`` keys given (under ``"ring_interface"``) when the study has that
+        section: what :func:`build_material` builds."""
+        spec = self.spec
+        out = _with(spec.material.model_dump(), params or {}, MATERIAL_SWEEPS)
+        if spec.ring_interface is not None:
+            out["ring_interface"] = spec.ring_interface.model_dump(exclude_unset=True)
+        if spec.defects is not None and spec.defects.joint_law:
+            out["joint_law"] = [law.model_dump(exclude_unset=True, exclude={"joints"}) for law in spec.defects.joint_law]
+        return out
 
     def _digest(self, structure: dict[str, Any]) -> str:
         key = json.dumps(structure, sort_keys=True)
@@ -929,8 +1035,22 @@ def build_structure(section: dict[str, Any]) -> Assembly:
 
 
 def build_material(section: dict[str, Any]) -> Material:
-    """The material of a validated ``[material]`` section given as a plain dict."""
-    return MaterialSection.model_validate(section).build()
+    """The material of a validated ``[material]`` section given as a plain dict
+    (:meth:`Study.material`): with a ``"ring_interface"`` entry, the interfaces of kind
+    ``"ring"`` get its law, and with ``"joint_law"`` entries the joints of kinds ``joints1``,
+    ... theirs (:func:`joint_kind`), the keys they leave out taken from ``[material]``."""
+    section = dict(section)
+    ring = section.pop("ring_interface", None)
+    joints = section.pop("joint_law", [])
+    material = MaterialSection.model_validate(section).build()
+    own = {k: getattr(material, k) for k in ("friction", "cohesion", "tensile_strength", "compressive_strength")}
+    laws = {joint_kind(k): Material(**(own | {k_: v for k_, v in law.items() if v is not None}))
+            for k, law in enumerate(joints)}
+    if ring is not None:
+        given = RingInterfaceSection.model_validate(ring)
+        laws[RING_KIND] = Material(bonded=True) if given.bonded else \
+            Material(**(own | given.model_dump(exclude_none=True, exclude={"bonded"})))
+    return replace(material, interfaces=laws) if laws else material
 
 
 def _check_scenarios(study: Study) -> None:
@@ -967,8 +1087,13 @@ def _check_scenarios(study: Study) -> None:
             swept = {k: v for k, v in sc.params.items() if k in MATERIAL_SWEEPS}
             raise StudyError(
                 f"{study.path}: {key}: {exc}{f' (with {swept})' if swept else ''}; "
-                "fix: change the [material] or [sweep] values"
+                f"fix: change the [material]{', [ring_interface]' if study.spec.ring_interface else ''} or [sweep] values"
             ) from None
+        if study.spec.ring_interface is not None and RING_KIND not in study.assembly(sc.structure).interface_table.kind:
+            raise StudyError(
+                f"{study.path}: ring_interface: the structure has no faces between rings, so the law would have no "
+                "effect; fix: give the arch rings = 2 or more, or remove [ring_interface]"
+            )
         supports = study.assembly(sc.structure).support_names
         unknown = sorted(set(sc.settlements) - set(supports))
         if unknown:
@@ -1028,9 +1153,11 @@ def _check_positions(study: Study, sc: Scenario, assembly: Assembly) -> None:
 
 def _build_fix(section: BaseModel, exc: Exception, swept: dict[str, float]) -> str:
     """The fix of a structure that cannot be built, for the kind of failure."""
+    text = str(exc)
+    if text.startswith("defects:"):
+        return "name the blocks and joints of [defects] as the structure names them (a joint: 'A|B', its two blocks)"
     if not isinstance(section, FileStructure):
         return f"change the [sweep] values of {sorted(swept)}" if swept else "change the [structure] values"
-    text = str(exc)
     if isinstance(exc, FileNotFoundError):
         return "correct [structure] path (relative to the study file)"
     if isinstance(exc, InputLimitError):

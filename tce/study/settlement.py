@@ -99,7 +99,7 @@ def deformed_assembly(
         widest = max(widest, float(opening[closed].max()))
         near = pa[closed][np.argmin(np.linalg.norm(pa[:, None] - pa[closed][None], axis=2), axis=1)]
         points = np.where(closed[:, None], pa, near + HINGE_WIDTH * (pa - near))
-        interfaces.append(Interface(itf.a, itf.b, points, normal, itf.stiffness))
+        interfaces.append(Interface(itf.a, itf.b, points, normal, itf.stiffness, itf.kind))
     blocks = path.deformed(assembly, index).blocks
     return Assembly(blocks, tuple(interfaces), dict(assembly.meta)), move, widest
 

@@ -41,6 +41,7 @@ WALL = ROOT / "studies" / "data" / "wall.json"
 #: every generator of tce.structures (the study types) and a block file, small
 BUILDERS: dict[str, Callable[[], Assembly]] = {
     "semicircular_arch": lambda: semicircular_arch(voussoirs=8),
+    "ring_arch": lambda: semicircular_arch(thickness=0.3, voussoirs=5, rings=2, stagger=True),
     "pointed_arch": lambda: pointed_arch(voussoirs=8),
     "segmental_arch": lambda: segmental_arch(voussoirs=6),
     "arch_on_piers": lambda: semicircular_arch_on_piers(voussoirs=8, pier_height=0.6),
@@ -51,7 +52,7 @@ BUILDERS: dict[str, Callable[[], Assembly]] = {
 }
 STRUCTURES = tuple(BUILDERS)
 #: the structures with a planar model (a vertical symmetry plane)
-PLANAR = ("semicircular_arch", "pointed_arch", "segmental_arch", "arch_on_piers", "file")
+PLANAR = ("semicircular_arch", "ring_arch", "pointed_arch", "segmental_arch", "arch_on_piers", "file")
 
 #: material kinds (issue 21): Heyman, friction, cohesion, strengths, compliant, non-associative
 MATERIALS: dict[str, Material] = {

@@ -26,6 +26,7 @@ from tce.study.schema import parse_study
 #: the [structure] section of each structure of ``cases.BUILDERS`` (the same parameters)
 SECTIONS: dict[str, dict[str, Any]] = {
     "semicircular_arch": {"type": "semicircular_arch", "voussoirs": 8},
+    "ring_arch": {"type": "semicircular_arch", "thickness": 0.3, "voussoirs": 5, "rings": 2, "stagger": True},
     "pointed_arch": {"type": "pointed_arch", "voussoirs": 8},
     "segmental_arch": {"type": "segmental_arch", "voussoirs": 6},
     "arch_on_piers": {"type": "arch_on_piers", "voussoirs": 8, "pier_height": 0.6},

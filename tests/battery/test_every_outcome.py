@@ -102,8 +102,9 @@ class Case:
 
 
 #: the kinds that apply to none of these studies: no friction is swept (bracket), no
-#: settlement path is asked for
-NOT_APPLYING = {"bracket", "settlement", "settlement_shapes"}
+#: settlement path and no uncertainty is asked for (their outcome words: tests/plot/test_uncertainty.py)
+NOT_APPLYING = {"bracket", "settlement", "settlement_shapes", "fragility", "capacity_samples", "sensitivity",
+                "convergence"}
 
 #: both thicknesses of the single-outcome studies
 BOTH = ("thickness=0.2", "thickness=0.25")

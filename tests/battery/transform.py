@@ -150,7 +150,8 @@ class Similarity:
             for b in asm.blocks
         )
         interfaces = tuple(
-            Interface(i.a, i.b, self.points(i.points), self.directions(i.normal), i.stiffness) for i in asm.interfaces
+            Interface(i.a, i.b, self.points(i.points), self.directions(i.normal), i.stiffness, i.kind)
+            for i in asm.interfaces
         )
         return Assembly(blocks, interfaces, dict(asm.meta))
 
@@ -163,7 +164,7 @@ class Similarity:
         return out
 
     def material(self, mat: Material) -> Material:
-        """The material in the new units."""
+        """The material in the new units (the laws of its interface kinds too)."""
         stress, stiffness = self.force / self.length**2, self.force / self.length**3
         return replace(
             mat,
@@ -172,6 +173,7 @@ class Similarity:
             cohesion=mat.cohesion * stress,
             tensile_strength=mat.tensile_strength * stress,
             compressive_strength=None if mat.compressive_strength is None else mat.compressive_strength * stress,
+            interfaces={kind: self.material(law) for kind, law in mat.interfaces},
         )
 
     def plan(self, xy: Sequence[float]) -> tuple[float, float]:
@@ -229,7 +231,7 @@ def permuted(asm: Assembly, order: Sequence[int], interface_order: Sequence[int]
         i = asm.interfaces[k]
         a, b = new_index[i.a], new_index[i.b]
         if swap[k]:
-            interfaces.append(Interface(b, a, i.points[::-1], -np.asarray(i.normal), i.stiffness))
+            interfaces.append(Interface(b, a, i.points[::-1], -np.asarray(i.normal), i.stiffness, i.kind))
         else:
-            interfaces.append(Interface(a, b, i.points, i.normal, i.stiffness))
+            interfaces.append(Interface(a, b, i.points, i.normal, i.stiffness, i.kind))
     return Assembly(tuple(asm.blocks[k] for k in order), tuple(interfaces), dict(asm.meta))

@@ -75,7 +75,8 @@ def test_bad_bridges_are_refused():
 
 @pytest.mark.parametrize("kw", [dict(courses=3), dict(courses=4, bond="running", voussoirs=5),
                                 dict(courses=3, bond="running", skew=30.0, spans=2, voussoirs=6),
-                                dict(courses=2, skew=-45.0, spans=3, piers="fixed")])
+                                dict(courses=2, skew=-45.0, spans=3, piers="fixed"),
+                                dict(rings=2, stagger=True, courses=3, skew=25.0, spans=2)])
 def test_courses_and_skew_joints_are_the_shared_faces_contact_detection_finds(kw):
     b = arch_bridge(**kw).validate()
     check_overlaps(b)
@@ -86,6 +87,8 @@ def test_courses_and_skew_joints_are_the_shared_faces_contact_detection_finds(kw
         assert i.area == pytest.approx(j.area, rel=1e-9)
         np.testing.assert_allclose(i.normal, j.normal, atol=1e-9)
         np.testing.assert_allclose(i.centroid, j.centroid, atol=1e-9)
+    # the faces between rings keep their kind in every course
+    assert {i.kind for i in b.interfaces} == ({"", "ring"} if kw.get("rings", 1) > 1 else {""})
 
 
 def test_courses_names_and_running_bond():
@@ -109,7 +112,7 @@ def test_skew_is_the_square_bridge_sheared_in_plan():
     np.testing.assert_allclose(skew.volumes, square.volumes, rtol=1e-12)
     c = square.centroids
     np.testing.assert_allclose(skew.centroids, np.column_stack([c[:, 0] + t * c[:, 1], c[:, 1], c[:, 2]]), atol=1e-12)
-    # abutment faces and bed joints parallel to the line x = y tan(phi); ring joints on y = const
+    # abutment faces and bed joints parallel to the line x = y tan(phi); course joints on y = const
     along = np.array([np.sin(np.radians(phi)), np.cos(np.radians(phi)), 0.0])
     for i in skew.interfaces:
         ring = abs(i.normal[1]) == 1.0
@@ -127,3 +130,5 @@ def test_bad_3d_bridges_are_refused():
         arch_bridge(bond="flemish")
     with pytest.raises(ValueError, match="courses must be"):
         arch_bridge(courses=0)
+    with pytest.raises(ValueError, match="running' across the width is built with one ring only"):
+        arch_bridge(rings=2, courses=2, bond="running")
