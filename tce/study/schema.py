@@ -52,7 +52,7 @@ from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
 from ..structures import defects as _defects
 from ..structures.assembly import Assembly, AssemblyError
-from ..structures.bridge import arch_bridge
+from ..structures.bridge import MAX_SKEW, arch_bridge
 from ..structures.dome import hemispherical_dome
 from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
 from ..structures.vault import barrel_vault, groin_vault
@@ -244,6 +244,9 @@ class ArchBridgeStructure(_Generated):
     piers: Literal["free", "fixed"] = "free"
     rings: Annotated[int, Field(ge=1, le=100)] | Annotated[list[Length], Field(min_length=1, max_length=100)] = 1
     stagger: bool = False
+    courses: Annotated[int, Field(ge=1)] = 1
+    bond: Literal["stack", "running"] = "stack"
+    skew: Annotated[float, Field(ge=-MAX_SKEW, le=MAX_SKEW)] = 0.0
 
     builder = arch_bridge
 

@@ -1,5 +1,6 @@
 """Arch bridges (tce.structures.bridge): one span is the segmental arch; spans on fixed piers
-act alone, on free piers together; pier foundations settle; the generator's geometry."""
+act alone, on free piers together; pier foundations settle; the generator's geometry: courses
+across the width (stack and running bond) and skew, their joints against contact detection."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from tce.core.analysis import Analysis
 from tce.core.loads import LoadPattern
 from tce.structures.arch import segmental_arch
 from tce.structures.bridge import arch_bridge
+from tce.structures.contacts import check_overlaps, detect_interfaces
 
 AXLE = [dict(axles=[[0.0, 2.0]], wheels=[-0.9, 0.9])]
 
@@ -69,3 +71,64 @@ def test_bad_bridges_are_refused():
         arch_bridge(piers="loose")
     with pytest.raises(ValueError):
         arch_bridge(spans=0)
+
+
+@pytest.mark.parametrize("kw", [dict(courses=3), dict(courses=4, bond="running", voussoirs=5),
+                                dict(courses=3, bond="running", skew=30.0, spans=2, voussoirs=6),
+                                dict(courses=2, skew=-45.0, spans=3, piers="fixed"),
+                                dict(rings=2, stagger=True, courses=3, skew=25.0, spans=2)])
+def test_courses_and_skew_joints_are_the_shared_faces_contact_detection_finds(kw):
+    b = arch_bridge(**kw).validate()
+    check_overlaps(b)
+    found = {(i.a, i.b): i for i in detect_interfaces(b)}
+    assert sorted(found) == sorted((i.a, i.b) for i in b.interfaces)
+    for i in b.interfaces:
+        j = found[i.a, i.b]
+        assert i.area == pytest.approx(j.area, rel=1e-9)
+        np.testing.assert_allclose(i.normal, j.normal, atol=1e-9)
+        np.testing.assert_allclose(i.centroid, j.centroid, atol=1e-9)
+    # the faces between rings keep their kind in every course
+    assert {i.kind for i in b.interfaces} == ({"", "ring"} if kw.get("rings", 1) > 1 else {""})
+
+
+def test_courses_names_and_running_bond():
+    stack = arch_bridge(spans=2, voussoirs=3, courses=2)
+    assert stack.names[:8] == ("abutment_left", "s1c01v01", "s1c01v02", "s1c01v03", "s1c02v01", "s1c02v02", "s1c02v03",
+                               "pier1")
+    running = arch_bridge(voussoirs=3, courses=3, bond="running")
+    assert [n for n in running.names if n.startswith("s1c02")] == ["s1c02v01", "s1c02v02", "s1c02v03", "s1c02v04"]
+    assert len([n for n in running.names if n.startswith("s1c03")]) == 3
+    # stack bond: the courses split the one-course bridge's voussoirs across the width
+    one = arch_bridge(voussoirs=3)
+    np.testing.assert_allclose(stack.volumes[1:4] + stack.volumes[4:7], arch_bridge(spans=2, voussoirs=3).volumes[1:4],
+                               rtol=1e-12)
+    assert running.meta["courses"] == 3 and running.meta["bond"] == "running" and one.meta["skew"] == 0.0
+
+
+def test_skew_is_the_square_bridge_sheared_in_plan():
+    phi = 30.0
+    square, skew = arch_bridge(spans=2, courses=2), arch_bridge(spans=2, courses=2, skew=phi)
+    t = np.tan(np.radians(phi))
+    np.testing.assert_allclose(skew.volumes, square.volumes, rtol=1e-12)
+    c = square.centroids
+    np.testing.assert_allclose(skew.centroids, np.column_stack([c[:, 0] + t * c[:, 1], c[:, 1], c[:, 2]]), atol=1e-12)
+    # abutment faces and bed joints parallel to the line x = y tan(phi); course joints on y = const
+    along = np.array([np.sin(np.radians(phi)), np.cos(np.radians(phi)), 0.0])
+    for i in skew.interfaces:
+        ring = abs(i.normal[1]) == 1.0
+        assert ring or abs(i.normal @ along) < 1e-12
+    # an abutment's plan is a parallelogram: its extent along x grows by depth tan(phi)
+    left = skew.blocks[0].shape.vertices
+    assert left[:, 0].max() - left[:, 0].min() == pytest.approx(square.extent[1] * t + np.ptp(
+        square.blocks[0].shape.vertices[:, 0]), rel=1e-12)
+
+
+def test_bad_3d_bridges_are_refused():
+    with pytest.raises(ValueError, match="skew must be"):
+        arch_bridge(skew=75.0)
+    with pytest.raises(ValueError, match="bond must be"):
+        arch_bridge(bond="flemish")
+    with pytest.raises(ValueError, match="courses must be"):
+        arch_bridge(courses=0)
+    with pytest.raises(ValueError, match="running' across the width is built with one ring only"):
+        arch_bridge(rings=2, courses=2, bond="running")
