@@ -111,8 +111,15 @@ def _write_notes(fig: Figure, notes: Sequence[str], width: float, height: float,
         y -= 0.15 * (wrapped.count("\n") + 1)
 
 
+def _title(title: str, width: float) -> tuple[str, float]:
+    """``title`` wrapped to a figure ``width`` inches wide (its font is larger than the notes'),
+    and the top margin (inches) that holds its lines above the panels."""
+    wrapped = _wrap(title, (width - 0.4) * (FONT - 0.5) / (FONT + 2))
+    return wrapped, 0.6 + 0.2 * wrapped.count("\n")
+
+
 def _finish(grid: _Grid, handles: list, notes: Sequence[str], title: str) -> Figure:
-    """The legend at the bottom, the notes above it, the title on top."""
+    """The legend at the bottom, the notes above it, the title (from :func:`_title`) on top."""
     _bottom_legend(grid, handles)
     _write_notes(grid.fig, notes, grid.width, grid.height, grid.below - 0.05)
     grid.fig.suptitle(title, fontsize=FONT + 2, y=1 - 0.12 / grid.height)
@@ -160,7 +167,8 @@ def fragility_figure(ds: xr.Dataset) -> Figure:
     width = 0.8 + (1 + len(axes_of)) * w + len(axes_of) * 0.8 + 0.2
     legend_h = _legend_height([hd.get_label() for hd in handles], width)
     below = legend_h + _notes_height(notes, width) + 0.1
-    grid = _Grid(len(kinds), 1 + len(axes_of), w, h, left=0.8, wspace=0.8, hspace=0.75, top=0.6, bottom=0.55,
+    title, top = _title(f"{_study(ds)}: probability of collapse P(capacity < x)", width)
+    grid = _Grid(len(kinds), 1 + len(axes_of), w, h, left=0.8, wspace=0.8, hspace=0.75, top=top, bottom=0.55,
                  below=below)
     for r, (kind, members) in enumerate(kinds.items()):
         ax = grid.axes[r][0]
@@ -175,7 +183,6 @@ def fragility_figure(ds: xr.Dataset) -> Figure:
             ax.set_title(_wrap(f"capacity: {kind}", w), fontsize=FONT, loc="left")
         for c, (label, values, others) in enumerate(axes_of):
             _pf_sweep(grid.axes[r][c + 1], ds, [s for s in members if s in values], label, values, others)
-    title = f"{_study(ds)}: probability of collapse P(capacity < x)"
     return _finish(grid, handles, notes, title)
 
 
@@ -266,7 +273,9 @@ def capacity_samples_figure(ds: xr.Dataset) -> Figure:
     handles: list = [Line2D([], [], color="#555555", linestyle=":", linewidth=1.0,
                             label=f"threshold {threshold:g} (failure: capacity < {threshold:g})")]
     legend_h = _legend_height([hd.get_label() for hd in handles], width)
-    grid = _Grid(nrows, ncols, w, h, left=0.8, wspace=0.7, hspace=0.85, top=0.6, bottom=0.55,
+    n = int(ds.sizes.get("sample", 0))
+    title, top = _title(f"{_study(ds)}: sampled capacities ({n} samples per scenario)", width)
+    grid = _Grid(nrows, ncols, w, h, left=0.8, wspace=0.7, hspace=0.85, top=top, bottom=0.55,
                  below=legend_h + _notes_height(notes, width) + 0.1)
     colours = _palette(len(drawn))
     for k, s in enumerate(drawn):
@@ -296,8 +305,7 @@ def capacity_samples_figure(ds: xr.Dataset) -> Figure:
         ax.grid(True, linewidth=0.3, alpha=0.6)
     for k in range(len(drawn), nrows * ncols):
         grid.axes[k // ncols][k % ncols].set_visible(False)
-    n = int(ds.sizes.get("sample", 0))
-    return _finish(grid, handles, notes, f"{_study(ds)}: sampled capacities ({n} samples per scenario)")
+    return _finish(grid, handles, notes, title)
 
 
 # ---------------------------------------------------------------------------- sensitivity
@@ -322,7 +330,8 @@ def sensitivity_figure(ds: xr.Dataset) -> Figure:
     left = 0.3 + 0.065 * max(len(v) for v in variables)
     width = left + len(panels) * w + (len(panels) - 1) * 0.5 + 0.2
     legend_h = _legend_height([hd.get_label() for hd in handles], width)
-    grid = _Grid(1, len(panels), w, h, left=left, wspace=0.5, top=0.6, bottom=0.75,
+    title, top = _title(f"{_study(ds)}: sensitivity of the capacity ({method})", width)
+    grid = _Grid(1, len(panels), w, h, left=left, wspace=0.5, top=top, bottom=0.75,
                  below=legend_h + _notes_height(notes, width) + 0.1)
     y = np.arange(len(variables), dtype=float)
     bar = 0.8 / max(1, len(drawn))
@@ -338,7 +347,7 @@ def sensitivity_figure(ds: xr.Dataset) -> Figure:
         ax.invert_yaxis()
         ax.set_xlabel(label, fontsize=FONT)
         ax.grid(True, axis="x", linewidth=0.3, alpha=0.6)
-    return _finish(grid, handles, notes, f"{_study(ds)}: sensitivity of the capacity ({method})")
+    return _finish(grid, handles, notes, title)
 
 
 # ---------------------------------------------------------------------------- convergence
@@ -379,7 +388,8 @@ def convergence_figure(ds: xr.Dataset) -> Figure:
         handles.append(Line2D([], [], color="#0072B2", linestyle="-.", linewidth=1.2, label="subset simulation"))
     notes = _notes(ds, drawn, [left_out])
     legend_h = _legend_height([hd.get_label() for hd in handles], width)
-    grid = _Grid(nrows, ncols, w, h, left=0.8, wspace=0.75, hspace=0.85, top=0.6, bottom=0.55,
+    title, top = _title(f"{_study(ds)}: P(capacity < {threshold:g}) against the number of samples", width)
+    grid = _Grid(nrows, ncols, w, h, left=0.8, wspace=0.75, hspace=0.85, top=top, bottom=0.55,
                  below=legend_h + _notes_height(notes, width) + 0.1)
     for k, s in enumerate(drawn):
         ax = grid.axes[k // ncols][k % ncols]
@@ -422,5 +432,4 @@ def convergence_figure(ds: xr.Dataset) -> Figure:
         ax.grid(True, which="both", linewidth=0.3, alpha=0.5)
     for k in range(len(drawn), nrows * ncols):
         grid.axes[k // ncols][k % ncols].set_visible(False)
-    title = f"{_study(ds)}: P(capacity < {threshold:g}) against the number of samples"
     return _finish(grid, handles, notes, title)
