@@ -139,10 +139,17 @@ _LP_STATUS = {0: "optimal", 2: "infeasible", 3: "unbounded"}
 
 def _linprog(c: NDArray[np.float64], **kwargs: object) -> tuple[str, OptimizeResult]:
     """``min c . x`` by HiGHS (:func:`scipy.optimize.linprog`, ``kwargs`` its constraints and
-    bounds), and the status word of the answer: a failure of HiGHS is ``numerical``."""
+    bounds), and the status word of the answer.
+
+    A program that HiGHS fails to solve is solved again without its presolve; the answer is
+    ``numerical`` only when that fails too. Near a collapse HiGHS's presolve ends some programs
+    in "Solve error" that its simplex, given the program as it is, proves unbounded.
+    """
     from scipy.optimize import linprog  # imported on first use: it is slow to import
 
     res = linprog(c, method="highs", **kwargs)
+    if res.status not in _LP_STATUS:
+        res = linprog(c, method="highs", options={"presolve": False}, **kwargs)
     return _LP_STATUS.get(res.status, "numerical"), res
 
 
