@@ -406,7 +406,7 @@ def _rings_or_one(joints: Callable[[int], tuple[np.ndarray, np.ndarray]], n: int
         asm = ring_arch(ji, je, depth, fractions, stagger, unit_weight, height, meta)
         layout = RingLayout(ji, je, fractions, stagger)  # the outer ring's voussoirs hold the extrados
         extrados, over = je[layout.joints[-1]], 1 + layout.first[-1] + np.arange(len(layout.joints[-1]) - 1)
-    return asm if backing is None else with_backing(asm, extrados, over, depth, backing)
+    return asm if backing is None else with_backing(asm, [extrados], [over], depth, backing)
 
 
 #: joint directions of :func:`semicircular_arch`

@@ -8,23 +8,29 @@ of the springing joint: ``{(x, z): x between x0 and the extrados, e(x) <= z <= h
 the extrados (which rises monotonically from each springing to the crown on every arch
 generator).
 
+Over the pier between two spans of a bridge the backing of both haunches is one region, on
+the pier's top between the two extrados springings.
+
 Two models (:class:`Backing`):
 
-- ``"blocks"``: one rigid block per side, ``left_backing`` and ``right_backing``, on the
-  extrados; each bears against a support block behind it, ``left_abutment`` and
-  ``right_abutment`` (a prism of the backing's height and width behind the vertical plane,
-  with its own prescribed motion: a scenario that moves an abutment names it beside
-  ``left`` / ``right``). Every face of a backing block in contact, with the voussoirs and with
-  its abutment, is an interface of kind ``"backing"`` (:data:`BACKING`), which a material may
-  give its own law (``Material(interfaces={"backing": ...})``, ``bonded=True`` for backing
-  bonded to the extrados).
+- ``"blocks"``: rigid blocks on the extrados, ``backing_left``, ``backing_pier1`` ...
+  (resting on each pier's top), ``backing_right``; each end block bears against a support
+  block behind it, ``wall_left`` and ``wall_right`` (a square of the backing's height behind
+  the vertical plane, with its own prescribed motion: a scenario that spreads the supports
+  moves them too by naming them). Every face of a backing block in contact, with the
+  voussoirs of the outer ring, a pier or a wall, is an interface of kind ``"backing"``
+  (:data:`BACKING`), which a material may give its own law
+  (``Material(interfaces={"backing": ...})``, ``bonded=True`` for backing bonded to the
+  extrados).
 - ``"fill"``: no blocks; the weight of the region above each extrados chord (the vertical
-  column over it, up to ``height``) is added to the voussoir under it, as a heavier unit
-  weight: a fixed vertical load of that weight at the voussoir's centroid.
+  column over it, up to ``height``) is added to the voussoir under it, and that over a pier's
+  top to the pier, as a heavier unit weight: a fixed vertical load of that weight at the
+  block's centroid.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from typing import Literal
 
@@ -134,68 +140,86 @@ def _at_depth(xz: np.ndarray, y: float) -> np.ndarray:
     return np.column_stack([xz[:, 0], np.full(len(xz), y), xz[:, 1]])
 
 
-def with_backing(asm: Assembly, extrados: ArrayLike, voussoirs: ArrayLike, depth: float, backing: Backing) -> Assembly:
-    """A new planar arch ``asm`` with backing behind its haunches (module docstring).
+def with_backing(asm: Assembly, extrados: Sequence[ArrayLike], voussoirs: Sequence[ArrayLike], depth: float,
+                 backing: Backing, piers: Sequence[int] = ()) -> Assembly:
+    """A new planar arch or bridge ``asm`` with backing behind the haunches of every span
+    (module docstring).
 
     Parameters
     ----------
     asm : Assembly
-        An arch along x with its springings at z = 0.
-    extrados : (m + 1, 2) array_like
-        Its extrados polyline ``(x, z)`` (m), from the left springing to the right one.
-    voussoirs : (m,) array_like of int
-        The block under each extrados chord.
+        Arches along x side by side, their springings at z = 0.
+    extrados : sequence of (m + 1, 2) array_like
+        Each span's extrados polyline ``(x, z)`` (m), from its left springing to its right
+        one, the spans from left to right.
+    voussoirs : sequence of (m,) array_like of int
+        Each span's block under each extrados chord.
     depth : float
-        The arch's depth along y (m), centred on y = 0.
+        The depth along y (m), centred on y = 0.
     backing : Backing
         Height, unit weight and model.
+    piers : sequence of int
+        The block between span ``s`` and ``s + 1`` (one fewer than the spans): a pier whose
+        top runs between the two extrados springings, level.
 
     Returns
     -------
     Assembly
-        ``asm`` itself when the backing does not reach above the springings; with
-        ``"blocks"``: the blocks ``left_backing``, ``right_backing``, ``left_abutment``,
-        ``right_abutment`` appended and the interfaces of kind ``"backing"`` (normals from
-        the lower block index into the higher); with ``"fill"``: the voussoirs under the
-        backing heavier by its weight. ``meta["backing"]`` records the backing.
+        ``asm`` itself when the backing does not reach above the springings. With
+        ``"blocks"``: appended, ``backing_left``, ``backing_pier1`` ... (over each pier: the
+        backing of both haunches, one block on the pier's top), ``backing_right``, then the
+        supports ``wall_left``, ``wall_right`` behind the end ones; the faces of every backing
+        block (with the voussoirs, the piers and the walls) of kind ``"backing"``, normals
+        from the lower block index into the higher. With ``"fill"``: the voussoirs under the
+        backing, and the piers, heavier by the backing's weight over them.
+        ``meta["backing"]`` records the backing.
     """
-    e = np.asarray(extrados, dtype=float)
-    under = np.asarray(voussoirs, dtype=int)
-    if len(under) != len(e) - 1:
+    if len(extrados) != len(voussoirs) or len(piers) != len(extrados) - 1:
+        raise ValueError("backing: one extrados and its voussoirs per span, one pier between two spans")
+    under = [np.asarray(v, dtype=int) for v in voussoirs]
+    if any(len(v) != len(np.asarray(e)) - 1 for e, v in zip(extrados, under)):
         raise ValueError("backing: one voussoir per extrados chord")
-    regions = backing_regions(e, float(backing.height))
-    if not regions:
+    h, gamma = float(backing.height), float(backing.unit_weight)
+    spans = [backing_regions(e, h) for e in extrados]
+    if not all(spans):
         return asm
-    meta = dict(asm.meta, backing=dict(height=float(backing.height), unit_weight=float(backing.unit_weight),
-                                       model=backing.model))
-    chord_blocks = [under, under[::-1]]
+    meta = dict(asm.meta, backing=dict(height=h, unit_weight=gamma, model=backing.model))
+    # the sides from left to right: (loop, chords, blocks under them); over a pier, two sides meet
+    sides = [(region[0], region[1], blocks[::sign]) for regions, blocks in zip(spans, under)
+             for region, sign in zip(regions, (1, -1))]
     if backing.model == "fill":
         extra = np.zeros(len(asm.blocks))
-        for (_, chords), blocks in zip(regions, chord_blocks):
+        for _, chords, blocks in sides:
             for (p, q), k in zip(chords, blocks):
-                column = np.array([p, q, [q[0], backing.height], [p[0], backing.height]])
-                extra[k] += backing.unit_weight * depth * _area(column)
+                extra[k] += gamma * depth * _area(np.array([p, q, [q[0], h], [p[0], h]]))
+        for s, pier in enumerate(piers):
+            p, q = sides[2 * s + 1][0][0], sides[2 * s + 2][0][0]
+            extra[pier] += gamma * depth * _area(np.array([p, q, [q[0], h], [p[0], h]]))
         blocks = tuple(b if not w else replace(b, unit_weight=b.unit_weight + w / b.volume)
                        for b, w in zip(asm.blocks, extra))
         return Assembly(blocks, asm.interfaces, meta)
     d = float(depth) / 2.0
-    n = len(asm.blocks)
-    new, interfaces = [], list(asm.interfaces)
-    for side, ((loop, chords), blocks) in enumerate(zip(regions, chord_blocks)):
-        name = ("left", "right")[side]
-        sign = -1.0 if side == 0 else 1.0  # outwards from the span
-        (x0, z0), h = loop[0], float(backing.height)
-        wall = np.array([[x0, z0], [x0, h], [x0 + sign * (h - z0), h], [x0 + sign * (h - z0), z0]])
-        new.append(Block(f"{name}_backing", prism(_at_depth(loop, -d), _at_depth(loop, d)),
-                         float(backing.unit_weight)))
-        new.append(Block(f"{name}_abutment", prism(_at_depth(wall, -d), _at_depth(wall, d)),
-                         float(backing.unit_weight), support=True))
-        me = n + 2 * side
-        for (p, q), k in zip(chords, blocks):
+    n, nb = len(asm.blocks), len(piers) + 2
+    loops = [sides[0][0]] + [np.vstack([sides[2 * s + 1][0][:-1], sides[2 * s + 2][0][-2::-1]])
+                             for s in range(len(piers))] + [sides[-1][0]]
+    names = ["backing_left"] + [f"backing_pier{s + 1}" for s in range(len(piers))] + ["backing_right"]
+    new = [Block(name, prism(_at_depth(loop, -d), _at_depth(loop, d)), gamma) for name, loop in zip(names, loops)]
+    interfaces = list(asm.interfaces)
+    for k, (_, chords, blocks) in enumerate(sides):
+        for (p, q), v in zip(chords, blocks):
             t = q - p
             normal = np.array([-t[1], 0.0, t[0]])  # out of the extrados (upwards), into the backing
-            interfaces.append(Interface(int(k), me, _face(p, q, d), normal if normal[2] > 0 else -normal, kind=BACKING))
-        interfaces.append(Interface(me, me + 1, _face(loop[0], loop[-1], d), np.array([sign, 0.0, 0.0]), kind=BACKING))
+            interfaces.append(Interface(int(v), n + (k + 1) // 2, _face(p, q, d), normal if normal[2] > 0 else -normal,
+                                        kind=BACKING))
+    for s, pier in enumerate(piers):
+        p, q = sides[2 * s + 1][0][0], sides[2 * s + 2][0][0]
+        interfaces.append(Interface(int(pier), n + s + 1, _face(p, q, d), np.array([0.0, 0.0, 1.0]), kind=BACKING))
+    for k, (loop, sign, name) in enumerate(((sides[0][0], -1.0, "left"), (sides[-1][0], 1.0, "right"))):
+        (x0, z0), far = loop[0], loop[0][0] + sign * (h - loop[0][1])
+        wall = np.array([[x0, z0], [x0, h], [far, h], [far, z0]])
+        new.append(Block(f"wall_{name}", prism(_at_depth(wall, -d), _at_depth(wall, d)), gamma, support=True))
+        interfaces.append(Interface(n + k * (nb - 1), n + nb + k, _face(loop[0], loop[-1], d),
+                                    np.array([sign, 0.0, 0.0]), kind=BACKING))
     return Assembly(asm.blocks + tuple(new), tuple(interfaces), meta)
 
 

@@ -251,7 +251,7 @@ class ArchOnPiersStructure(_Backed):
     builder = semicircular_arch_on_piers
 
 
-class ArchBridgeStructure(_Generated):
+class ArchBridgeStructure(_Backed):
     """``[structure] type = "arch_bridge"``: :func:`tce.structures.bridge.arch_bridge`."""
 
     type: Literal["arch_bridge"]

@@ -55,7 +55,7 @@ def test_backing_interface_sets_the_law_of_the_backing_faces(tmp_path: Path):
     assert bearing == pytest.approx(4.08, abs=0.01) and rough == pytest.approx(4.94, abs=0.01)
     mat = build_material(json.loads(ds.attrs["material"]))
     assert mat.law(BACKING) == Material(friction=0.2) and mat.friction == 0.6
-    assert "left_backing" in ds.attrs["assembly"] and "left_abutment" in ds.attrs["assembly"]
+    assert "backing_left" in ds.attrs["assembly"] and "wall_left" in ds.attrs["assembly"]
     bonded = parse_study(HEAD + "\n[backing_interface]\nbonded = true\n")
     assert build_material(bonded.scenarios()[0].material).law(BACKING) == Material(bonded=True)
 
@@ -63,7 +63,7 @@ def test_backing_interface_sets_the_law_of_the_backing_faces(tmp_path: Path):
 def test_fill_backing_parses_to_heavier_voussoirs():
     study = parse_study(HEAD.replace("unit_weight = 22.0 }", "unit_weight = 22.0, model = \"fill\" }"))
     asm = study.assembly(study.scenarios()[0].structure)
-    assert asm.meta["backing"]["model"] == "fill" and "left_backing" not in asm.names
+    assert asm.meta["backing"]["model"] == "fill" and "backing_left" not in asm.names
 
 
 @pytest.mark.parametrize("edit, words", [
