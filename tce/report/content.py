@@ -135,7 +135,8 @@ def _material(ds: xr.Dataset, toml: dict) -> dict[str, Any]:
     return {
         "describe": mat.describe(),
         "parameters": (_table(toml.get("material", {})) or [("(none)", "the defaults: Heyman, rigid, no tension")])
-                      + [(f"[ring_interface] {k}", v) for k, v in _table(toml.get("ring_interface"))]
+                      + [(f"[{key}] {k}", v) for key in ("ring_interface", "backing_interface")
+                         for k, v in _table(toml.get(key))]
                       + [(f"[defects] {k}", v) for k, v in _table(toml.get("defects"))],
         "swept": [(k, ", ".join(v)) for k, v in swept.items()],
         "heyman": mat.heyman,

@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike
 from collections.abc import Callable, Sequence
 
 from .assembly import Assembly, Block, Interface
+from .backing import Backing, with_backing
 from .geometry import FaceTable, prism, prisms
 from .params import check_blocks, check_positive, check_whole
 
@@ -322,6 +323,7 @@ def semicircular_arch(
     joints: str = "radial",
     rings: Rings = 1,
     stagger: bool = False,
+    backing: Backing | None = None,
 ) -> Assembly:
     """The paper's semicircular arch on two support blocks.
 
@@ -355,6 +357,9 @@ def semicircular_arch(
     stagger : bool
         With several rings: radial joints staggered by the half-brick rule (True) or aligned
         (False, the default); module docstring.
+    backing : Backing, optional
+        Backing behind the haunches up to a height above the springing, as blocks or as
+        a heavier fill (:mod:`tce.structures.backing`).
 
     Returns
     -------
@@ -374,22 +379,34 @@ def semicircular_arch(
     if joints == "vertical":
         if len(fractions) > 2:
             raise ValueError("rings: several rings need joints = 'radial'")
+        if backing is not None:
+            raise ValueError("backing: needs joints = 'radial' (the end voussoirs of vertical joints follow the "
+                             "extrados arc)")
         return _vertical_joint_arch(float(inner_radius), float(thickness), float(depth), n, float(unit_weight),
                                     float(height), {**meta, "joints": "vertical"})
     return _rings_or_one(lambda m: semicircle_joints(inner_radius, inner_radius + thickness, np.linspace(np.pi, 0.0, m + 1)),
-                         n, fractions, rings, stagger, depth, unit_weight, height, meta)
+                         n, fractions, rings, stagger, depth, unit_weight, height, meta, backing)
 
 
 def _rings_or_one(joints: Callable[[int], tuple[np.ndarray, np.ndarray]], n: int, fractions: np.ndarray, rings: Rings,
-                  stagger: bool, depth: float, unit_weight: float, height: float, meta: dict) -> Assembly:
+                  stagger: bool, depth: float, unit_weight: float, height: float, meta: dict,
+                  backing: Backing | None = None) -> Assembly:
     """One ring of ``n`` voussoirs on the joints ``joints(n)`` (:func:`arch_from_joints`), or
     several on the half-step joints ``joints(2 n)`` (:func:`ring_arch`), with ``rings`` and
-    ``stagger`` recorded in the meta."""
+    ``stagger`` recorded in the meta, and the ``backing`` on the extrados
+    (:func:`tce.structures.backing.with_backing`)."""
     if len(fractions) == 2:
-        return arch_from_joints(*joints(n), depth, unit_weight, height, meta)
-    check_blocks((len(fractions) - 1) * (n + 1) + 2, "rings x (voussoirs + 1) + 2 supports")
-    meta = dict(meta, rings=rings if isinstance(rings, int) else [float(v) for v in rings], stagger=bool(stagger))
-    return ring_arch(*joints(2 * n), depth, fractions, stagger, unit_weight, height, meta)
+        ji, je = joints(n)
+        asm = arch_from_joints(ji, je, depth, unit_weight, height, meta)
+        extrados, over = je, np.arange(1, n + 1)
+    else:
+        check_blocks((len(fractions) - 1) * (n + 1) + 2, "rings x (voussoirs + 1) + 2 supports")
+        meta = dict(meta, rings=rings if isinstance(rings, int) else [float(v) for v in rings], stagger=bool(stagger))
+        ji, je = joints(2 * n)
+        asm = ring_arch(ji, je, depth, fractions, stagger, unit_weight, height, meta)
+        layout = RingLayout(ji, je, fractions, stagger)  # the outer ring's voussoirs hold the extrados
+        extrados, over = je[layout.joints[-1]], 1 + layout.first[-1] + np.arange(len(layout.joints[-1]) - 1)
+    return asm if backing is None else with_backing(asm, [extrados], [over], depth, backing)
 
 
 #: joint directions of :func:`semicircular_arch`
@@ -480,6 +497,7 @@ def pointed_arch(
     pier_height: float | None = None,
     rings: Rings = 1,
     stagger: bool = False,
+    backing: Backing | None = None,
 ) -> Assembly:
     """Pointed (two-centred) arch on two support blocks (piers).
 
@@ -516,6 +534,9 @@ def pointed_arch(
     stagger : bool
         With several rings: radial joints staggered by the half-brick rule (True) or aligned
         (False, the default); module docstring.
+    backing : Backing, optional
+        Backing behind the haunches up to a height above the springing, as blocks or as
+        a heavier fill (:mod:`tce.structures.backing`).
 
     Returns
     -------
@@ -560,7 +581,7 @@ def pointed_arch(
     h = t if pier_height is None else pier_height
     meta = dict(generator="pointed_arch", span=s, rise=f, centre_offset=e, radius=R, thickness=t, depth=float(depth),
                 voussoirs=n, unit_weight=float(unit_weight), pier_height=float(h))
-    return _rings_or_one(joints, n, fractions, rings, stagger, depth, unit_weight, h, meta)
+    return _rings_or_one(joints, n, fractions, rings, stagger, depth, unit_weight, h, meta, backing)
 
 
 def segmental_arch(
@@ -573,6 +594,7 @@ def segmental_arch(
     pier_height: float | None = None,
     rings: Rings = 1,
     stagger: bool = False,
+    backing: Backing | None = None,
 ) -> Assembly:
     """Segmental (circular, less than a semicircle) arch on two skewback supports.
 
@@ -605,6 +627,9 @@ def segmental_arch(
     stagger : bool
         With several rings: radial joints staggered by the half-brick rule (True) or aligned
         (False, the default); module docstring.
+    backing : Backing, optional
+        Backing behind the haunches up to a height above the springing, as blocks or as
+        a heavier fill (:mod:`tce.structures.backing`).
 
     Returns
     -------
@@ -633,7 +658,7 @@ def segmental_arch(
     h = t if pier_height is None else pier_height
     meta = dict(generator="segmental_arch", span=s, rise=f, radius=R, thickness=t, depth=float(depth), voussoirs=n,
                 unit_weight=float(unit_weight), pier_height=float(h))
-    return _rings_or_one(joints, n, fractions, rings, stagger, depth, unit_weight, h, meta)
+    return _rings_or_one(joints, n, fractions, rings, stagger, depth, unit_weight, h, meta, backing)
 
 
 def semicircular_arch_on_piers(
@@ -645,16 +670,18 @@ def semicircular_arch_on_piers(
     unit_weight: float = 20.0,
     rings: Rings = 1,
     stagger: bool = False,
+    backing: Backing | None = None,
 ) -> Assembly:
     """The semicircular arch of :func:`semicircular_arch` on two piers ``pier_height`` tall (m),
-    of one ring or of several (``rings``, ``stagger``: :func:`semicircular_arch`).
+    of one ring or of several (``rings``, ``stagger``: :func:`semicircular_arch`), with a
+    ``backing`` (:func:`semicircular_arch`).
 
     The piers are the support blocks (their motion is prescribed, their equilibrium is not
     checked); ``meta["generator"] == "semicircular_arch_on_piers"``.
     """
     check_positive(pier_height=pier_height)
     asm = semicircular_arch(inner_radius, thickness, depth, voussoirs, unit_weight, pier_height, rings=rings,
-                            stagger=stagger)
+                            stagger=stagger, backing=backing)
     meta = dict(asm.meta, generator="semicircular_arch_on_piers", pier_height=float(pier_height))
     meta.pop("support_height", None)
     return Assembly(asm.blocks, asm.interfaces, meta)

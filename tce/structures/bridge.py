@@ -50,6 +50,7 @@ from numpy.typing import NDArray
 
 from .arch import RingLayout, Rings, _at_depth, ring_fractions, segmental_arch
 from .assembly import Assembly, Block, Interface
+from .backing import Backing, with_backing
 from .geometry import Polyhedron, prism
 from .params import check_blocks, check_choice, check_positive, check_whole
 from .vault import BONDS, _section_overlap
@@ -93,6 +94,7 @@ def arch_bridge(
     courses: int = 1,
     bond: str = "stack",
     skew: float = 0.0,
+    backing: Backing | None = None,
 ) -> Assembly:
     """A bridge of ``spans`` equal segmental spans on piers between two abutments (module docstring).
 
@@ -129,6 +131,10 @@ def arch_bridge(
     skew : float
         Skew angle (degrees, ``|skew| <= MAX_SKEW``): the angle of the abutment faces and bed
         joints from the y axis, positive from +y towards +x; 0: a square bridge.
+    backing : Backing, optional
+        Backing behind the haunches of every span up to a height above the springings, as
+        blocks (over a pier one block on its top, between the two spans) or as a heavier
+        fill (:mod:`tce.structures.backing`); with one course and no skew.
 
     Returns
     -------
@@ -144,8 +150,8 @@ def arch_bridge(
     ------
     ValueError
         A non-positive size, ``rise > span / 2``, piers narrower than their skewbacks, ring
-        thicknesses that do not sum to the thickness, a running bond with several rings, or a
-        skew beyond :data:`MAX_SKEW`.
+        thicknesses that do not sum to the thickness, a running bond with several rings, a
+        skew beyond :data:`MAX_SKEW`, or backing with several courses or a skew.
     """
     check_positive(span=span, rise=rise, thickness=thickness, depth=depth, unit_weight=unit_weight,
                    pier_width=pier_width, pier_height=pier_height)
@@ -163,6 +169,9 @@ def arch_bridge(
         raise ValueError("bond = 'running' across the width is built with one ring only; fix: bond = 'stack' or rings = 1")
     if not (math.isfinite(float(skew)) and abs(float(skew)) <= MAX_SKEW):
         raise ValueError(f"skew must be a number of degrees from {-MAX_SKEW:g} to {MAX_SKEW:g}, got {skew!r}")
+    if backing is not None and (nc > 1 or float(skew) != 0.0):
+        raise ValueError("backing is built on a bridge of one course and no skew; fix: courses = 1 and skew = 0, or no "
+                         "backing")
     ring = segmental_arch(span, rise, thickness, depth, n, unit_weight)
     sections = [_ring_joints(ring, bond == "running" and c % 2 == 1) for c in range(nc)]
     if n_rings > 1:  # the joints at every half voussoir, as the rings' layout takes them
@@ -203,6 +212,8 @@ def arch_bridge(
     laid: list[tuple[RingLayout, int, int, int, int]] = []  # with rings: (layout, first voussoir, left, right, course)
     joined: list[tuple[int, int, NDArray[np.float64], float]] = []  # course joints (a, b, section, y)
     min_area = 1e-9 * float(thickness) ** 2
+    outer: list[tuple[NDArray[np.float64], list[int]]] = []  # per span: the extrados and the voussoirs under it
+    pier_blocks: list[int] = []
     left = add(skewback(ji[0] + [centres[0], 0.0], je[0] + [centres[0], 0.0]), "abutment_left", True)
     for s, cx in enumerate(centres):
         off = np.array([cx, 0.0])
@@ -218,6 +229,11 @@ def arch_bridge(
                 course_blocks.append([add(np.array([a[k], a[k + 1], e[k + 1], e[k]]),
                                           f"s{s + 1}{course(c)}v{k + 1:0{wv}d}", False, ys[c], ys[c + 1])
                                       for k in range(len(a) - 1)])
+        if n_rings > 1:  # the outer ring's voussoirs hold the extrados
+            lay, top = laid[-1][0], laid[-1][0].first[-1]
+            outer.append((lay.je[lay.joints[-1]], course_blocks[0][top:top + len(lay.joints[-1]) - 1]))
+        else:
+            outer.append((sections[0][1] + off, course_blocks[0]))
         right = len(names)  # the pier or abutment added next
         laid = [(lay, first, lft, right if r < 0 else r, c) for lay, first, lft, r, c in laid]
         if n_rings == 1:
@@ -236,6 +252,7 @@ def arch_bridge(
             na, ne = ji[0] + [centres[s + 1], 0.0], je[0] + [centres[s + 1], 0.0]
             left = add(np.array([a[-1], e[-1], ne, na, [na[0], base], [a[-1][0], base]]), f"pier{s + 1}",
                        piers == "fixed")
+            pier_blocks.append(left)
     add(skewback(ji[-1] + [centres[-1], 0.0], je[-1] + [centres[-1], 0.0]), "abutment_right", True)
 
     feet = []  # (pier, foundation, x0, x1) of every free pier, its base from x0 to x1
@@ -292,4 +309,7 @@ def arch_bridge(
                 pier_height=float(pier_height), piers=piers, courses=nc, bond=bond, skew=float(skew))
     if n_rings > 1:
         meta.update(rings=rings if isinstance(rings, int) else [float(v) for v in rings], stagger=bool(stagger))
-    return Assembly(blocks, tuple(interfaces), meta)
+    asm = Assembly(blocks, tuple(interfaces), meta)
+    if backing is None:
+        return asm
+    return with_backing(asm, [e for e, _ in outer], [v for _, v in outer], float(depth), backing, pier_blocks)

@@ -78,7 +78,7 @@ def _warm(job: Scenario, assembly: Assembly, kind: str, section: UncertaintySect
     pattern = job.loads_pattern
     if kind == "settlement_capacity" or job.loads.get("critical_position") or pattern.fill is not None:
         return None
-    if "ring_interface" in job.material or "joint_law" in job.material:
+    if {"ring_interface", "backing_interface", "joint_law"} & set(job.material):
         return None  # laws of interface kinds take [material]'s keys when built: rebuilt with each sample's
     weight = job.structure.get("unit_weight")
     for key in section.names:

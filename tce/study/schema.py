@@ -52,6 +52,7 @@ from ..core.vehicles import STANDARD, standard_vehicle
 from ..structures.arch import pointed_arch, segmental_arch, semicircular_arch, semicircular_arch_on_piers
 from ..structures import defects as _defects
 from ..structures.assembly import Assembly, AssemblyError
+from ..structures.backing import BACKING, Backing
 from ..structures.bridge import MAX_SKEW, arch_bridge
 from ..structures.dome import hemispherical_dome
 from ..structures.io import MAX_BLOCKS, InputLimitError, load_assembly
@@ -165,7 +166,28 @@ class _Generated(_Strict):
         return type(self).builder(**self.model_dump(exclude={"type"}))
 
 
-class ArchStructure(_Generated):
+class BackingSection(_Strict):
+    """``[structure] backing = { height, unit_weight, model }``: masonry or concrete behind the
+    haunches up to ``height`` above the springing (m), as rigid blocks on the extrados or as a
+    heavier fill (:class:`tce.structures.backing.Backing`)."""
+
+    height: Depth
+    unit_weight: UnitWeight = 20.0
+    model: Literal["blocks", "fill"] = "blocks"
+
+
+class _Backed(_Generated):
+    """A generated arch that takes a ``backing``."""
+
+    backing: BackingSection | None = None
+
+    def build(self) -> Assembly:
+        """The assembly this section describes, with its backing."""
+        backing = None if self.backing is None else Backing(**self.backing.model_dump())
+        return type(self).builder(**self.model_dump(exclude={"type", "backing"}), backing=backing)
+
+
+class ArchStructure(_Backed):
     """``[structure] type = "semicircular_arch"``: :func:`tce.structures.arch.semicircular_arch`."""
 
     type: Literal["semicircular_arch"]
@@ -181,7 +203,7 @@ class ArchStructure(_Generated):
     builder = semicircular_arch
 
 
-class PointedArchStructure(_Generated):
+class PointedArchStructure(_Backed):
     """``[structure] type = "pointed_arch"``: :func:`tce.structures.arch.pointed_arch`."""
 
     type: Literal["pointed_arch"]
@@ -198,7 +220,7 @@ class PointedArchStructure(_Generated):
     builder = pointed_arch
 
 
-class SegmentalArchStructure(_Generated):
+class SegmentalArchStructure(_Backed):
     """``[structure] type = "segmental_arch"``: :func:`tce.structures.arch.segmental_arch`."""
 
     type: Literal["segmental_arch"]
@@ -214,7 +236,7 @@ class SegmentalArchStructure(_Generated):
     builder = segmental_arch
 
 
-class ArchOnPiersStructure(_Generated):
+class ArchOnPiersStructure(_Backed):
     """``[structure] type = "arch_on_piers"``: :func:`tce.structures.arch.semicircular_arch_on_piers`."""
 
     type: Literal["arch_on_piers"]
@@ -229,7 +251,7 @@ class ArchOnPiersStructure(_Generated):
     builder = semicircular_arch_on_piers
 
 
-class ArchBridgeStructure(_Generated):
+class ArchBridgeStructure(_Backed):
     """``[structure] type = "arch_bridge"``: :func:`tce.structures.bridge.arch_bridge`."""
 
     type: Literal["arch_bridge"]
@@ -369,6 +391,13 @@ class RingInterfaceSection(_Strict):
 
 #: interface kind that ``[ring_interface]`` gives its law to
 RING_KIND = "ring"
+
+
+class BackingInterfaceSection(RingInterfaceSection):
+    """``[backing_interface]``: the contact law of the faces of the backing blocks (with the
+    extrados and with the abutments behind them; interfaces of kind ``"backing"``,
+    :mod:`tce.structures.backing`): as ``[ring_interface]``, ``bonded = true`` for backing
+    bonded to the extrados."""
 
 
 class MortarLossSection(_Strict):
@@ -680,6 +709,7 @@ class StudyFile(_Strict):
     structure: Structure
     material: MaterialSection = MaterialSection()
     ring_interface: RingInterfaceSection | None = None
+    backing_interface: BackingInterfaceSection | None = None
     defects: DefectsSection | None = None
     loads: LoadsSection = LoadsSection()
     sweep: SweepSection = SweepSection()
@@ -732,8 +762,8 @@ class Scenario:
         Values of the swept parameters (and ``alpha``, ``magnitude``) for this scenario.
     structure, material : dict
         Validated ``[structure]`` and ``[material]`` sections with the swept values applied;
-        the material holds the ``[ring_interface]`` keys given (``"ring_interface"``) when the
-        study has that section.
+        the material holds the ``[ring_interface]`` and ``[backing_interface]`` keys given
+        (under their names) when the study has those sections.
     loads : dict
         ``lambda_step``, ``tolerance``, ``lambda_cap`` (and ``critical_position``,
         ``positions`` when the study searches the critical position).
@@ -1000,12 +1030,13 @@ class Study:
 
     def material(self, params: dict[str, float] | None = None) -> dict[str, Any]:
         """The ``[material]`` section with the swept values ``params`` applied, and the
-        ``[ring_interface]`` keys given (under ``"ring_interface"``) when the study has that
-        section: what :func:`build_material` builds."""
+        ``[ring_interface]`` and ``[backing_interface]`` keys given (under their names) when
+        the study has those sections: what :func:`build_material` builds."""
         spec = self.spec
         out = _with(spec.material.model_dump(), params or {}, MATERIAL_SWEEPS)
-        if spec.ring_interface is not None:
-            out["ring_interface"] = spec.ring_interface.model_dump(exclude_unset=True)
+        for key in ("ring_interface", "backing_interface"):
+            if getattr(spec, key) is not None:
+                out[key] = getattr(spec, key).model_dump(exclude_unset=True)
         if spec.defects is not None and spec.defects.joint_law:
             out["joint_law"] = [law.model_dump(exclude_unset=True, exclude={"joints"}) for law in spec.defects.joint_law]
         return out
@@ -1130,20 +1161,22 @@ def build_structure(section: dict[str, Any]) -> Assembly:
 
 def build_material(section: dict[str, Any]) -> Material:
     """The material of a validated ``[material]`` section given as a plain dict
-    (:meth:`Study.material`): with a ``"ring_interface"`` entry, the interfaces of kind
+    (:meth:`Study.material`): with a ``"backing_interface"`` entry, the interfaces of kind
+    ``"backing"`` get its law; with a ``"ring_interface"`` entry, the interfaces of kind
     ``"ring"`` get its law, and with ``"joint_law"`` entries the joints of kinds ``joints1``,
     ... theirs (:func:`joint_kind`), the keys they leave out taken from ``[material]``."""
     section = dict(section)
-    ring = section.pop("ring_interface", None)
+    given = {kind: section.pop(key, None) for key, kind in (("ring_interface", RING_KIND), ("backing_interface", BACKING))}
     joints = section.pop("joint_law", [])
     material = MaterialSection.model_validate(section).build()
     own = {k: getattr(material, k) for k in ("friction", "cohesion", "tensile_strength", "compressive_strength")}
     laws = {joint_kind(k): Material(**(own | {k_: v for k_, v in law.items() if v is not None}))
             for k, law in enumerate(joints)}
-    if ring is not None:
-        given = RingInterfaceSection.model_validate(ring)
-        laws[RING_KIND] = Material(bonded=True) if given.bonded else \
-            Material(**(own | given.model_dump(exclude_none=True, exclude={"bonded"})))
+    for kind, law in given.items():
+        if law is not None:
+            law = RingInterfaceSection.model_validate(law)
+            laws[kind] = Material(bonded=True) if law.bonded else \
+                Material(**(own | law.model_dump(exclude_none=True, exclude={"bonded"})))
     return replace(material, interfaces=laws) if laws else material
 
 
@@ -1183,10 +1216,17 @@ def _check_scenarios(study: Study) -> None:
                 f"{study.path}: {key}: {exc}{f' (with {swept})' if swept else ''}; "
                 f"fix: change the [material]{', [ring_interface]' if study.spec.ring_interface else ''} or [sweep] values"
             ) from None
-        if study.spec.ring_interface is not None and RING_KIND not in study.assembly(sc.structure).interface_table.kind:
+        kinds = study.assembly(sc.structure).interface_table.kind
+        if study.spec.ring_interface is not None and RING_KIND not in kinds:
             raise StudyError(
                 f"{study.path}: ring_interface: the structure has no faces between rings, so the law would have no "
                 "effect; fix: give the arch rings = 2 or more, or remove [ring_interface]"
+            )
+        if study.spec.backing_interface is not None and BACKING not in kinds:
+            raise StudyError(
+                f"{study.path}: backing_interface: the structure has no backing blocks, so the law would have no "
+                "effect; fix: give the arch backing = {{ height = ..., model = \"blocks\" }} above its extrados' "
+                "springing, or remove [backing_interface]"
             )
         supports = study.assembly(sc.structure).support_names
         unknown = sorted(set(sc.settlements) - set(supports))
