@@ -78,6 +78,8 @@ FORCE_COLOUR = "#c0141e"
 TORQUE_COLOUR = "#000000"
 THRUST_LINE_COLOUR = "#7a0c12"
 HINGE_COLOUR = "#0072B2"
+#: marker of a hinge on a face between two rings of a multi-ring arch (drawn smaller than a hinge)
+RING_HINGE = dict(marker="o", markersize=3, markerfacecolor="#D55E00", markeredgecolor="#D55E00")
 NOTE_COLOUR = "#8a4b00"
 ARROW_FRACTION = 0.2  # longest resultant arrow, as a fraction of the assembly size
 TORQUE_FRACTION = 0.05  # largest torque arc radius, as a fraction of the assembly size
@@ -585,10 +587,14 @@ def _hinges(ax: Axes, ds: xr.Dataset, scenario: str, asm: Assembly, camera: draw
     if planar and camera == draw.Camera.elevation():
         mode = value(ds, "interface_mode", scenario).astype(str) if "interface_mode" in ds else np.array([])
         hp = np.asarray(value(ds, "hinge_point", scenario, ["interface", "xyz"]), float)
-        hp = hp[(mode == "hinge") & np.all(np.isfinite(hp), axis=1)]
-        xy = camera.project(hp) + offset
+        turning = (mode == "hinge") & np.all(np.isfinite(hp), axis=1)
+        ring = _ring_faces(ds, scenario, len(hp))
+        xy = camera.project(hp[turning & ~ring]) + offset
         ax.plot(xy[:, 0], xy[:, 1], linestyle="none", marker="o", markersize=6, markerfacecolor="white",
                 markeredgecolor=HINGE_COLOUR, markeredgewidth=1.6, zorder=6, gid="hinges")
+        if (turning & ring).any():  # rings separating: many small turns along the faces between rings
+            xy = camera.project(hp[turning & ring]) + offset
+            ax.plot(xy[:, 0], xy[:, 1], linestyle="none", **RING_HINGE, zorder=5, gid="ring_hinges")
         return
     segs = hinge_segments(ds, scenario, asm)
     if segs.size:
@@ -596,6 +602,16 @@ def _hinges(ax: Axes, ds: xr.Dataset, scenario: str, asm: Assembly, camera: draw
                               zorder=6, capstyle="round")
         coll.set_gid("hinges")
         ax.add_collection(coll)
+
+
+def _ring_faces(ds: xr.Dataset, scenario: str, n: int) -> NDArray[np.bool_]:
+    """Which of the ``n`` interfaces of ``scenario`` are faces between rings (``interface_kind``
+    ``"ring"``; none where the dataset has no kinds)."""
+    if "interface_kind" not in ds:
+        return np.zeros(n, dtype=bool)
+    kinds = ds["interface_kind"]
+    kinds = kinds.sel(scenario=scenario) if "scenario" in kinds.dims else kinds
+    return np.asarray(kinds.values).astype(str) == "ring"
 
 
 def _content_box(art: draw.BlockArt, pad: float) -> tuple[NDArray, NDArray]:
@@ -888,6 +904,11 @@ def mechanism_view(ds: xr.Dataset, names: Sequence[str], drawn: Sequence[str] | 
     handles = [Patch(facecolor="none", edgecolor="#9a9a9a", linestyle="--", label="original position"),
                Patch(facecolor=draw.BLOCK_COLOUR, edgecolor=draw.EDGE_COLOUR, label="displaced block"),
                Line2D([], [], color=HINGE_COLOUR, linewidth=2.6, marker="o", markerfacecolor="white", label="hinge")]
+    if planar and "interface_mode" in ds:
+        modes = value(ds, "interface_mode", s0).astype(str)
+        if ((modes == "hinge") & _ring_faces(ds, s0, len(modes))).any():
+            handles.append(Line2D([], [], linestyle="none", **RING_HINGE,
+                                  label="turn on a face between rings (the rings separate)"))
     width = 5.0
     lmax = float(value(ds, "lambda_max", s0))
     lam = f"λmax = {lmax:.3f}" if math.isfinite(lmax) else "the direct limit"

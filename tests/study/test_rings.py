@@ -90,3 +90,28 @@ def test_staggered_rings_build_and_run_in_a_study():
     asm = study.assembly(sc.structure)
     assert asm.meta["rings"] == [0.1, 0.2] and asm.meta["stagger"] is True
     assert math.isclose(sum(asm.meta["rings"]), 0.3)
+
+
+def test_the_mechanism_figure_marks_turns_on_faces_between_rings_apart(tmp_path: Path, capsys):
+    """The debonded rings turn on many faces between rings: those are drawn as small markers of
+    their own (gid ``ring_hinges``, a legend entry saying the rings separate), the hinge markers
+    keep the joints across a ring; bonded rings have none."""
+    from tce.plot.figures import mechanism_view
+
+    def drawn(ds: xr.Dataset) -> tuple[int, int, list[str]]:
+        fig = mechanism_view(ds, ["none"])
+        lines = fig.axes[0].get_lines()
+        count = {gid: sum(len(a.get_xdata()) for a in lines if a.get_gid() == gid) for gid in ("hinges", "ring_hinges")}
+        labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+        return count["hinges"], count["ring_hinges"], labels
+
+    debonded, _ = _run(tmp_path / "a", HEAD + "\n[ring_interface]\nfriction = 0.3\n", capsys)
+    modes = debonded["interface_mode"].values[0].astype(str)
+    kinds = debonded["interface_kind"].values.astype(str)
+    hinges, ring_hinges, labels = drawn(debonded)
+    assert ring_hinges == int(((modes == "hinge") & (kinds == RING)).sum()) > 0
+    assert hinges == int(((modes == "hinge") & (kinds != RING)).sum())
+    assert any("between rings" in str(label) for label in labels)
+    bonded, _ = _run(tmp_path / "b", HEAD + "\n[ring_interface]\nbonded = true\n", capsys)
+    _, ring_hinges, labels = drawn(bonded)
+    assert ring_hinges == 0 and not any("between rings" in str(label) for label in labels)
