@@ -46,7 +46,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..core.analysis import Analysis
 from ..core.loads import LoadError, LoadPattern
 from ..core.result import Result
-from ..core.vehicles import OffDeck, deck_edges, deck_extent, deck_range, wheel_loads
+from ..core.vehicles import OffDeck, deck_edges, deck_extent, deck_range, deck_spread, wheel_loads
 from ..structures.assembly import Assembly
 
 __all__ = [
@@ -111,14 +111,23 @@ class CriticalResult(Result):
     pattern: LoadPattern | None = field(default=None, repr=False)
 
 
-def moving_offsets(pattern: LoadPattern) -> list[tuple[float, float]]:
-    """``(offset, half length)`` along x of every moving load from the group's reference
-    (:attr:`~tce.core.loads.LoadPattern.reference_x`): each axle of a scaled vehicle (half
-    its patch length, 0 without a patch) and each scaled ``on_top`` point load (0)."""
+def moving_offsets(pattern: LoadPattern, spread: float = 0.0) -> list[tuple[float, float, tuple[float, float]]]:
+    """``(offset, half length, (y0, y1))`` of every moving load: its offset along x from the
+    group's reference (:attr:`~tce.core.loads.LoadPattern.reference_x`), the half length
+    along x of its contact patch and the plan ordinates ``y0 <= y1`` it sweeps (m). Each wheel
+    of each axle of a scaled vehicle: half its patch length (0 without a patch) and the strip
+    of its patch's width grown by ``spread`` (m, the fill's dispersion, on each side) about its
+    line; each scaled ``on_top`` point load: 0 and its line."""
     ref = pattern.reference_x
-    out = [(v.x - ref + dx, 0.0 if v.patch is None else v.patch[0] / 2.0)
-           for v in pattern.vehicle if v.scaled for dx, _ in v.axles]
-    out += [(p.on_top[0] - ref, 0.0) for p in pattern.point if p.scaled and p.on_top is not None]
+    out = []
+    for v in pattern.vehicle:
+        if not v.scaled:
+            continue
+        half, width = (0.0, 0.0) if v.patch is None else (v.patch[0] / 2.0, v.patch[1] / 2.0)
+        out += [(v.x - ref + dx, half, (v.y + dy - width - spread, v.y + dy + width + spread))
+                for dx, _ in v.axles for dy in v.wheels]
+    out += [(p.on_top[0] - ref, 0.0, (p.on_top[1], p.on_top[1]))
+            for p in pattern.point if p.scaled and p.on_top is not None]
     return out
 
 
@@ -177,13 +186,17 @@ def scan_positions(
     pattern: LoadPattern, assembly: Assembly, lo: float, hi: float, extra: ArrayLike = ()
 ) -> NDArray[np.float64]:
     """The positions the search scans in ``[lo, hi]`` (m, sorted): ``DELTA`` of the range
-    before and after every breakpoint (a moving load crossing a deck edge), the range's
+    before and after every breakpoint (a moving load's line, or its patch's side, crossing
+    an edge of a deck piece in plan: :func:`moving_offsets`, :func:`~tce.core.vehicles.deck_edges`), the range's
     ends moved in by as much, the ``extra`` positions (clipped to them), and the midpoints
     between all of these."""
     delta = DELTA * (hi - lo)
     extra = np.clip(np.asarray(extra, dtype=float).ravel(), lo + delta, hi - delta)
-    edges = deck_edges(assembly)
-    breaks = np.array([e - off + s * half for off, half in moving_offsets(pattern) for e in edges for s in (-1.0, 1.0)])
+    spread = deck_spread(assembly, pattern.fill)
+    edges = {band: deck_edges(assembly, None if math.isinf(band[1]) else band)
+             for band in {band for _, _, band in moving_offsets(pattern, spread)}}
+    breaks = np.array([e - off + s * half for off, half, band in moving_offsets(pattern, spread)
+                       for e in edges[band] for s in (-1.0, 1.0)])
     breaks = np.unique(np.round(breaks[(breaks > lo) & (breaks < hi)], 12))
     scan = np.unique(np.concatenate([breaks - delta, breaks + delta, [lo + delta, hi - delta], extra]))
     return np.unique(np.concatenate([scan, (scan[1:] + scan[:-1]) / 2.0]))
