@@ -24,7 +24,6 @@ documents are given: the generic axle groups (:func:`single_axle`, :func:`tandem
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
@@ -49,7 +48,6 @@ __all__ = [
     "cs454_double_bogie",
     "cs454_single_axle",
     "deck_edges",
-    "deck_spread",
     "deck_extent",
     "deck_range",
     "eurocode_lm1_tandem",
@@ -342,24 +340,6 @@ def deck_edges(assembly: Assembly, band: tuple[float, float] | None = None) -> N
         return v
     keep = np.concatenate([[True], np.diff(v) > 1e-9 * assembly.size])
     return v[keep]
-
-
-def deck_spread(assembly: Assembly, fill: Fill | None) -> float:
-    """The most a wheel's contact patch grows on each side through ``fill`` anywhere on the
-    deck (m, :meth:`tce.core.fill.Fill.spread` under the road at the deck's lowest exposed
-    point): 0 without a fill or its dispersion, inf with Boussinesq's distribution (no edge)."""
-    if fill is None or fill.dispersion == 0.0:
-        return 0.0
-    if isinstance(fill.dispersion, str):
-        return math.inf
-    from .fill import road_level
-
-    faces = _upward_faces(assembly)
-    low = min(
-        float(np.min(faces.z(face, *np.asarray(poly.exterior.coords).T)))
-        for block, face, poly in top_surface(assembly) if not assembly.blocks[block].support
-    )
-    return fill.spread(road_level(assembly, fill) - low)
 
 
 # ---------------------------------------------------------------------------- library
