@@ -18,6 +18,7 @@ import pytest
 
 from tce.analysis.critical import DELTA, critical_position, scan_positions, search_bounds
 from tce.core.analysis import Analysis
+from tce.core.fill import DISPERSION_2_TO_1, Fill
 from tce.core.loads import LoadPattern
 from tce.core.vehicles import deck_edges
 from tce.structures.arch import semicircular_arch
@@ -213,3 +214,16 @@ def test_a_patch_breaks_where_its_sides_cross_the_oblique_joints():
     got = _breakpoints(p, _bridge(SKEW))
     lo, hi = search_bounds(p, _bridge(SKEW))
     assert got == pytest.approx(want[(want > lo) & (want < hi)], abs=1e-9)
+
+
+@pytest.mark.parametrize("dispersion", [0.0, DISPERSION_2_TO_1])
+def test_under_a_dispersing_fill_every_deck_vertex_stays_a_breakpoint(dispersion):
+    """A point wheel under a fill that spreads it: its patch grows with the depth under the
+    wheel (its sides are not lines), so every vertex abscissa of the skew deck is a
+    breakpoint; without dispersion, only its line's crossings."""
+    skew = _bridge(SKEW)
+    p = LoadPattern(lateral=False, vehicle=[dict(axles=[[0.0, 1.0]], y=0.3)],
+                    fill=Fill(depth=0.5, unit_weight=18.0, dispersion=dispersion))
+    lo, hi = search_bounds(p, skew)
+    want = deck_edges(skew) if dispersion else deck_edges(skew, (0.3, 0.3))
+    assert _breakpoints(p, skew) == pytest.approx(want[(want > lo) & (want < hi)], abs=1e-9)
