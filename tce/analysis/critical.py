@@ -12,8 +12,13 @@ set ``C`` of ``(mu, nu)`` with ``b_fixed + mu b0 + nu b1`` carried by an admissi
 state is convex and holds the origin when the fixed loads stand, and
 ``lambda_max(x) = 1 / g(1, x)`` with ``g`` the (convex) gauge of ``C``. So
 ``1 / lambda_max`` is convex on each such piece and ``lambda_max`` is least at one of its
-ends: where a wheel crosses an edge of the top surface (a joint's extrados,
-:func:`tce.core.vehicles.deck_edges`), or at an end of the range. The search evaluates
+ends: where a wheel crosses an edge of the top surface (a joint's extrados), or at an end
+of the range. The breakpoints are where each wheel's line, or its patch's sides, cross the
+edges of the deck's pieces in plan (:func:`tce.core.vehicles.deck_edges` of the strip it
+sweeps, :func:`moving_offsets`): on a square deck the pieces' vertex abscissae, on a skew
+deck the crossings of the line with the oblique joints, between them. Under a fill that
+disperses the wheel loads the patch grows with the depth under the wheel and its sides are
+not lines: every vertex abscissa of the deck is a breakpoint then. The search evaluates
 every breakpoint on both sides (``DELTA`` of the range before and after), the midpoints
 between them, the caller's positions, and refines the best local minima by bounded Brent
 search (:func:`scipy.optimize.minimize_scalar`) to ``xtol``: exact for point loads, and to
@@ -111,14 +116,26 @@ class CriticalResult(Result):
     pattern: LoadPattern | None = field(default=None, repr=False)
 
 
-def moving_offsets(pattern: LoadPattern) -> list[tuple[float, float]]:
-    """``(offset, half length)`` along x of every moving load from the group's reference
-    (:attr:`~tce.core.loads.LoadPattern.reference_x`): each axle of a scaled vehicle (half
-    its patch length, 0 without a patch) and each scaled ``on_top`` point load (0)."""
+def moving_offsets(pattern: LoadPattern) -> list[tuple[float, float, tuple[float, float] | None]]:
+    """``(offset, half length, band)`` of every moving load: its offset along x from the
+    group's reference (:attr:`~tce.core.loads.LoadPattern.reference_x`), the half length
+    along x of its contact patch (m) and the plan ordinates ``(y0, y1)`` it sweeps (m,
+    :func:`tce.core.vehicles.deck_edges`). Each wheel of each axle of a scaled vehicle: half
+    its patch length (0 without a patch) and the strip of its patch's width about its line,
+    or None (the whole deck) under a fill that disperses it, whose patch grows with the depth
+    under the wheel, so that its sides are not lines; each scaled ``on_top`` point load: 0
+    and its line."""
     ref = pattern.reference_x
-    out = [(v.x - ref + dx, 0.0 if v.patch is None else v.patch[0] / 2.0)
-           for v in pattern.vehicle if v.scaled for dx, _ in v.axles]
-    out += [(p.on_top[0] - ref, 0.0) for p in pattern.point if p.scaled and p.on_top is not None]
+    spread = pattern.fill is not None and pattern.fill.dispersion != 0.0
+    out: list[tuple[float, float, tuple[float, float] | None]] = []
+    for v in pattern.vehicle:
+        if not v.scaled:
+            continue
+        half, width = (0.0, 0.0) if v.patch is None else (v.patch[0] / 2.0, v.patch[1] / 2.0)
+        out += [(v.x - ref + dx, half, None if spread else (v.y + dy - width, v.y + dy + width))
+                for dx, _ in v.axles for dy in v.wheels]
+    out += [(p.on_top[0] - ref, 0.0, (p.on_top[1], p.on_top[1]))
+            for p in pattern.point if p.scaled and p.on_top is not None]
     return out
 
 
@@ -177,13 +194,15 @@ def scan_positions(
     pattern: LoadPattern, assembly: Assembly, lo: float, hi: float, extra: ArrayLike = ()
 ) -> NDArray[np.float64]:
     """The positions the search scans in ``[lo, hi]`` (m, sorted): ``DELTA`` of the range
-    before and after every breakpoint (a moving load crossing a deck edge), the range's
+    before and after every breakpoint (a moving load's line, or its patch's side, crossing
+    an edge of a deck piece in plan: :func:`moving_offsets`, :func:`~tce.core.vehicles.deck_edges`), the range's
     ends moved in by as much, the ``extra`` positions (clipped to them), and the midpoints
     between all of these."""
     delta = DELTA * (hi - lo)
     extra = np.clip(np.asarray(extra, dtype=float).ravel(), lo + delta, hi - delta)
-    edges = deck_edges(assembly)
-    breaks = np.array([e - off + s * half for off, half in moving_offsets(pattern) for e in edges for s in (-1.0, 1.0)])
+    loads = moving_offsets(pattern)
+    edges = {band: deck_edges(assembly, band) for band in {band for _, _, band in loads}}
+    breaks = np.array([e - off + s * half for off, half, band in loads for e in edges[band] for s in (-1.0, 1.0)])
     breaks = np.unique(np.round(breaks[(breaks > lo) & (breaks < hi)], 12))
     scan = np.unique(np.concatenate([breaks - delta, breaks + delta, [lo + delta, hi - delta], extra]))
     return np.unique(np.concatenate([scan, (scan[1:] + scan[:-1]) / 2.0]))

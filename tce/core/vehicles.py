@@ -312,15 +312,30 @@ def deck_extent(assembly: Assembly) -> tuple[tuple[float, float], tuple[float, f
     return (float(x0), float(x1)), (float(y0), float(y1))
 
 
-def deck_edges(assembly: Assembly) -> NDArray[np.float64]:
-    """Sorted distinct plan abscissae (m) of the vertices of the free blocks' top-surface
-    pieces: where a load moving along x passes from one face (or block) to the next."""
-    xs = [
-        np.asarray(poly.exterior.coords)[:, 0]
-        for block, _, poly in top_surface(assembly)
-        if not assembly.blocks[block].support
-    ]
-    v = np.sort(np.concatenate(xs)) if xs else np.zeros(0)
+def deck_edges(assembly: Assembly, band: tuple[float, float] | None = None) -> NDArray[np.float64]:
+    """Sorted distinct plan abscissae (m) where a load moving along x passes from one
+    top-surface piece of the free blocks (or one face) to the next.
+
+    Parameters
+    ----------
+    assembly : Assembly
+        The structure.
+    band : (float, float), optional
+        Plan ordinates ``(y0, y1)`` (m, ``y0 <= y1``) swept by the load: a line (``y0 == y1``,
+        a point wheel) or a strip (a contact patch's sides). The abscissae are those of the
+        vertices of the pieces clipped to it: the pieces' own vertices inside the strip and
+        the crossings of the line (or of the strip's sides) with the pieces' edges, which on a
+        skew deck lie between the vertices' abscissae. Default: the vertices of the whole
+        pieces (a load anywhere across the deck).
+    """
+    pieces = [poly for block, _, poly in top_surface(assembly) if not assembly.blocks[block].support]
+    if band is not None and pieces:
+        y0, y1 = band
+        x0, _, x1, _ = shapely.union_all(pieces).bounds
+        clip = (shapely.LineString([(x0 - 1.0, y0), (x1 + 1.0, y0)]) if y1 <= y0
+                else shapely.box(x0 - 1.0, y0, x1 + 1.0, y1))
+        pieces = [poly.intersection(clip) for poly in pieces]
+    v = np.sort(np.concatenate([shapely.get_coordinates(p)[:, 0] for p in pieces])) if pieces else np.zeros(0)
     if not len(v):
         return v
     keep = np.concatenate([[True], np.diff(v) > 1e-9 * assembly.size])

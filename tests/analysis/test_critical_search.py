@@ -16,10 +16,13 @@ from functools import cache
 import numpy as np
 import pytest
 
-from tce.analysis.critical import critical_position, scan_positions
+from tce.analysis.critical import DELTA, critical_position, scan_positions, search_bounds
 from tce.core.analysis import Analysis
+from tce.core.fill import DISPERSION_2_TO_1, Fill
 from tce.core.loads import LoadPattern
+from tce.core.vehicles import deck_edges
 from tce.structures.arch import semicircular_arch
+from tce.structures.bridge import arch_bridge
 
 AN = Analysis(semicircular_arch())
 DECK = (-1.2, 1.2)  # the paper's arch: centreline radius 1.1 m, extrados radius 1.2 m
@@ -162,3 +165,65 @@ def test_two_equal_point_axles_tie_with_their_mirror_the_leftmost_reported():
     assert res.critical_x < res.ties[0]
     assert res.critical_x + res.ties[0] == pytest.approx(-0.4, abs=2 * XTOL)
     assert res.critical_x == pytest.approx(min(x_ref, -x_ref - 0.4), abs=XTOL)
+
+
+# ---------------------------------------------------------------------------- skew decks
+SKEW = 30.0  # degrees: the bed joints' extrados edges run at this angle from the y axis
+
+
+def _bridge(skew: float, bond: str = "stack"):
+    return arch_bridge(span=6.0, rise=1.5, thickness=0.4, depth=2.0, voussoirs=4, courses=2, bond=bond,
+                       skew=skew, pier_height=1.0)
+
+
+def _breakpoints(p: LoadPattern, assembly) -> np.ndarray:
+    """The breakpoints behind a scan: the midpoints of its pairs of positions DELTA of the
+    range either side of one (the scan's ends and midpoints left out)."""
+    lo, hi = search_bounds(p, assembly)
+    scan = scan_positions(p, assembly, lo, hi)
+    d = DELTA * (hi - lo)
+    return np.array([x + d for x in scan if np.isclose(scan, x + 2 * d, rtol=0, atol=1e-3 * d).any()])
+
+
+@pytest.mark.parametrize("y", [-0.7, 0.3, 1.0])
+def test_a_skew_deck_breaks_where_the_wheel_line_crosses_the_oblique_joints(y):
+    """A point wheel on the line y over a skew deck of stacked courses passes from voussoir to
+    voussoir where its line crosses the oblique extrados joints: at the square deck's joint
+    abscissae shifted by y tan(skew), and nowhere else (the other courses' vertices, at
+    other abscissae, are not breakpoints: the wheel never meets them)."""
+    p = pattern(dict(axles=[[0.0, 1.0]], y=y))
+    square = deck_edges(_bridge(0.0))
+    assert len(square) == 5  # the abutments' faces and the 3 joints between 4 voussoirs
+    assert _breakpoints(p, _bridge(0.0)) == pytest.approx(square[1:-1], abs=1e-12)  # the ends: the range's
+    skew = _bridge(SKEW)
+    assert len(deck_edges(skew)) == 15  # every course's vertices: 10 of them are not on the line
+    want = square + y * np.tan(np.radians(SKEW))
+    lo, hi = search_bounds(p, skew)
+    assert _breakpoints(p, skew) == pytest.approx(want[(want > lo) & (want < hi)], abs=1e-9)
+
+
+def test_a_patch_breaks_where_its_sides_cross_the_oblique_joints():
+    """A patch 0.4 m wide on the line y = 0.3 (its sides at y = 0.1 and 0.5) over the skew
+    deck: its edges meet each oblique joint twice, at the joint's abscissae on its two sides,
+    each shifted by half the patch's length either way."""
+    y, (lx, ly) = 0.3, (0.2, 0.4)
+    p = pattern(dict(axles=[[0.0, 1.0]], y=y, patch=[lx, ly]))
+    joints = deck_edges(_bridge(0.0))
+    t = np.tan(np.radians(SKEW))
+    want = np.sort([j + side * t + s * lx / 2 for j in joints for side in (y - ly / 2, y + ly / 2) for s in (-1, 1)])
+    got = _breakpoints(p, _bridge(SKEW))
+    lo, hi = search_bounds(p, _bridge(SKEW))
+    assert got == pytest.approx(want[(want > lo) & (want < hi)], abs=1e-9)
+
+
+@pytest.mark.parametrize("dispersion", [0.0, DISPERSION_2_TO_1])
+def test_under_a_dispersing_fill_every_deck_vertex_stays_a_breakpoint(dispersion):
+    """A point wheel under a fill that spreads it: its patch grows with the depth under the
+    wheel (its sides are not lines), so every vertex abscissa of the skew deck is a
+    breakpoint; without dispersion, only its line's crossings."""
+    skew = _bridge(SKEW)
+    p = LoadPattern(lateral=False, vehicle=[dict(axles=[[0.0, 1.0]], y=0.3)],
+                    fill=Fill(depth=0.5, unit_weight=18.0, dispersion=dispersion))
+    lo, hi = search_bounds(p, skew)
+    want = deck_edges(skew) if dispersion else deck_edges(skew, (0.3, 0.3))
+    assert _breakpoints(p, skew) == pytest.approx(want[(want > lo) & (want < hi)], abs=1e-9)
