@@ -3,7 +3,8 @@
 - Moves: a two-ring arch with backing blocks (their own cohesive law on the faces of kind
   ``"backing"``) or with the backing as fill, under a live point load: the answer moves with
   the scene turned in plan, mirrored, and in mm and N; as a study, against the same study of
-  the moved blocks written to a block file (the interfaces' kinds stored in it).
+  the moved blocks written to a block file (the interfaces' kinds and the fill's heavier
+  voussoirs stored in it).
 - Runners: a thickness sweep of a two-ring arch with backing blocks and a
   ``[backing_interface]`` law: two worker processes and a run resumed after one scenario file
   is removed give the in-process dataset.
