@@ -26,6 +26,7 @@ from tce.study import runner
 from tce.study.schema import (
     _STRUCTURES,
     AssessmentSection,
+    BackingSection,
     DistributedLoadSection,
     FileStructure,
     FillSection,
@@ -226,12 +227,17 @@ SECTIONS: dict[str, tuple[dict, type[BaseModel]]] = {
     "sweep:moved": (MOVED, SweepSection),
     "settlement_path": (SETTLING, SettlementPathSection),
 }
+def _holds_numbers(annotation: Any) -> bool:
+    return annotation in (float, int) or any(_holds_numbers(a) for a in get_args(annotation))
+
+
 BASES = [LOADED, MOVED, SETTLING]
 for _cls in _STRUCTURES:
     if _cls is not FileStructure:
         _kind = _cls.model_fields["type"].annotation.__args__[0]
         _given = {k: f.default for k, f in _cls.model_fields.items() if k != "type" and f.default is not None}
-        _lengths = {k: 1.0 for k, f in _cls.model_fields.items() if f.default is None and k not in ("centre_offset", "rise")}
+        _lengths = {k: 1.0 for k, f in _cls.model_fields.items()
+                    if f.default is None and k not in ("centre_offset", "rise") and _holds_numbers(f.annotation)}
         _doc = {"study": {"name": "s"}, "structure": {"type": _kind, **_given, **_lengths}}
         if _kind == "pointed_arch":  # rise or centre_offset
             _other = copy.deepcopy(_doc)
@@ -244,10 +250,11 @@ for _cls in _STRUCTURES:
             SECTIONS["sweep:dome"] = (_doc, SweepSection)
         SECTIONS[f"structure:{_kind}"] = (_doc, _cls)
         BASES.append(_doc)
-
-
-def _holds_numbers(annotation: Any) -> bool:
-    return annotation in (float, int) or any(_holds_numbers(a) for a in get_args(annotation))
+#: backing behind the haunches of the semicircular arch of radius 1 m (its extrados crown at 1.2 m)
+BACKED = {"study": {"name": "s"}, "structure": {"type": "semicircular_arch", "voussoirs": 6,
+                                                "backing": {"height": 0.8, "unit_weight": 22.0}}}
+SECTIONS["structure.backing"] = (BACKED, BackingSection)
+BASES.append(BACKED)
 
 
 def _numeric(cls: type[BaseModel]) -> list[str]:

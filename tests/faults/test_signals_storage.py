@@ -242,9 +242,9 @@ def test_a_signal_inside_a_deferred_block_is_raised_when_it_ends() -> None:
         reached = []
         with pytest.raises(Interrupted) as stop:
             with deferred():
-                os.kill(os.getpid(), signal.SIGINT)
-                for _ in range(1000):  # the handler has run by now (it runs between bytecodes)
-                    pass
+                # raise(3): to this thread, its handler run before the next bytecode (os.kill may
+                # hand it to another thread of the process, xdist's, and the handler run late)
+                signal.raise_signal(signal.SIGINT)
                 reached.append("end of the block")
         assert reached == ["end of the block"] and stop.value.signum == signal.SIGINT
     finally:
@@ -252,8 +252,6 @@ def test_a_signal_inside_a_deferred_block_is_raised_when_it_ends() -> None:
     before = handle_signals()
     try:
         with pytest.raises(Interrupted):
-            os.kill(os.getpid(), signal.SIGINT)
-            for _ in range(1000):
-                pass
+            signal.raise_signal(signal.SIGINT)
     finally:
         restore_signals(before)
