@@ -113,6 +113,20 @@ def run(text: str, folder: Path, **options: Any) -> xr.Dataset:
     return ds
 
 
+def runners_agree(text: str, folder: Path) -> xr.Dataset:
+    """Run the study ``text`` in-process, with 2 workers, and again after one of its scenario
+    files is removed (resumed); assert the three datasets identical and return the first."""
+    reference = run(text, folder / "in_process")
+    xr.testing.assert_identical(run(text, folder / "jobs2", jobs=2), reference)
+    out = folder / "resumed"
+    run(text, out)
+    name = parse_study(text, out / "study.toml").name
+    (first, *_) = sorted((out / "results" / name / "scenarios").glob("*.nc"))
+    first.unlink()
+    xr.testing.assert_identical(run(text, out), reference)
+    return reference
+
+
 def total_reaction(ds: xr.Dataset, about: np.ndarray) -> np.ndarray:
     """Sum of the reactions per scenario and step, moments about ``about``: (scenario, step, 6)."""
     r = ds["reaction"].values  # scenario, step, support, component
