@@ -44,7 +44,8 @@ from .data import (
     text,
     value,
 )
-from .figures import FONT, LINESTYLES, MARKERS, NOTE_COLOUR, _bottom_legend, _Grid, _legend_height, _palette, _wrap
+from .figures import (FONT, LINESTYLES, MARKERS, NOTE_COLOUR, _bottom_legend, _Grid, _legend_height, _palette,
+                      _study, _wrap)
 
 __all__ = ["MAX_CURVES", "MAX_PANELS", "capacity_samples_figure", "convergence_figure", "drawn_scenarios",
            "fragility_figure", "running_estimate", "sensitivity_figure"]
@@ -69,10 +70,6 @@ def drawn_scenarios(ds: xr.Dataset, most: int) -> tuple[list[str], str]:
     pick = np.unique(np.round(np.linspace(0, len(names) - 1, most)).astype(int))
     return [names[k] for k in pick], (f"{len(pick)} of {len(names)} scenarios drawn, evenly spread; every scenario's "
                                        "numbers are in results.nc and tce show")
-
-
-def _study(ds: xr.Dataset) -> str:
-    return str(ds.attrs.get("study_name", "study"))
 
 
 def _threshold(ds: xr.Dataset) -> float:
