@@ -35,6 +35,7 @@ from dataclasses import dataclass, replace
 from typing import Literal
 
 import numpy as np
+import shapely
 from numpy.typing import ArrayLike
 
 from .assembly import Assembly, Block, Interface
@@ -130,12 +131,6 @@ def backing_regions(extrados: ArrayLike, height: float) -> list[tuple[np.ndarray
     return [_side(e, height), _side(e[::-1], height)]
 
 
-def _area(loop: np.ndarray) -> float:
-    """Area of a simple polygon ``(k, 2)`` (m^2, either orientation)."""
-    x, z = loop[:, 0], loop[:, 1]
-    return 0.5 * abs(float(x @ np.roll(z, -1) - z @ np.roll(x, -1)))
-
-
 def _at_depth(xz: np.ndarray, y: float) -> np.ndarray:
     return np.column_stack([xz[:, 0], np.full(len(xz), y), xz[:, 1]])
 
@@ -188,13 +183,16 @@ def with_backing(asm: Assembly, extrados: Sequence[ArrayLike], voussoirs: Sequen
     sides = [(region[0], region[1], blocks[::sign]) for regions, blocks in zip(spans, under)
              for region, sign in zip(regions, (1, -1))]
     if backing.model == "fill":
+        def column(p: np.ndarray, q: np.ndarray) -> float:
+            """Weight (kN) of the backing over the segment ``p q``, up to its top."""
+            return gamma * depth * shapely.Polygon([p, q, [q[0], h], [p[0], h]]).area
+
         extra = np.zeros(len(asm.blocks))
         for _, chords, blocks in sides:
             for (p, q), k in zip(chords, blocks):
-                extra[k] += gamma * depth * _area(np.array([p, q, [q[0], h], [p[0], h]]))
+                extra[k] += column(p, q)
         for s, pier in enumerate(piers):
-            p, q = sides[2 * s + 1][0][0], sides[2 * s + 2][0][0]
-            extra[pier] += gamma * depth * _area(np.array([p, q, [q[0], h], [p[0], h]]))
+            extra[pier] += column(sides[2 * s + 1][0][0], sides[2 * s + 2][0][0])
         blocks = tuple(b if not w else replace(b, unit_weight=b.unit_weight + w / b.volume)
                        for b, w in zip(asm.blocks, extra))
         return Assembly(blocks, asm.interfaces, meta)

@@ -113,12 +113,9 @@ def with_joint_loss(assembly: Assembly, joint: str, intrados: float = 0.0, extra
         if not hi > lo:
             raise AssemblyError(f"{joint}: losing {intrados:g} m and {extrados:g} m leaves no contact "
                                 f"(the joint is {s.max() - s.min():.4g} m deep)")
-        kept = shapely.Polygon(np.column_stack([s, t])).intersection(shapely.box(lo, t.min() - 1.0, hi, t.max() + 1.0))
-        ring = np.asarray(shapely.geometry.polygon.orient(kept, 1.0 if _ccw(s, t) else -1.0).exterior.coords)[:-1]
+        joint = shapely.Polygon(np.column_stack([s, t]))
+        kept = joint.intersection(shapely.box(lo, t.min() - 1.0, hi, t.max() + 1.0))
+        kept = shapely.geometry.polygon.orient(kept, 1.0 if joint.exterior.is_ccw else -1.0)
+        ring = np.asarray(kept.exterior.coords)[:-1]
         interfaces[k] = replace(itf, points=p[0] + ring[:, :1] * u + ring[:, 1:] * v)
     return replace(assembly, interfaces=tuple(interfaces))
-
-
-def _ccw(s: np.ndarray, t: np.ndarray) -> bool:
-    """Whether the polygon ``(s, t)`` runs counter-clockwise (its signed area is positive)."""
-    return float(np.dot(s, np.roll(t, -1)) - np.dot(np.roll(s, -1), t)) > 0
