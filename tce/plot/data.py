@@ -676,13 +676,11 @@ def capacity_label(kind: str) -> str:
 
 def uncertainty_variables(ds: xr.Dataset) -> dict[str, dict[str, Any]]:
     """The random variables' specs (attr ``uncertainty_variables``, JSON), key -> spec, in
-    the order of the ``variable`` coordinate (a list of specs with a ``name`` is keyed by it)."""
+    the order of the ``variable`` coordinate (:func:`tce.study.uncertainty.study_attrs`)."""
     try:
         specs = json.loads(str(ds.attrs.get("uncertainty_variables", "{}")))
     except ValueError:
         specs = {}
-    if isinstance(specs, list):
-        specs = {str(s.get("name", k)): {k2: v for k2, v in s.items() if k2 != "name"} for k, s in enumerate(specs)}
     keys = [str(v) for v in ds["variable"].values] if "variable" in ds.coords else list(specs)
     return {k: dict(specs.get(k, {})) for k in keys}
 

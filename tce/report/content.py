@@ -478,8 +478,8 @@ def _moves_support(ds: xr.Dataset, toml: dict, i: int) -> bool:
 
 #: sampling methods of ``[uncertainty] method``, in words
 SAMPLING = {"mc": "plain Monte Carlo", "lhs": "Latin hypercube", "sobol": "scrambled Sobol"}
-#: the statuses of FORM and subset simulation that are answers
-ANSWERED = ("converged", "optimal")
+#: the status of FORM and of subset simulation that is an answer (tce.study.samples writes "converged" or why not)
+ANSWERED = ("converged",)
 
 
 def _probability(v: float) -> str:
