@@ -14,6 +14,7 @@ A study with ``[loads] critical_position = true`` searches the position instead
 from __future__ import annotations
 
 import json
+import logging
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -23,10 +24,40 @@ import xarray as xr
 
 if TYPE_CHECKING:
     from ..analysis.critical import CriticalResult
+    from ..core.analysis import Analysis
     from ..core.limit import LimitResult
     from ..core.loads import LoadPattern
+    from .schema import Scenario
 
-__all__ = ["CriticalPosition", "critical_positions", "position_groups", "with_adequacy", "with_critical"]
+__all__ = ["CriticalPosition", "critical_positions", "position_groups", "search", "with_adequacy", "with_critical"]
+
+log = logging.getLogger(__name__)
+
+#: a process's critical-position searches of the run: search key -> result (most recently used last)
+_SEARCHES: dict[str, CriticalResult] = {}
+#: searches a process keeps
+_KEEP = 8
+
+
+def search(sc: Scenario, analysis: Analysis, pattern: LoadPattern) -> CriticalResult:
+    """The critical-position search of a scenario (or of a job of its samples, which starts
+    each sample's search there), run once per process for every scenario with the same
+    structure, material, loads and starting grid: the direct limit does not depend on support
+    motions (the static theorem), so scenarios that differ only in their settlements (a
+    magnitude sweep) share one search. ``analysis`` starts cold (no warm solver), so the
+    answer does not depend on which scenario asked first."""
+    from ..analysis.critical import critical_position  # here: the plots import this module without the solvers
+
+    key = json.dumps([sc.group, sc.pattern, sc.loads["positions"]], sort_keys=True)
+    crit = _SEARCHES.pop(key, None)
+    if crit is None:
+        crit = critical_position(analysis, pattern, start=sc.loads["positions"])
+    else:
+        log.debug("scenario %r: the critical position of an earlier scenario with other settlements", sc.name)
+    _SEARCHES[key] = crit
+    while len(_SEARCHES) > _KEEP:
+        _SEARCHES.pop(next(iter(_SEARCHES)))
+    return crit
 
 
 @dataclass(frozen=True)

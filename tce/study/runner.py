@@ -37,7 +37,6 @@ Faults (``docs/studies.md``, "Faults and resuming"):
 from __future__ import annotations
 
 import contextlib
-import json
 import logging
 import multiprocessing as mp
 from multiprocessing import forkserver
@@ -61,13 +60,11 @@ from ..analysis.nonassoc import nonassociative_limit
 from ..core.analysis import Analysis
 from ..structures.assembly import Assembly
 from ..analysis.assessment import adequacy_factor
-from ..analysis.critical import CriticalResult, critical_position
-from ..core.loads import LoadPattern
 from ..files import MIN_FREE, StorageError, storage_error
 from . import keys
 from .jobs import choose_jobs
 from .names import missing_lambdas
-from .positions import with_adequacy, with_critical
+from .positions import search, with_adequacy, with_critical
 from .results import (
     FolderLocked,
     folder_lock,
@@ -198,7 +195,7 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
     tol = sc.loads["tolerance"]
     pattern, crit = sc.loads_pattern, None
     if sc.loads.get("critical_position"):
-        crit = _search(sc, analysis, pattern)
+        crit = search(sc, analysis, pattern)
         if crit.ok:
             log.debug("scenario %r: critical position %s", sc.name, crit.message)
             pattern = crit.pattern
@@ -229,27 +226,6 @@ def solve_scenario(sc: Scenario, assembly: Assembly) -> xr.Dataset:
         factors = sc.loads["dead_factor"], sc.loads["live_factor"]
         ds = with_adequacy(ds, adequacy_factor(analysis, pattern, *factors), pattern, *factors)
     return ds if crit is None else with_critical(ds, crit)
-
-
-#: a worker's critical-position searches of the run: search key -> result (most recently used last)
-_SEARCHES: dict[str, CriticalResult] = {}
-
-
-def _search(sc: Scenario, analysis: Analysis, pattern: LoadPattern) -> CriticalResult:
-    """The critical-position search of a scenario, run once per process for every scenario
-    with the same structure, material, loads and starting grid: the direct limit does not
-    depend on support motions (the static theorem), so scenarios that differ only in their
-    settlements (a magnitude sweep) share one search."""
-    key = json.dumps([sc.group, sc.pattern, sc.loads["positions"]], sort_keys=True)
-    crit = _SEARCHES.pop(key, None)
-    if crit is None:
-        crit = critical_position(analysis, pattern, start=sc.loads["positions"])
-    else:
-        log.debug("scenario %r: the critical position of an earlier scenario with other settlements", sc.name)
-    _SEARCHES[key] = crit
-    while len(_SEARCHES) > _KEEP:
-        _SEARCHES.pop(next(iter(_SEARCHES)))
-    return crit
 
 
 def with_drawn_states(analysis: Analysis, lp: LoadPathResult, lams: Sequence[float]) -> LoadPathResult:

@@ -43,6 +43,7 @@ from ..core.analysis import Analysis
 from ..core.loads import LoadError, LoadPattern
 from ..structures.assembly import Assembly
 from .schema import Scenario, Study, build_material, build_structure
+from .positions import search
 from .settlement import follow
 from .uncertainty import UncertaintySection, draw, label, statistics, study_attrs
 
@@ -111,8 +112,7 @@ def _rebuilt(job: Scenario, assembly: Assembly, kind: str) -> Capacity:
     """The capacity of a sample with the job's scenario rebuilt at its values (module docstring)."""
     start: list[float] = []
     if job.loads.get("critical_position"):  # the nominal scenario's critical position starts each search
-        nominal = critical_position(Analysis(assembly, build_material(job.material)), job.loads_pattern,
-                                    start=job.loads["positions"])
+        nominal = search(job, Analysis(assembly, build_material(job.material)), job.loads_pattern)
         start = [nominal.critical_x] if nominal.ok else []
 
     def capacity(sample: Mapping[str, float]) -> tuple[str, float]:

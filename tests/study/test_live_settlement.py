@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from tce.analysis import critical
 from tce.analysis.critical import critical_position
 from tce.analysis.settlement_path import settlement_path
 from tce.cli import main
@@ -22,7 +23,7 @@ from tce.core.analysis import Analysis
 from tce.core.loads import LoadPattern, resolve
 from tce.structures.arch import semicircular_arch
 from tce.study import load_study
-from tce.study import runner
+from tce.study import positions
 from tce.study.runner import run_study
 from tce.study.settlement import deformed_assembly, fixed_part
 
@@ -202,8 +203,8 @@ def test_magnitude_sweep_searches_once(tmp_path: Path, monkeypatch, capsys):
         calls.append(1)
         return critical_position(*args, **kwargs)
 
-    monkeypatch.setattr(runner, "critical_position", counted)
-    monkeypatch.setattr(runner, "_SEARCHES", {})
+    monkeypatch.setattr(critical, "critical_position", counted)  # positions.search imports it when it runs
+    monkeypatch.setattr(positions, "_SEARCHES", {})
     text = BRIDGE.split("[settlement_path]")[0] + "[sweep]\nmagnitude = [0.0, 0.02, 0.05]\n"
     report = run_study(load_study(_write(tmp_path, text)), out=tmp_path / "results", jobs=1, plots=False)
     assert len(calls) == 1

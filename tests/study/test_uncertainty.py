@@ -225,17 +225,24 @@ def test_critical_position_is_searched_for_each_sample(tmp_path, monkeypatch):
     from tce.study import samples
     from tce.study.schema import build_material, build_structure
 
+    from tce.analysis import critical
+    from tce.study import positions
+
     searches = []
 
     def counted(analysis, loads, start=None, **kw):
         searches.append(list(start))
         return search(analysis, loads, start=start, **kw)
 
-    search = samples.critical_position
-    monkeypatch.setattr(samples, "critical_position", counted)
+    search = critical.critical_position
+    monkeypatch.setattr(critical, "critical_position", counted)  # the nominal search (tce.study.positions.search)
+    monkeypatch.setattr(samples, "critical_position", counted)  # the samples' searches
+    monkeypatch.setattr(positions, "_SEARCHES", {})
     study = parse_study(CRITICAL, tmp_path / "study.toml")
     ds = xr.load_dataset(runner.run_study(study, tmp_path, jobs=1).results)
-    assert searches == [[], [0.0], [0.0]]  # the nominal search, then one per sample from its position
+    # the nominal search once (the scenario's, reused by the job of its samples), then one per
+    # sample from its position
+    assert searches == [[], [0.0], [0.0]]
     sc = study.scenarios()[0]
     for k, weight in enumerate(ds["sample_input"].values[:, 0]):
         drawn = sc.drawn({"structure.unit_weight": float(weight)})
